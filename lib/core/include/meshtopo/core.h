@@ -1,0 +1,13 @@
+/* meshtopo core: one include for the whole half-edge library. */
+#ifndef MESHTOPO_CORE_H
+#define MESHTOPO_CORE_H
+
+#include "meshtopo/face_list.h"
+#include "meshtopo/generate.h"
+#include "meshtopo/mesh.h"
+#include "meshtopo/query.h"
+#include "meshtopo/report.h"
+#include "meshtopo/status.h"
+#include "meshtopo/validate.h"
+
+#endif

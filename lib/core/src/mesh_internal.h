@@ -1,0 +1,93 @@
+/* The mesh object's layout, shared by the core's source files only.
+ * Callers see it through mesh.h (raw view) and query.h. Everything here is
+ * established by build.c and checked by validate.c. */
+#ifndef MESHTOPO_MESH_INTERNAL_H
+#define MESHTOPO_MESH_INTERNAL_H
+
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "meshtopo/mesh.h"
+#include "meshtopo/report.h"
+#include "meshtopo/status.h"
+
+struct mt_mesh {
+    uint32_t num_verts;          /* caller's V */
+    uint32_t num_verts_internal; /* num_verts + num_copies */
+    uint32_t num_faces;          /* caller's F, rejected records included */
+    uint32_t num_half_edges;     /* 2 * internal edges */
+
+    uint32_t *he_head; /* [num_half_edges] internal vertex it points to */
+    uint32_t *he_next; /* [num_half_edges] */
+    uint32_t *he_face; /* [num_half_edges] MT_NONE on boundary */
+    uint32_t *face_he; /* [num_faces] first side (vertex 0 -> 1), MT_NONE if rejected */
+    uint32_t *vert_he; /* [num_verts_internal] outgoing; boundary one when there is one */
+    double *positions; /* [3 * num_verts] or NULL */
+
+    /* Vertex copies: internal vertex num_verts + i is a copy of caller vertex
+     * copy_original[i], holding one extra fan of it. copies_sorted lists the
+     * copy ids ordered by (original, id) so that a vertex's copies are found
+     * by binary search. */
+    uint32_t num_copies;
+    uint32_t *copy_original; /* [num_copies] */
+    uint32_t *copies_sorted; /* [num_copies] internal ids */
+
+    /* Edge bundles: one undirected caller edge held by several internal
+     * edges (used by more than two faces, or by two faces running the same
+     * way). Bundle b holds internal edges bundle_edges[bundle_offsets[b] ..
+     * bundle_offsets[b+1]). bundled_sorted lists every bundled internal edge
+     * ascending with bundled_bundle its bundle, for binary search. */
+    uint32_t num_bundles;
+    uint32_t *bundle_offsets; /* [num_bundles + 1] */
+    uint32_t *bundle_edges;   /* [bundle_offsets[num_bundles]] */
+    uint32_t *bundled_sorted; /* [bundle_offsets[num_bundles]] */
+    uint32_t *bundled_bundle; /* [bundle_offsets[num_bundles]] */
+
+    /* Edge-connected component of each internal vertex (all faces of a fan
+     * share it), numbered as report.components; NULL when there is at most
+     * one component. */
+    uint32_t *vert_component;
+
+    mt_report report;
+};
+
+/* Caller id of an internal vertex. */
+static inline uint32_t mt__original(const mt_mesh *m, uint32_t v)
+{
+    return v < m->num_verts ? v : m->copy_original[v - m->num_verts];
+}
+
+/* Copies of caller vertex v: *out_first points into copies_sorted, the
+ * return value is how many (0 for almost every vertex). */
+uint32_t mt__vert_copies(const mt_mesh *m, uint32_t v, const uint32_t **out_first);
+
+/* Bundle of an internal edge, MT_NONE when the edge is alone. */
+uint32_t mt__edge_bundle(const mt_mesh *m, uint32_t edge);
+
+/* Previous half-edge in h's ring (walks the ring: two steps in a triangle). */
+static inline uint32_t mt__he_prev(const mt_mesh *m, uint32_t h)
+{
+    uint32_t p = h;
+    uint32_t steps = 0;
+    while (m->he_next[p] != h && steps++ < MT_RING_STEP_LIMIT) p = m->he_next[p];
+    return p;
+}
+
+/* Fills diag (if any) with status, element and a printf-style message, and
+ * returns status, so that failures read `return mt__fail(diag, ...)`. */
+mt_status mt__fail(mt_diag *diag, mt_status status, uint32_t element, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+/* Overflow-checked size arithmetic: returns 0 and leaves *out alone on overflow. */
+static inline int mt__mul_size(size_t a, size_t b, size_t *out)
+{
+    if (a != 0 && b > SIZE_MAX / a) return 0;
+    *out = a * b;
+    return 1;
+}
+
+#endif
