@@ -82,6 +82,24 @@ mt_status mt__fail(mt_diag *diag, mt_status status, uint32_t element, const char
 #endif
     ;
 
+/* Allocation (alloc.c): plain malloc family with a test hook that makes the
+ * Nth allocation fail. Sizes of 0 allocate 1 byte so NULL always means failure. */
+void *mt__malloc(size_t bytes);
+void *mt__calloc(size_t count, size_t size);
+void *mt__realloc(void *ptr, size_t bytes);
+void mt__free(void *ptr);
+void mt__test_fail_alloc_after(long count); /* -1 = never */
+
+/* A growable array of fixed-size elements (geometric growth, so pushing n
+ * elements costs O(log n) allocations). Zero-initialise with elem_size set. */
+typedef struct mt__vec {
+    void *data;
+    size_t len, cap, elem_size;
+} mt__vec;
+
+mt_status mt__vec_push(mt__vec *vec, const void *elem);
+void mt__vec_free(mt__vec *vec);
+
 /* Overflow-checked size arithmetic: returns 0 and leaves *out alone on overflow. */
 static inline int mt__mul_size(size_t a, size_t b, size_t *out)
 {

@@ -1,0 +1,235 @@
+/* mt_mesh_build: runs the build phases (see build_internal.h) and owns the
+ * mesh's lifetime. The "links" phase lives here: one pass over the valid
+ * faces sets next, face and head of every half-edge. A build makes a fixed
+ * number of allocations whatever the mesh size (plus O(log n) for defect and
+ * bundle lists, which grow geometrically). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "build_internal.h"
+#include "meshtopo/report.h"
+
+static void report_free(mt_report *r)
+{
+    mt__free(r->boundary_loop_lengths);
+    mt__free(r->components);
+    mt__free(r->face_size_histogram);
+    mt__free(r->edge_use_histogram);
+    mt__free(r->defects);
+}
+
+void mt_mesh_destroy(mt_mesh *m)
+{
+    if (!m) return;
+    mt__free(m->he_head);
+    mt__free(m->he_next);
+    mt__free(m->he_face);
+    mt__free(m->face_he);
+    mt__free(m->vert_he);
+    mt__free(m->positions);
+    mt__free(m->copy_original);
+    mt__free(m->copies_sorted);
+    mt__free(m->bundle_offsets);
+    mt__free(m->bundle_edges);
+    mt__free(m->bundled_sorted);
+    mt__free(m->bundled_bundle);
+    mt__free(m->vert_component);
+    report_free(&m->report);
+    mt__free(m);
+}
+
+const mt_report *mt_mesh_report(const mt_mesh *m) { return m ? &m->report : NULL; }
+
+size_t mt_mesh_memory_bytes(const mt_mesh *m)
+{
+    if (!m) return 0;
+    size_t bytes = sizeof *m;
+    bytes += (size_t)m->num_half_edges * 3 * sizeof(uint32_t);
+    bytes += (size_t)m->num_faces * sizeof(uint32_t);
+    bytes += (size_t)m->num_verts_internal * sizeof(uint32_t);
+    if (m->positions) bytes += (size_t)m->num_verts * 3 * sizeof(double);
+    bytes += (size_t)m->num_copies * 2 * sizeof(uint32_t);
+    if (m->bundle_offsets) {
+        size_t bundled = m->bundle_offsets[m->num_bundles];
+        bytes += ((size_t)m->num_bundles + 1 + 3 * bundled) * sizeof(uint32_t);
+    }
+    if (m->vert_component) bytes += (size_t)m->num_verts_internal * sizeof(uint32_t);
+    return bytes;
+}
+
+size_t mt_mesh_report_memory_bytes(const mt_mesh *m)
+{
+    if (!m) return 0;
+    const mt_report *r = &m->report;
+    return r->boundary_loops * sizeof(uint32_t) +
+           r->connected_components * sizeof(mt_component_info) +
+           (r->num_face_size_bins + r->num_edge_use_bins) * sizeof(mt_histogram_bin) +
+           r->num_defects * sizeof(mt_defect);
+}
+
+/* Phase "links": next, face and head of every face half-edge, head of every
+ * boundary half-edge, and a boundary half-edge as outgoing half-edge of each
+ * vertex that has one (build_fans.c completes the vertices). */
+static void link_faces(mt__build *b)
+{
+    const mt_face_list *in = b->in;
+    mt_mesh *m = b->m;
+    const uint32_t *sizes = in->face_sizes;
+    const uint32_t *indices = in->face_indices;
+    const uint32_t *c2h = b->c2h;
+    uint32_t *he_next = m->he_next, *he_face = m->he_face, *he_head = m->he_head;
+    uint32_t *vert_he = m->vert_he;
+    uint32_t offset = 0;
+    for (uint32_t f = 0; f < in->num_faces; f++) {
+        const uint32_t n = sizes[f];
+        if (m->face_he[f] == MT_NONE) {
+            offset += n;
+            continue;
+        }
+        const uint32_t *idx = indices + offset;
+        const uint32_t *hs = c2h + offset;
+        const uint32_t first = hs[0] & ~MT__FLAG;
+        uint32_t h = first;
+        for (uint32_t i = 0; i < n; i++) {
+            const uint32_t flagged = hs[i];
+            const uint32_t next_i = i + 1 < n ? i + 1 : 0;
+            const uint32_t hn = hs[next_i] & ~MT__FLAG;
+            he_next[h] = hn;
+            he_face[h] = f;
+            he_head[h] = idx[next_i];
+            he_head[h ^ 1u] = idx[i];
+            if (flagged & MT__FLAG) vert_he[idx[next_i]] = h ^ 1u;
+            h = hn;
+        }
+        m->face_he[f] = first;
+        offset += n;
+    }
+}
+
+static void *alloc_array(size_t count, size_t elem, int fill_none)
+{
+    size_t bytes;
+    if (!mt__mul_size(count, elem, &bytes)) return NULL;
+    void *p = mt__malloc(bytes);
+    if (p && fill_none) memset(p, 0xff, bytes);
+    return p;
+}
+
+static void build_free_temporaries(mt__build *b)
+{
+    mt__free(b->bucket_start);
+    mt__free(b->bucket);
+    mt__free(b->c2h);
+    mt__vec_free(&b->large_sizes);
+    mt__vec_free(&b->invalid_refs);
+    mt__vec_free(&b->defects);
+    mt__vec_free(&b->scratch);
+    mt__vec_free(&b->large_uses);
+    mt__vec_free(&b->bundle_offsets);
+    mt__vec_free(&b->bundle_edges);
+    mt__vec_free(&b->copy_original);
+    mt__vec_free(&b->split_verts);
+    mt__vec_free(&b->dup_candidates);
+}
+
+static mt_status check_input(const mt_face_list *in, mt_mesh **out_mesh, mt_diag *diag)
+{
+    if (!out_mesh) return mt__fail(diag, MT_ERR_INVALID_ARG, MT_NONE, "build: out_mesh is NULL");
+    *out_mesh = NULL;
+    if (!in) return mt__fail(diag, MT_ERR_INVALID_ARG, MT_NONE, "build: input face list is NULL");
+    mt_status s = mt_face_list_check(in, diag);
+    if (s != MT_OK) return s;
+    if (in->num_indices > 0x7fffffffu)
+        return mt__fail(diag, MT_ERR_TOO_LARGE, MT_NONE,
+                        "build: %llu face indices; at most 2^31 - 1 are supported",
+                        (unsigned long long)in->num_indices);
+    if (in->num_verts == UINT32_MAX)
+        return mt__fail(diag, MT_ERR_TOO_LARGE, MT_NONE,
+                        "build: %u vertices; at most 2^32 - 2 are supported", in->num_verts);
+    return MT_OK;
+}
+
+static mt_status strict_refusal(mt__build *b)
+{
+    const mt_report *r = &b->m->report;
+    if (r->num_defects == 0) return MT_OK;
+    char text[400];
+    mt_defect_describe(&r->defects[0], text, sizeof text);
+    return mt__fail(b->diag, MT_ERR_DEFECT, r->defects[0].a,
+                    "strict build refused: %s (%zu defect%s in all)", text, r->num_defects,
+                    r->num_defects == 1 ? "" : "s");
+}
+
+static mt_status build(mt__build *b)
+{
+    const mt_face_list *in = b->in;
+    mt_mesh *m = b->m;
+    m->num_verts = m->num_verts_internal = in->num_verts;
+    m->num_faces = in->num_faces;
+    m->face_he = alloc_array(in->num_faces, sizeof(uint32_t), 0);
+    b->bucket_start = mt__calloc((size_t)in->num_verts + 1, sizeof(uint32_t));
+    if (in->positions) m->positions = alloc_array(in->num_verts, 3 * sizeof(double), 0);
+    if (!m->face_he || !b->bucket_start || (in->positions && !m->positions)) return MT_ERR_NOMEM;
+
+    mt_status s = mt__build_faces(b);
+    if (s != MT_OK) return s;
+
+    b->bucket = alloc_array(b->num_corners, sizeof(uint64_t), 0);
+    b->c2h = alloc_array(in->num_indices, sizeof(uint32_t), 0);
+    if (!b->bucket || !b->c2h) return MT_ERR_NOMEM;
+    s = mt__build_edges(b);
+    if (s != MT_OK) return s;
+    mt__free(b->bucket_start);
+    b->bucket_start = NULL;
+
+    m->num_half_edges = 2 * b->num_internal_edges;
+    m->he_head = alloc_array(m->num_half_edges, sizeof(uint32_t), 0);
+    m->he_next = alloc_array(m->num_half_edges, sizeof(uint32_t), 0);
+    m->he_face = alloc_array(m->num_half_edges, sizeof(uint32_t), 1);
+    m->vert_he = alloc_array(in->num_verts, sizeof(uint32_t), 1);
+    b->vert_capacity = in->num_verts;
+    if (!m->he_head || !m->he_next || !m->he_face || !m->vert_he) return MT_ERR_NOMEM;
+    link_faces(b);
+    mt__free(b->c2h);
+    b->c2h = NULL;
+
+    s = mt__build_fans(b);
+    if (s != MT_OK) return s;
+    mt__free(b->bucket);
+    b->bucket = NULL;
+    return mt__build_report(b);
+}
+
+mt_status mt_mesh_build(const mt_face_list *in, const mt_build_options *options,
+                        mt_mesh **out_mesh, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    mt_status s = check_input(in, out_mesh, diag);
+    if (s != MT_OK) return s;
+    mt__build b;
+    memset(&b, 0, sizeof b);
+    b.in = in;
+    b.diag = diag;
+    b.threads = options ? options->threads : 0;
+    b.large_sizes.elem_size = b.invalid_refs.elem_size = sizeof(uint32_t);
+    b.scratch.elem_size = b.large_uses.elem_size = sizeof(uint32_t);
+    b.bundle_offsets.elem_size = b.bundle_edges.elem_size = sizeof(uint32_t);
+    b.copy_original.elem_size = b.split_verts.elem_size = sizeof(uint32_t);
+    b.dup_candidates.elem_size = sizeof(uint32_t);
+    b.defects.elem_size = sizeof(mt_defect);
+    b.m = mt__calloc(1, sizeof(mt_mesh));
+    if (!b.m) return mt__fail(diag, MT_ERR_NOMEM, MT_NONE, "build: out of memory");
+    s = build(&b);
+    if (s == MT_OK && options && options->strict) s = strict_refusal(&b);
+    build_free_temporaries(&b);
+    if (s != MT_OK) {
+        if (s == MT_ERR_NOMEM && (!diag || diag->status == MT_OK))
+            mt__fail(diag, MT_ERR_NOMEM, MT_NONE,
+                     "build: out of memory (%u vertices, %u faces, %llu indices)", in->num_verts,
+                     in->num_faces, (unsigned long long)in->num_indices);
+        mt_mesh_destroy(b.m);
+        return s;
+    }
+    *out_mesh = b.m;
+    return MT_OK;
+}
