@@ -10,7 +10,10 @@
  * not thread safe by design (tests set it on a single thread). */
 static long fail_countdown = -1;
 
-void mt__test_fail_alloc_after(long count) { fail_countdown = count; }
+void mt__test_fail_alloc_after(long count)
+{
+    fail_countdown = count;
+}
 
 static int should_fail(void)
 {
@@ -39,7 +42,10 @@ void *mt__realloc(void *ptr, size_t bytes)
     return realloc(ptr, bytes ? bytes : 1);
 }
 
-void mt__free(void *ptr) { free(ptr); }
+void mt__free(void *ptr)
+{
+    free(ptr);
+}
 
 mt_status mt__vec_push(mt__vec *vec, const void *elem)
 {

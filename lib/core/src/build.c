@@ -38,7 +38,10 @@ void mt_mesh_destroy(mt_mesh *m)
     mt__free(m);
 }
 
-const mt_report *mt_mesh_report(const mt_mesh *m) { return m ? &m->report : NULL; }
+const mt_report *mt_mesh_report(const mt_mesh *m)
+{
+    return m ? &m->report : NULL;
+}
 
 size_t mt_mesh_memory_bytes(const mt_mesh *m)
 {
@@ -143,9 +146,9 @@ static mt_status check_input(const mt_face_list *in, mt_mesh **out_mesh, mt_diag
         return mt__fail(diag, MT_ERR_TOO_LARGE, MT_NONE,
                         "build: %llu face indices; at most 2^31 - 1 are supported",
                         (unsigned long long)in->num_indices);
-    if (in->num_verts == UINT32_MAX)
+    if (in->num_verts > 0x7fffffffu)
         return mt__fail(diag, MT_ERR_TOO_LARGE, MT_NONE,
-                        "build: %u vertices; at most 2^32 - 2 are supported", in->num_verts);
+                        "build: %u vertices; at most 2^31 - 1 are supported", in->num_verts);
     return MT_OK;
 }
 
@@ -200,8 +203,8 @@ static mt_status build(mt__build *b)
     return mt__build_report(b);
 }
 
-mt_status mt_mesh_build(const mt_face_list *in, const mt_build_options *options,
-                        mt_mesh **out_mesh, mt_diag *diag)
+mt_status mt_mesh_build(const mt_face_list *in, const mt_build_options *options, mt_mesh **out_mesh,
+                        mt_diag *diag)
 {
     mt_diag_clear(diag);
     mt_status s = check_input(in, out_mesh, diag);

@@ -31,36 +31,36 @@ typedef struct mt__build {
     uint32_t threads;
 
     /* faces */
-    uint64_t num_corners;     /* sides of valid faces */
+    uint64_t num_corners; /* sides of valid faces */
     uint64_t size_hist[MT__SMALL_SIZES];
-    mt__vec large_sizes;      /* uint32 sizes >= MT__SMALL_SIZES */
-    mt__vec invalid_refs;     /* uint32 in-range vertices of rejected records */
-    mt__vec defects;          /* mt_defect, in discovery order (sorted at the end) */
+    mt__vec large_sizes;  /* uint32 sizes >= MT__SMALL_SIZES */
+    mt__vec invalid_refs; /* uint32 in-range vertices of rejected records */
+    mt__vec defects;      /* mt_defect, in discovery order (sorted at the end) */
     uint64_t out_of_range_entries;
     uint32_t out_of_range_faces, degenerate_faces, nonfinite_vertices;
-    mt__vec scratch;          /* uint32, sorting the indices of big faces */
+    mt__vec scratch; /* uint32, sorting the indices of big faces */
 
     /* edges */
-    uint32_t *bucket_start;   /* [num_verts + 1] corners leaving each vertex */
-    uint64_t *bucket;         /* [num_corners] (head << 32) | corner, later | half-edge */
-    uint32_t *c2h;            /* [num_indices] half-edge of each corner (| MT__FLAG) */
+    uint32_t *bucket_start; /* [num_verts + 1] corners leaving each vertex */
+    uint64_t *bucket;       /* [num_corners] (head << 32) | corner, later | half-edge */
+    uint32_t *c2h;          /* [num_indices] half-edge of each corner (| MT__FLAG) */
     uint32_t max_degree;
     uint32_t num_internal_edges;
-    uint64_t num_edges;       /* distinct undirected edges */
+    uint64_t num_edges; /* distinct undirected edges */
     uint64_t use_hist[MT__SMALL_USES];
-    mt__vec large_uses;       /* uint32 use counts >= MT__SMALL_USES */
+    mt__vec large_uses; /* uint32 use counts >= MT__SMALL_USES */
     uint64_t boundary_edges, nonmanifold_edges, inconsistent_edges, duplicate_directed_edges;
-    mt__vec bundle_offsets;   /* uint32, starts of bundles in bundle_edges */
-    mt__vec bundle_edges;     /* uint32 internal edge ids, ascending */
+    mt__vec bundle_offsets; /* uint32, starts of bundles in bundle_edges */
+    mt__vec bundle_edges;   /* uint32 internal edge ids, ascending */
 
     /* fans */
-    uint32_t vert_capacity;   /* allocated length of m->vert_he */
-    mt__vec copy_original;    /* uint32 */
-    mt__vec split_verts;      /* uint32 caller vertices with more than one fan */
-    mt__vec dup_candidates;   /* uint32 faces that may repeat another face */
+    uint32_t vert_capacity; /* allocated length of m->vert_he */
+    mt__vec copy_original;  /* uint32 */
+    mt__vec split_verts;    /* uint32 caller vertices with more than one fan */
+    mt__vec dup_candidates; /* uint32 faces that may repeat another face */
 
     /* report */
-    uint32_t *vert_comp;      /* [num_verts_internal] component of each internal vertex */
+    uint32_t *vert_comp; /* [num_verts_internal] component of each internal vertex */
     uint32_t num_components;
 } mt__build;
 

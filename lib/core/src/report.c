@@ -25,7 +25,7 @@ static mt_status make_histogram(const uint64_t *small, uint32_t num_small, mt__v
                                 mt_histogram_bin **out_bins, size_t *out_count)
 {
     uint32_t *keys = large->data;
-    qsort(keys, large->len, sizeof *keys, compare_u32);
+    if (large->len) qsort(keys, large->len, sizeof *keys, compare_u32);
     size_t bins = 0;
     for (uint32_t k = 0; k < num_small; k++) bins += small[k] != 0;
     for (size_t i = 0; i < large->len; i++) bins += i == 0 || keys[i] != keys[i - 1];
@@ -74,11 +74,12 @@ static mt_status report_isolated(mt__build *b)
     mt_report *r = &m->report;
     uint32_t *refs = b->invalid_refs.data;
     size_t num_refs = b->invalid_refs.len;
-    qsort(refs, num_refs, sizeof *refs, compare_u32);
+    if (num_refs) qsort(refs, num_refs, sizeof *refs, compare_u32);
     for (uint32_t v = 0; v < m->num_verts; v++) {
         if (m->vert_he[v] != MT_NONE) continue;
         r->isolated_vertices++;
-        if (!bsearch(&v, refs, num_refs, sizeof *refs, compare_u32)) r->unreferenced_vertices++;
+        if (!num_refs || !bsearch(&v, refs, num_refs, sizeof *refs, compare_u32))
+            r->unreferenced_vertices++;
         if (mt__add_defect(b, MT_DEFECT_ISOLATED_VERTEX, v, 0, 0) != MT_OK) return MT_ERR_NOMEM;
     }
     return MT_OK;
@@ -90,8 +91,8 @@ static void finish_components(mt__build *b)
     r->closed = r->boundary_edges == 0 && r->num_faces_valid > 0;
     r->manifold = r->nonmanifold_edges == 0 && r->nonmanifold_vertices == 0;
     r->orientable = true;
-    r->consistently_oriented = r->inconsistent_orientation_edges == 0 &&
-                               r->duplicate_directed_edges == 0;
+    r->consistently_oriented =
+        r->inconsistent_orientation_edges == 0 && r->duplicate_directed_edges == 0;
     for (uint32_t c = 0; c < r->connected_components; c++) {
         mt_component_info *ci = &r->components[c];
         if (!ci->orientable) r->orientable = false;
@@ -133,8 +134,8 @@ mt_status mt__build_report(mt__build *b)
     if (s == MT_OK) s = mt__report_duplicates(b);
     if (s == MT_OK) s = report_isolated(b);
     if (s == MT_OK)
-        s = make_histogram(b->size_hist, MT__SMALL_SIZES, &b->large_sizes,
-                           &r->face_size_histogram, &r->num_face_size_bins);
+        s = make_histogram(b->size_hist, MT__SMALL_SIZES, &b->large_sizes, &r->face_size_histogram,
+                           &r->num_face_size_bins);
     if (s == MT_OK)
         s = make_histogram(b->use_hist, MT__SMALL_USES, &b->large_uses, &r->edge_use_histogram,
                            &r->num_edge_use_bins);
@@ -146,7 +147,7 @@ mt_status mt__build_report(mt__build *b)
     finish_components(b);
 
     mt_defect *defects = b->defects.data;
-    qsort(defects, b->defects.len, sizeof *defects, compare_defect);
+    if (b->defects.len) qsort(defects, b->defects.len, sizeof *defects, compare_defect);
     r->num_defects = b->defects.len;
     r->defects = defects ? defects : mt__calloc(1, sizeof(mt_defect));
     b->defects = (mt__vec){NULL, 0, 0, sizeof(mt_defect)};

@@ -70,7 +70,8 @@ static void component_loops(mt__build *b, uint32_t *parent, uint8_t *touched)
         touched[x] = touched[y] = 1;
     }
     for (uint32_t v = 0; v < nvi; v++)
-        if (touched[v] && mt__uf_find(parent, v) == v) m->report.components[comp[v]].boundary_loops++;
+        if (touched[v] && mt__uf_find(parent, v) == v)
+            m->report.components[comp[v]].boundary_loops++;
 }
 
 mt_status mt__report_boundary(mt__build *b)

@@ -104,7 +104,8 @@ mt_status mt__report_components(mt__build *b)
     }
     for (uint32_t k = 0; k < m->num_bundles; k++) {
         uint32_t first = m->bundle_edges[m->bundle_offsets[k]];
-        ci[comp[m->he_head[2 * first]]].edges -= m->bundle_offsets[k + 1] - m->bundle_offsets[k] - 1;
+        ci[comp[m->he_head[2 * first]]].edges -=
+            m->bundle_offsets[k + 1] - m->bundle_offsets[k] - 1;
     }
     for (uint32_t c = 0; c < count; c++) {
         ci[c].euler_characteristic = (int64_t)ci[c].vertices - (int64_t)ci[c].edges + ci[c].faces;

@@ -68,7 +68,8 @@ static int same_cycle(const uint32_t *a, const uint32_t *b, uint32_t n)
     return forward || backward;
 }
 
-static mt_status compare_run(mt__build *b, const keyed_face *run, size_t n, mt__vec *va, mt__vec *vb)
+static mt_status compare_run(mt__build *b, const keyed_face *run, size_t n, mt__vec *va,
+                             mt__vec *vb)
 {
     const mt_mesh *m = b->m;
     for (size_t i = 1; i < n; i++) {

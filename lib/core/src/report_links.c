@@ -34,8 +34,8 @@ static uint32_t node_index(const uint32_t *nodes, uint32_t n, uint32_t v)
 }
 
 typedef struct link_shape {
-    uint32_t parts;     /* connected parts */
-    int high_degree;    /* some node has degree > 2 */
+    uint32_t parts;  /* connected parts */
+    int high_degree; /* some node has degree > 2 */
 } link_shape;
 
 /* Shape of the link made of edges[0..n). scratch holds 4 * 2n uint32. */
@@ -43,7 +43,8 @@ static link_shape analyze(const link_edge *edges, uint32_t n, uint32_t *scratch)
 {
     uint32_t *nodes = scratch, *degree = scratch + 2 * n, *parent = scratch + 4 * n;
     uint32_t num_nodes = 0;
-    for (uint32_t i = 0; i < n; i++) nodes[num_nodes++] = edges[i].p, nodes[num_nodes++] = edges[i].q;
+    for (uint32_t i = 0; i < n; i++)
+        nodes[num_nodes++] = edges[i].p, nodes[num_nodes++] = edges[i].q;
     qsort(nodes, num_nodes, sizeof *nodes, compare_u32);
     uint32_t unique = 0;
     for (uint32_t i = 0; i < num_nodes; i++)
@@ -51,7 +52,8 @@ static link_shape analyze(const link_edge *edges, uint32_t n, uint32_t *scratch)
     for (uint32_t i = 0; i < unique; i++) degree[i] = 0, parent[i] = i;
     link_shape shape = {0, 0};
     for (uint32_t i = 0; i < n; i++) {
-        uint32_t a = node_index(nodes, unique, edges[i].p), b = node_index(nodes, unique, edges[i].q);
+        uint32_t a = node_index(nodes, unique, edges[i].p),
+                 b = node_index(nodes, unique, edges[i].q);
         if (++degree[a] > 2 || ++degree[b] > 2) shape.high_degree = 1;
         mt__uf_union(parent, a, b);
     }

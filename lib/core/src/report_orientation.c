@@ -54,7 +54,8 @@ mt_status mt__report_orientation(mt__build *b)
         uint32_t f = m->he_face[2 * e], g = m->he_face[2 * e + 1];
         if (f == MT_NONE || g == MT_NONE) continue;
         if (m->num_bundles && mt__edge_bundle(m, e) != MT_NONE) continue;
-        if (!constrain(parent, parity, f, g, 0)) ci[b->vert_comp[m->he_head[2 * e]]].orientable = false;
+        if (!constrain(parent, parity, f, g, 0))
+            ci[b->vert_comp[m->he_head[2 * e]]].orientable = false;
     }
     for (uint32_t k = 0; k < m->num_bundles; k++) {
         uint32_t faces[2], uses = 0;

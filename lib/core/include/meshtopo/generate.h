@@ -2,7 +2,8 @@
  * rectangle, grids, tori, spheres, a genus-2 surface and the classic
  * defective shapes. Every generator allocates *out (free it with
  * mt_face_list_free) and returns MT_OK, MT_ERR_INVALID_ARG for sizes out of
- * its documented range, or MT_ERR_NOMEM. All faces are consistently oriented
+ * its documented range, MT_ERR_TOO_LARGE when the counts would not fit in
+ * 32 bits, or MT_ERR_NOMEM; on failure *out is zeroed. All faces are consistently oriented
  * (counter-clockwise seen from outside) unless the shape cannot be. */
 #ifndef MESHTOPO_GENERATE_H
 #define MESHTOPO_GENERATE_H
@@ -32,7 +33,7 @@ mt_status mt_gen_platonic(mt_platonic kind, mt_face_list *out);
  * and two triangles (0,1,2), (0,2,3) sharing the diagonal v0-v2. */
 mt_status mt_gen_rectangle(double width, double height, mt_face_list *out);
 
-/* A flat grid of nx by ny cells in the z = 0 plane with one boundary loop.
+/* A flat grid of nx by ny unit cells in the z = 0 plane with one boundary loop.
  * triangles: each cell split into two triangles (2*nx*ny faces); otherwise
  * nx*ny quads. Vertex (i, j) has id j*(nx+1)+i. nx, ny >= 1. */
 mt_status mt_gen_grid(uint32_t nx, uint32_t ny, bool triangles, mt_face_list *out);

@@ -50,7 +50,8 @@ typedef struct mt_build_options {
  * Positions are copied (NULL positions give a mesh without geometry).
  * On success *out_mesh owns everything; free it with mt_mesh_destroy. On
  * failure *out_mesh is NULL and diag says why (MT_ERR_INVALID_ARG for
- * inconsistent sizes, MT_ERR_TOO_LARGE past 2^31 - 1 half-edges,
+ * inconsistent sizes, MT_ERR_TOO_LARGE past 2^31 - 1 vertices or
+ * indices or 2^30 - 1 sides of valid faces,
  * MT_ERR_NOMEM, MT_ERR_DEFECT in strict mode). */
 mt_status mt_mesh_build(const mt_face_list *input, const mt_build_options *options,
                         mt_mesh **out_mesh, mt_diag *diag);

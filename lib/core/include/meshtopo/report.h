@@ -27,7 +27,7 @@ extern "C" {
     X(MT_DEFECT_DUPLICATE_FACE, "duplicate_face", "face repeats an earlier face")            \
     /* a, b = edge vertices (a < b), c = number of faces using the edge (> 2) */              \
     X(MT_DEFECT_NONMANIFOLD_EDGE, "nonmanifold_edge", "edge used by more than two faces")    \
-    /* a -> b = the directed side used by c >= 2 faces */                                     \
+    /* a -> b = a directed side used by c >= 2 faces; one entry per such direction */       \
     X(MT_DEFECT_SAME_DIRECTION_EDGE, "same_direction_edge",                                  \
       "two faces cross an edge in the same direction")                                      \
     /* a = vertex, b = connected parts (fans) of its link, c = 1 if a link vertex            \

@@ -1,0 +1,458 @@
+/* Builder tests: the half-edge relations of the seed rectangle checked by
+ * hand, each defect kind reported with its element ids, strict mode, bad
+ * arguments, allocation failure at every allocation, and thread counts. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness.h"
+#include "mesh_internal.h"
+#include "meshtopo/core.h"
+
+/* A face list over caller arrays (no allocation). */
+static mt_face_list list_of(uint32_t num_verts, uint32_t num_faces, uint32_t *sizes,
+                            uint32_t *indices, double *positions)
+{
+    uint64_t total = 0;
+    for (uint32_t f = 0; f < num_faces; f++) total += sizes[f];
+    mt_face_list fl = {num_verts, num_faces, total, positions, sizes, indices};
+    return fl;
+}
+
+static mt_mesh *build_ok(const mt_face_list *fl)
+{
+    mt_mesh *m = NULL;
+    mt_diag d;
+    CHECK_OK(mt_mesh_build(fl, NULL, &m, &d));
+    if (!m) return NULL;
+    mt_status s = mt_mesh_validate(m, &d);
+    if (s != MT_OK) mt_test_fail(__FILE__, __LINE__, "validate: %s", d.message);
+    return m;
+}
+
+/* Half-edge from caller vertex a to b, MT_NONE if none. */
+static uint32_t find_he(const mt_mesh_view *v, const mt_mesh *m, uint32_t a, uint32_t b)
+{
+    for (uint32_t h = 0; h < v->num_half_edges; h++)
+        if (mt_vert_original(m, mt_he_tail(v, h)) == a && mt_vert_original(m, v->he_head[h]) == b)
+            return h;
+    return MT_NONE;
+}
+
+static size_t count_kind(const mt_report *r, mt_defect_kind kind)
+{
+    return mt_report_count_defects(r, kind);
+}
+
+static const mt_defect *first_of(const mt_report *r, mt_defect_kind kind)
+{
+    for (size_t i = 0; i < r->num_defects; i++)
+        if (r->defects[i].kind == (uint32_t)kind) return &r->defects[i];
+    return NULL;
+}
+
+/* The seed article's rectangle: (0,0),(w,0),(w,h),(0,h), diagonal v0-v2. */
+static void test_rectangle_relations(void)
+{
+    mt_face_list fl;
+    CHECK_OK(mt_gen_rectangle(2.0, 1.0, &fl));
+    mt_mesh *m = build_ok(&fl);
+    if (!m) return;
+    mt_mesh_view v;
+    mt_mesh_get_view(m, &v);
+    CHECK_EQ(v.num_verts, 4);
+    CHECK_EQ(v.num_verts_internal, 4);
+    CHECK_EQ(v.num_half_edges, 10); /* 5 edges: 4 on the boundary, the diagonal inside */
+
+    /* Face 0 = (0,1,2): 0->1, 1->2, 2->0 in that order from face_he. */
+    uint32_t h01 = find_he(&v, m, 0, 1), h12 = find_he(&v, m, 1, 2), h20 = find_he(&v, m, 2, 0);
+    uint32_t h02 = find_he(&v, m, 0, 2), h23 = find_he(&v, m, 2, 3), h30 = find_he(&v, m, 3, 0);
+    CHECK_EQ(v.face_he[0], h01);
+    CHECK_EQ(v.face_he[1], h02);
+    CHECK_EQ(v.he_next[h01], h12);
+    CHECK_EQ(v.he_next[h12], h20);
+    CHECK_EQ(v.he_next[h20], h01);
+    CHECK_EQ(v.he_next[h02], h23);
+    CHECK_EQ(v.he_next[h23], h30);
+    CHECK_EQ(v.he_next[h30], h02);
+    CHECK_EQ(v.he_face[h01], 0);
+    CHECK_EQ(v.he_face[h12], 0);
+    CHECK_EQ(v.he_face[h20], 0);
+    CHECK_EQ(v.he_face[h02], 1);
+    CHECK_EQ(v.he_face[h23], 1);
+    CHECK_EQ(v.he_face[h30], 1);
+    /* The diagonal's two half-edges are twins. */
+    CHECK_EQ(mt_he_twin(h20), h02);
+    /* The boundary: one ring 0->3->2->1->0 without faces, the other way round. */
+    uint32_t b03 = find_he(&v, m, 0, 3), b32 = find_he(&v, m, 3, 2);
+    uint32_t b21 = find_he(&v, m, 2, 1), b10 = find_he(&v, m, 1, 0);
+    CHECK_EQ(mt_he_twin(b03), h30);
+    CHECK_EQ(mt_he_twin(b32), h23);
+    CHECK_EQ(mt_he_twin(b21), h12);
+    CHECK_EQ(mt_he_twin(b10), h01);
+    CHECK_EQ(v.he_face[b03], MT_NONE);
+    CHECK_EQ(v.he_face[b32], MT_NONE);
+    CHECK_EQ(v.he_face[b21], MT_NONE);
+    CHECK_EQ(v.he_face[b10], MT_NONE);
+    CHECK_EQ(v.he_next[b03], b32);
+    CHECK_EQ(v.he_next[b32], b21);
+    CHECK_EQ(v.he_next[b21], b10);
+    CHECK_EQ(v.he_next[b10], b03);
+    /* Every vertex is on the boundary and keeps its boundary half-edge. */
+    CHECK_EQ(v.vert_he[0], b03);
+    CHECK_EQ(v.vert_he[1], b10);
+    CHECK_EQ(v.vert_he[2], b21);
+    CHECK_EQ(v.vert_he[3], b32);
+    /* Rotation around vertex 0 from its boundary half-edge: 0->3, 0->2, 0->1. */
+    CHECK_EQ(mt_he_rotate(&v, b03), h02);
+    CHECK_EQ(mt_he_rotate(&v, h02), h01);
+    CHECK_EQ(mt_he_rotate(&v, h01), b03);
+
+    const mt_report *r = mt_mesh_report(m);
+    CHECK_EQ(r->num_edges, 5);
+    CHECK_EQ(r->boundary_edges, 4);
+    CHECK_EQ(r->boundary_loops, 1);
+    CHECK_EQ(r->boundary_loop_lengths[0], 4);
+    CHECK_EQ(r->euler_characteristic, 1);
+    CHECK_EQ(r->connected_components, 1);
+    CHECK(r->manifold && r->orientable && !r->closed && r->consistently_oriented);
+    CHECK_EQ(r->components[0].genus, -1);
+    CHECK_EQ(r->components[0].genus_with_boundary, 0);
+    CHECK_EQ(r->num_defects, 0);
+    CHECK(mt_mesh_position(m, 2)[0] == 2.0 && mt_mesh_position(m, 2)[1] == 1.0);
+    mt_mesh_destroy(m);
+    mt_face_list_free(&fl);
+}
+
+static void test_closed_solids(void)
+{
+    const mt_platonic kinds[] = {MT_TETRAHEDRON, MT_CUBE, MT_OCTAHEDRON, MT_DODECAHEDRON,
+                                 MT_ICOSAHEDRON};
+    const uint32_t edges[] = {6, 12, 12, 30, 30};
+    for (size_t k = 0; k < 5; k++) {
+        mt_face_list fl;
+        CHECK_OK(mt_gen_platonic(kinds[k], &fl));
+        mt_mesh *m = build_ok(&fl);
+        if (!m) continue;
+        const mt_report *r = mt_mesh_report(m);
+        CHECK_EQ(r->num_edges, edges[k]);
+        CHECK_EQ(r->euler_characteristic, 2);
+        CHECK(r->closed && r->manifold && r->orientable);
+        CHECK_EQ(r->genus, 0);
+        CHECK_EQ(r->boundary_edges, 0);
+        CHECK_EQ(r->num_defects, 0);
+        mt_mesh_view v;
+        mt_mesh_get_view(m, &v);
+        CHECK_EQ(v.num_half_edges, 2 * edges[k]);
+        for (uint32_t h = 0; h < v.num_half_edges; h++) CHECK(v.he_face[h] != MT_NONE);
+        mt_mesh_destroy(m);
+        mt_face_list_free(&fl);
+    }
+}
+
+static void test_genus(void)
+{
+    mt_face_list fl;
+    CHECK_OK(mt_gen_torus(12, 8, &fl));
+    mt_mesh *m = build_ok(&fl);
+    if (m) {
+        CHECK_EQ(mt_mesh_report(m)->genus, 1);
+        CHECK_EQ(mt_mesh_report(m)->euler_characteristic, 0);
+        mt_mesh_destroy(m);
+    }
+    mt_face_list_free(&fl);
+    CHECK_OK(mt_gen_double_torus(8, &fl));
+    m = build_ok(&fl);
+    if (m) {
+        CHECK_EQ(mt_mesh_report(m)->genus, 2);
+        CHECK(mt_mesh_report(m)->manifold);
+        mt_mesh_destroy(m);
+    }
+    mt_face_list_free(&fl);
+    CHECK_OK(mt_gen_moebius(10, &fl));
+    m = build_ok(&fl);
+    if (m) {
+        const mt_report *r = mt_mesh_report(m);
+        CHECK(!r->orientable);
+        CHECK(r->manifold);
+        CHECK_EQ(r->boundary_loops, 1);
+        CHECK_EQ(r->boundary_loop_lengths[0], 20);
+        CHECK_EQ(r->genus, -1);
+        mt_mesh_destroy(m);
+    }
+    mt_face_list_free(&fl);
+}
+
+static void test_bowtie_splits_vertex(void)
+{
+    mt_face_list fl;
+    CHECK_OK(mt_gen_bowtie(&fl));
+    mt_mesh *m = build_ok(&fl);
+    if (!m) return;
+    mt_mesh_view v;
+    mt_mesh_get_view(m, &v);
+    CHECK_EQ(v.num_verts_internal, 6); /* vertex 0 holds two fans: one copy */
+    CHECK_EQ(mt_vert_original(m, 5), 0);
+    const mt_report *r = mt_mesh_report(m);
+    CHECK_EQ(r->bowtie_vertices, 1);
+    CHECK_EQ(r->nonmanifold_vertices, 1);
+    CHECK(!r->manifold);
+    CHECK_EQ(r->connected_components, 2);
+    CHECK_EQ(r->vertex_connected_components, 1);
+    CHECK_EQ(r->boundary_loops, 1); /* a figure eight */
+    CHECK(r->boundary_loops_ambiguous);
+    CHECK(r->components[0].manifold && r->components[1].manifold);
+    const mt_defect *d = first_of(r, MT_DEFECT_NONMANIFOLD_VERTEX);
+    CHECK(d && d->a == 0 && d->b == 2 && d->c == 0);
+    mt_mesh_destroy(m);
+    mt_face_list_free(&fl);
+}
+
+static void test_fin_bundles_edge(void)
+{
+    mt_face_list fl;
+    CHECK_OK(mt_gen_fin(&fl));
+    mt_mesh *m = build_ok(&fl);
+    if (!m) return;
+    const mt_report *r = mt_mesh_report(m);
+    CHECK_EQ(r->nonmanifold_edges, 1);
+    CHECK_EQ(r->num_edges, 7);
+    CHECK_EQ(r->connected_components, 1);
+    CHECK(!r->manifold && !r->components[0].manifold);
+    const mt_defect *d = first_of(r, MT_DEFECT_NONMANIFOLD_EDGE);
+    CHECK(d && d->a == 0 && d->b == 1 && d->c == 3);
+    CHECK_EQ(count_kind(r, MT_DEFECT_NONMANIFOLD_VERTEX), 2);
+    size_t count = 0;
+    uint32_t faces[4];
+    CHECK_OK(mt_edge_faces(m, 1, 0, faces, 4, &count));
+    CHECK_EQ(count, 3);
+    mt_mesh_destroy(m);
+    mt_face_list_free(&fl);
+}
+
+/* Every defect kind in one face list, each reported with its ids. */
+static void test_defects_named(void)
+{
+    double pos[3 * 9] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 0,
+                         0, 2, 1, 0, 5, 5, 5, 0, 0, 0, 3, 3, 3};
+    pos[3 * 8 + 1] = NAN;
+    uint32_t sizes[] = {3, 3, 3, 3, 3, 2, 4};
+    uint32_t idx[] = {0,           1, 2,     /* f0 */
+                      2,           1, 3,     /* f1 */
+                      2,           1, 3,     /* f2: repeats f1, and runs 1->3 the same way */
+                      1,           4, 9,     /* f3: index 9 out of range */
+                      4,           5, 4,     /* f4: repeated vertex */
+                      4,           5,        /* f5: two vertices */
+                      0xffffffffu, 1, 2, 3}; /* f6: -1 */
+    mt_face_list fl = list_of(9, 7, sizes, idx, pos);
+    mt_mesh *m = build_ok(&fl);
+    if (!m) return;
+    const mt_report *r = mt_mesh_report(m);
+    CHECK_EQ(r->num_faces_valid, 3);
+    CHECK_EQ(r->out_of_range_indices, 2);
+    CHECK_EQ(r->faces_with_out_of_range_indices, 2);
+    const mt_defect *d = first_of(r, MT_DEFECT_OUT_OF_RANGE_INDEX);
+    CHECK(d && d->a == 3 && d->b == 9 && d->c == 2);
+    CHECK_EQ(r->degenerate_faces, 2);
+    d = first_of(r, MT_DEFECT_DEGENERATE_FACE);
+    CHECK(d && d->a == 4 && d->b == 2 && d->c == 3);
+    CHECK_EQ(r->duplicate_faces, 1);
+    d = first_of(r, MT_DEFECT_DUPLICATE_FACE);
+    CHECK(d && d->a == 2 && d->b == 1);
+    CHECK_EQ(r->duplicate_directed_edges, 3);
+    CHECK_EQ(r->inconsistent_orientation_edges, 2); /* 2-3 and 3-1: two faces each, same way */
+    CHECK_EQ(r->nonmanifold_edges, 1);              /* 1-2: f0, f1, f2 */
+    CHECK_EQ(r->isolated_vertices, 5);              /* 4, 5 (only in bad faces), 6, 7, 8 */
+    CHECK_EQ(count_kind(r, MT_DEFECT_ISOLATED_VERTEX), r->isolated_vertices);
+    CHECK_EQ(r->unreferenced_vertices, 3);
+    CHECK_EQ(r->nonfinite_vertices, 1);
+    d = first_of(r, MT_DEFECT_NONFINITE_COORD);
+    CHECK(d && d->a == 8 && d->b == 1);
+    char text[256];
+    for (size_t i = 0; i < r->num_defects; i++) {
+        size_t n = mt_defect_describe(&r->defects[i], text, sizeof text);
+        CHECK(n > 0 && strlen(text) == n);
+    }
+    mt_mesh_destroy(m);
+}
+
+static void test_strict_mode(void)
+{
+    mt_build_options strict = {.strict = true};
+    mt_mesh *m = NULL;
+    mt_diag d;
+    mt_face_list fl;
+    CHECK_OK(mt_gen_fin(&fl));
+    CHECK_STATUS(mt_mesh_build(&fl, &strict, &m, &d), MT_ERR_DEFECT);
+    CHECK(m == NULL);
+    CHECK(strstr(d.message, "0-1") != NULL);
+    CHECK(d.status == MT_ERR_DEFECT);
+    mt_face_list_free(&fl);
+    CHECK_OK(mt_gen_platonic(MT_ICOSAHEDRON, &fl));
+    CHECK_OK(mt_mesh_build(&fl, &strict, &m, &d));
+    CHECK(m != NULL);
+    mt_mesh_destroy(m);
+    mt_face_list_free(&fl);
+}
+
+static void test_bad_arguments(void)
+{
+    mt_mesh *m = (mt_mesh *)&m; /* must be reset to NULL on failure */
+    mt_diag d;
+    CHECK_STATUS(mt_mesh_build(NULL, NULL, &m, &d), MT_ERR_INVALID_ARG);
+    CHECK(m == NULL);
+    CHECK(d.message[0] != '\0');
+    uint32_t sizes[] = {3, 3};
+    uint32_t idx[] = {0, 1, 2, 0, 2, 3};
+    mt_face_list fl = list_of(4, 2, sizes, idx, NULL);
+    CHECK_STATUS(mt_mesh_build(&fl, NULL, NULL, &d), MT_ERR_INVALID_ARG);
+    fl.num_indices = 5; /* sizes add up to 6 */
+    CHECK_STATUS(mt_mesh_build(&fl, NULL, &m, &d), MT_ERR_INVALID_ARG);
+    CHECK(strstr(d.message, "face 1") != NULL);
+    fl.num_indices = 6;
+    sizes[1] = 0x80000000u; /* a face claiming 2^31 vertices */
+    CHECK_STATUS(mt_mesh_build(&fl, NULL, &m, &d), MT_ERR_INVALID_ARG);
+    sizes[1] = 3;
+    fl.face_sizes = NULL;
+    CHECK_STATUS(mt_mesh_build(&fl, NULL, &m, &d), MT_ERR_INVALID_ARG);
+    fl.face_sizes = sizes;
+    fl.face_indices = NULL;
+    CHECK_STATUS(mt_mesh_build(&fl, NULL, &m, &d), MT_ERR_INVALID_ARG);
+    fl.face_indices = idx;
+    fl.num_verts = 0x80000000u;
+    CHECK_STATUS(mt_mesh_build(&fl, NULL, &m, &d), MT_ERR_TOO_LARGE);
+    fl.num_verts = 4;
+    uint32_t big_sizes[] = {0x80000000u, 0x80000000u};
+    mt_face_list huge = {4, 2, 0x100000000ull, NULL, big_sizes, idx};
+    CHECK_STATUS(mt_mesh_build(&huge, NULL, &m, &d), MT_ERR_TOO_LARGE);
+    CHECK(m == NULL);
+    /* Empty meshes are fine. */
+    mt_face_list empty = {0, 0, 0, NULL, NULL, NULL};
+    CHECK_OK(mt_mesh_build(&empty, NULL, &m, &d));
+    if (m) {
+        CHECK_OK(mt_mesh_validate(m, &d));
+        CHECK_EQ(mt_mesh_report(m)->connected_components, 0);
+        CHECK(!mt_mesh_report(m)->closed);
+        mt_mesh_destroy(m);
+    }
+    mt_face_list verts_only = {3, 0, 0, NULL, NULL, NULL};
+    CHECK_OK(mt_mesh_build(&verts_only, NULL, &m, &d));
+    if (m) {
+        CHECK_EQ(mt_mesh_report(m)->isolated_vertices, 3);
+        CHECK_OK(mt_mesh_validate(m, &d));
+        mt_mesh_destroy(m);
+    }
+    mt_mesh_destroy(NULL);
+}
+
+/* A mesh touching every allocation path: bundles, copies, defects, holes,
+ * several components, flipped faces, big polygons. */
+static void messy_list(mt_face_list *out)
+{
+    mt_face_list a, b;
+    CHECK_OK(mt_gen_torus(6, 5, &a));
+    CHECK_OK(mt_gen_fin(&b));
+    uint32_t extra_faces = 3;
+    uint64_t n = a.num_indices + b.num_indices + 3 + 70 + 3;
+    CHECK_OK(mt_face_list_alloc(out, a.num_verts + b.num_verts + 70,
+                                a.num_faces + b.num_faces + extra_faces, n, NULL));
+    uint32_t f = 0;
+    uint64_t k = 0;
+    for (uint32_t i = 0; i < a.num_faces; i++) out->face_sizes[f++] = a.face_sizes[i];
+    for (uint64_t i = 0; i < a.num_indices; i++) out->face_indices[k++] = a.face_indices[i];
+    for (uint32_t i = 0; i < b.num_faces; i++) out->face_sizes[f++] = b.face_sizes[i];
+    for (uint64_t i = 0; i < b.num_indices; i++)
+        out->face_indices[k++] = b.face_indices[i] + a.num_verts;
+    /* A flipped copy of the torus' first face, a 70-gon, a bad face. */
+    out->face_sizes[f++] = 3;
+    out->face_indices[k++] = a.face_indices[2];
+    out->face_indices[k++] = a.face_indices[1];
+    out->face_indices[k++] = a.face_indices[0];
+    out->face_sizes[f++] = 70;
+    for (uint32_t i = 0; i < 70; i++) out->face_indices[k++] = a.num_verts + b.num_verts + i;
+    out->face_sizes[f++] = 3;
+    out->face_indices[k++] = 0;
+    out->face_indices[k++] = 0;
+    out->face_indices[k++] = 99999;
+    mt_face_list_free(&a);
+    mt_face_list_free(&b);
+}
+
+static void test_allocation_failures(void)
+{
+    mt_face_list fl;
+    messy_list(&fl);
+    int succeeded = 0;
+    for (long n = 0; n < 200 && !succeeded; n++) {
+        mt_mesh *m = NULL;
+        mt_diag d;
+        mt__test_fail_alloc_after(n);
+        mt_status s = mt_mesh_build(&fl, NULL, &m, &d);
+        mt__test_fail_alloc_after(-1);
+        if (s == MT_OK) {
+            succeeded = 1;
+            CHECK_OK(mt_mesh_validate(m, &d));
+            mt_mesh_destroy(m);
+        } else {
+            CHECK_EQ(s, MT_ERR_NOMEM);
+            CHECK(m == NULL);
+            CHECK(strstr(d.message, "memory") != NULL);
+        }
+    }
+    CHECK(succeeded);
+    mt_face_list_free(&fl);
+}
+
+/* Any thread count gives the same structure. */
+static void test_thread_counts_agree(void)
+{
+    mt_face_list fl;
+    CHECK_OK(mt_gen_grid(40, 30, true, &fl));
+    CHECK_OK(mt_face_list_permute(&fl, 7, NULL));
+    mt_mesh *ref = build_ok(&fl);
+    for (uint32_t t = 0; t <= 3 && ref; t++) {
+        mt_build_options o = {.threads = t};
+        mt_mesh *m = NULL;
+        CHECK_OK(mt_mesh_build(&fl, &o, &m, NULL));
+        if (!m) continue;
+        mt_mesh_view a, b;
+        mt_mesh_get_view(ref, &a);
+        mt_mesh_get_view(m, &b);
+        CHECK_EQ(a.num_half_edges, b.num_half_edges);
+        CHECK(memcmp(a.he_next, b.he_next, a.num_half_edges * sizeof(uint32_t)) == 0);
+        CHECK(memcmp(a.he_head, b.he_head, a.num_half_edges * sizeof(uint32_t)) == 0);
+        CHECK(memcmp(a.vert_he, b.vert_he, a.num_verts_internal * sizeof(uint32_t)) == 0);
+        mt_mesh_destroy(m);
+    }
+    mt_mesh_destroy(ref);
+    mt_face_list_free(&fl);
+}
+
+/* Memory stays within 56 bytes per face on a large triangle grid. */
+static void test_memory_per_face(void)
+{
+    mt_face_list fl;
+    CHECK_OK(mt_gen_grid(200, 200, true, &fl));
+    mt_mesh *m = build_ok(&fl);
+    if (m) {
+        double per_face = (double)mt_mesh_memory_bytes(m) / fl.num_faces;
+        if (per_face > 56.0) mt_test_fail(__FILE__, __LINE__, "%.1f bytes per face", per_face);
+        mt_mesh_destroy(m);
+    }
+    mt_face_list_free(&fl);
+}
+
+static const mt_test_case cases[] = {
+    {"build_rectangle_relations", test_rectangle_relations},
+    {"build_closed_solids", test_closed_solids},
+    {"build_genus", test_genus},
+    {"build_bowtie_splits_vertex", test_bowtie_splits_vertex},
+    {"build_fin_bundles_edge", test_fin_bundles_edge},
+    {"build_defects_named", test_defects_named},
+    {"build_strict_mode", test_strict_mode},
+    {"build_bad_arguments", test_bad_arguments},
+    {"build_allocation_failures", test_allocation_failures},
+    {"build_thread_counts_agree", test_thread_counts_agree},
+    {"build_memory_per_face", test_memory_per_face},
+};
+const mt_test_table mt_tests_build = {cases, sizeof cases / sizeof cases[0]};
