@@ -403,10 +403,42 @@ static void test_allocation_failures(void)
     mt_face_list_free(&fl);
 }
 
-/* Any thread count gives the same structure. */
+static void check_same_mesh(const mt_mesh *a_mesh, const mt_mesh *b_mesh)
+{
+    mt_mesh_view a, b;
+    mt_mesh_get_view(a_mesh, &a);
+    mt_mesh_get_view(b_mesh, &b);
+    CHECK_EQ(a.num_half_edges, b.num_half_edges);
+    CHECK_EQ(a.num_verts_internal, b.num_verts_internal);
+    if (a.num_half_edges != b.num_half_edges || a.num_verts_internal != b.num_verts_internal) return;
+    CHECK(memcmp(a.he_next, b.he_next, a.num_half_edges * sizeof(uint32_t)) == 0);
+    CHECK(memcmp(a.he_head, b.he_head, a.num_half_edges * sizeof(uint32_t)) == 0);
+    CHECK(memcmp(a.he_face, b.he_face, a.num_half_edges * sizeof(uint32_t)) == 0);
+    CHECK(memcmp(a.face_he, b.face_he, a.num_faces * sizeof(uint32_t)) == 0);
+    CHECK(memcmp(a.vert_he, b.vert_he, a.num_verts_internal * sizeof(uint32_t)) == 0);
+    const mt_report *ra = mt_mesh_report(a_mesh), *rb = mt_mesh_report(b_mesh);
+    CHECK_EQ(ra->num_defects, rb->num_defects);
+    if (ra->num_defects == rb->num_defects)
+        CHECK(memcmp(ra->defects, rb->defects, ra->num_defects * sizeof(mt_defect)) == 0);
+    CHECK_EQ(ra->connected_components, rb->connected_components);
+    CHECK_EQ(ra->nonmanifold_vertices, rb->nonmanifold_vertices);
+}
+
+/* Any thread count gives the same structure, messy input included. */
 static void test_thread_counts_agree(void)
 {
     mt_face_list fl;
+    messy_list(&fl);
+    mt_mesh *messy = build_ok(&fl);
+    for (uint32_t t = 2; t <= 3 && messy; t++) {
+        mt_build_options o = {.threads = t};
+        mt_mesh *m = NULL;
+        CHECK_OK(mt_mesh_build(&fl, &o, &m, NULL));
+        if (m) check_same_mesh(messy, m);
+        mt_mesh_destroy(m);
+    }
+    mt_mesh_destroy(messy);
+    mt_face_list_free(&fl);
     CHECK_OK(mt_gen_grid(40, 30, true, &fl));
     CHECK_OK(mt_face_list_permute(&fl, 7, NULL));
     mt_mesh *ref = build_ok(&fl);
@@ -415,13 +447,8 @@ static void test_thread_counts_agree(void)
         mt_mesh *m = NULL;
         CHECK_OK(mt_mesh_build(&fl, &o, &m, NULL));
         if (!m) continue;
-        mt_mesh_view a, b;
-        mt_mesh_get_view(ref, &a);
-        mt_mesh_get_view(m, &b);
-        CHECK_EQ(a.num_half_edges, b.num_half_edges);
-        CHECK(memcmp(a.he_next, b.he_next, a.num_half_edges * sizeof(uint32_t)) == 0);
-        CHECK(memcmp(a.he_head, b.he_head, a.num_half_edges * sizeof(uint32_t)) == 0);
-        CHECK(memcmp(a.vert_he, b.vert_he, a.num_verts_internal * sizeof(uint32_t)) == 0);
+        CHECK_OK(mt_mesh_validate(m, NULL));
+        check_same_mesh(ref, m);
         mt_mesh_destroy(m);
     }
     mt_mesh_destroy(ref);

@@ -69,3 +69,18 @@ void mt__vec_free(mt__vec *vec)
     vec->data = NULL;
     vec->len = vec->cap = 0;
 }
+
+mt_status mt__vec_append(mt__vec *dst, mt__vec *src)
+{
+    if (dst->len == 0 && dst->elem_size == src->elem_size) {
+        mt__vec_free(dst);
+        *dst = *src;
+        src->data = NULL;
+        src->len = src->cap = 0;
+        return MT_OK;
+    }
+    for (size_t i = 0; i < src->len; i++)
+        if (mt__vec_push(dst, (char *)src->data + i * src->elem_size) != MT_OK) return MT_ERR_NOMEM;
+    mt__vec_free(src);
+    return MT_OK;
+}

@@ -70,20 +70,17 @@ size_t mt_mesh_report_memory_bytes(const mt_mesh *m)
            r->num_defects * sizeof(mt_defect);
 }
 
-/* Phase "links": next, face and head of every face half-edge, head of every
- * boundary half-edge, and a boundary half-edge as outgoing half-edge of each
- * vertex that has one (build_fans.c completes the vertices). */
-static void link_faces(mt__build *b)
+/* Phase "links": next, face and head of every face half-edge, and each
+ * face's first half-edge, split by face range (each part writes only the
+ * half-edges of its own corners). */
+static void link_part(mt__build *b, uint32_t t)
 {
-    const mt_face_list *in = b->in;
+    const mt__part *p = &b->part[t];
     mt_mesh *m = b->m;
-    const uint32_t *sizes = in->face_sizes;
-    const uint32_t *indices = in->face_indices;
-    const uint32_t *c2h = b->c2h;
+    const uint32_t *sizes = b->in->face_sizes, *indices = b->in->face_indices, *c2h = b->c2h;
     uint32_t *he_next = m->he_next, *he_face = m->he_face, *he_head = m->he_head;
-    uint32_t *vert_he = m->vert_he;
-    uint32_t offset = 0;
-    for (uint32_t f = 0; f < in->num_faces; f++) {
+    uint32_t offset = p->index_begin;
+    for (uint32_t f = p->face_begin; f < p->face_end; f++) {
         const uint32_t n = sizes[f];
         if (m->face_he[f] == MT_NONE) {
             offset += n;
@@ -91,17 +88,14 @@ static void link_faces(mt__build *b)
         }
         const uint32_t *idx = indices + offset;
         const uint32_t *hs = c2h + offset;
-        const uint32_t first = hs[0] & ~MT__FLAG;
+        const uint32_t first = mt__edge_gap(b, hs[0]);
         uint32_t h = first;
         for (uint32_t i = 0; i < n; i++) {
-            const uint32_t flagged = hs[i];
             const uint32_t next_i = i + 1 < n ? i + 1 : 0;
-            const uint32_t hn = hs[next_i] & ~MT__FLAG;
+            const uint32_t hn = next_i ? mt__edge_gap(b, hs[next_i]) : first;
             he_next[h] = hn;
             he_face[h] = f;
             he_head[h] = idx[next_i];
-            he_head[h ^ 1u] = idx[i];
-            if (flagged & MT__FLAG) vert_he[idx[next_i]] = h ^ 1u;
             h = hn;
         }
         m->face_he[f] = first;
@@ -123,10 +117,22 @@ static void build_free_temporaries(mt__build *b)
     mt__free(b->bucket_start);
     mt__free(b->bucket);
     mt__free(b->c2h);
+    for (uint32_t t = 0; t < MT__MAX_PARTS; t++) {
+        mt__part *p = &b->part[t];
+        mt__free(p->degree);
+        mt__vec_free(&p->large_sizes);
+        mt__vec_free(&p->invalid_refs);
+        mt__vec_free(&p->defects);
+        mt__vec_free(&p->scratch);
+        mt__vec_free(&p->large_uses);
+        mt__vec_free(&p->bundle_offsets);
+        mt__vec_free(&p->bundle_edges);
+        mt__vec_free(&p->split_verts);
+        mt__vec_free(&p->dup_candidates);
+    }
     mt__vec_free(&b->large_sizes);
     mt__vec_free(&b->invalid_refs);
     mt__vec_free(&b->defects);
-    mt__vec_free(&b->scratch);
     mt__vec_free(&b->large_uses);
     mt__vec_free(&b->bundle_offsets);
     mt__vec_free(&b->bundle_edges);
@@ -163,6 +169,36 @@ static mt_status strict_refusal(mt__build *b)
                     r->num_defects == 1 ? "" : "s");
 }
 
+/* Splits faces (by corner count) and vertices into parts for the parallel
+ * phases; one part for small meshes or when asked for one thread. */
+static void plan_parts(mt__build *b, uint32_t threads)
+{
+    const mt_face_list *in = b->in;
+    uint32_t parts = threads;
+    if (threads == 0)
+        parts = in->num_indices < MT__PARALLEL_MIN_CORNERS ? 1 : (uint32_t)mt__online_cores();
+    if (parts > MT__MAX_PARTS) parts = MT__MAX_PARTS;
+    b->parts = parts;
+    uint32_t f = 0;
+    uint64_t offset = 0;
+    for (uint32_t t = 0; t < parts; t++) {
+        mt__part *p = &b->part[t];
+        const uint64_t goal = in->num_indices * (t + 1) / parts;
+        p->face_begin = f;
+        p->index_begin = (uint32_t)offset;
+        while (f < in->num_faces && (t + 1 == parts || offset < goal)) offset += in->face_sizes[f++];
+        p->face_end = f;
+        p->vert_begin = (uint32_t)((uint64_t)in->num_verts * t / parts);
+        p->vert_end = (uint32_t)((uint64_t)in->num_verts * (t + 1) / parts);
+        p->status = MT_OK;
+        p->large_sizes.elem_size = p->invalid_refs.elem_size = sizeof(uint32_t);
+        p->scratch.elem_size = p->large_uses.elem_size = sizeof(uint32_t);
+        p->bundle_offsets.elem_size = p->bundle_edges.elem_size = sizeof(uint32_t);
+        p->split_verts.elem_size = p->dup_candidates.elem_size = sizeof(uint32_t);
+        p->defects.elem_size = sizeof(mt_defect);
+    }
+}
+
 static mt_status build(mt__build *b)
 {
     const mt_face_list *in = b->in;
@@ -170,20 +206,26 @@ static mt_status build(mt__build *b)
     m->num_verts = m->num_verts_internal = in->num_verts;
     m->num_faces = in->num_faces;
     m->face_he = alloc_array(in->num_faces, sizeof(uint32_t), 0);
-    b->bucket_start = mt__calloc((size_t)in->num_verts + 1, sizeof(uint32_t));
+    b->bucket_start = mt__malloc(((size_t)in->num_verts + 1) * sizeof(uint32_t));
     if (in->positions) m->positions = alloc_array(in->num_verts, 3 * sizeof(double), 0);
     if (!m->face_he || !b->bucket_start || (in->positions && !m->positions)) return MT_ERR_NOMEM;
+    for (uint32_t t = 0; t < b->parts; t++) {
+        b->part[t].degree = mt__calloc((size_t)in->num_verts + 1, sizeof(uint32_t));
+        if (!b->part[t].degree) return MT_ERR_NOMEM;
+    }
 
     mt_status s = mt__build_faces(b);
     if (s != MT_OK) return s;
 
-    b->bucket = alloc_array(b->num_corners, sizeof(uint64_t), 0);
+    b->bucket = alloc_array(b->num_corners, sizeof(mt__side), 0);
     b->c2h = alloc_array(in->num_indices, sizeof(uint32_t), 0);
     if (!b->bucket || !b->c2h) return MT_ERR_NOMEM;
     s = mt__build_edges(b);
     if (s != MT_OK) return s;
-    mt__free(b->bucket_start);
-    b->bucket_start = NULL;
+    for (uint32_t t = 0; t < b->parts; t++) {
+        mt__free(b->part[t].degree);
+        b->part[t].degree = NULL;
+    }
 
     m->num_half_edges = 2 * b->num_internal_edges;
     m->he_head = alloc_array(m->num_half_edges, sizeof(uint32_t), 0);
@@ -192,7 +234,7 @@ static mt_status build(mt__build *b)
     m->vert_he = alloc_array(in->num_verts, sizeof(uint32_t), 1);
     b->vert_capacity = in->num_verts;
     if (!m->he_head || !m->he_next || !m->he_face || !m->vert_he) return MT_ERR_NOMEM;
-    link_faces(b);
+    mt__parallel_run(b, link_part);
     mt__free(b->c2h);
     b->c2h = NULL;
 
@@ -213,9 +255,9 @@ mt_status mt_mesh_build(const mt_face_list *in, const mt_build_options *options,
     memset(&b, 0, sizeof b);
     b.in = in;
     b.diag = diag;
-    b.threads = options ? options->threads : 0;
+    plan_parts(&b, options ? options->threads : 0);
     b.large_sizes.elem_size = b.invalid_refs.elem_size = sizeof(uint32_t);
-    b.scratch.elem_size = b.large_uses.elem_size = sizeof(uint32_t);
+    b.large_uses.elem_size = sizeof(uint32_t);
     b.bundle_offsets.elem_size = b.bundle_edges.elem_size = sizeof(uint32_t);
     b.copy_original.elem_size = b.split_verts.elem_size = sizeof(uint32_t);
     b.dup_candidates.elem_size = sizeof(uint32_t);

@@ -13,6 +13,10 @@
 
 #include "build_internal.h"
 
+/* Outgoing half-edges up to which an open fan is checked in place; a larger
+ * boundary vertex goes through split_fans, which sorts. */
+#define MT__FAN_SCAN_LIMIT 16
+
 static int compare_u64(const void *pa, const void *pb)
 {
     uint64_t a = *(const uint64_t *)pa, b = *(const uint64_t *)pb;
@@ -56,7 +60,7 @@ static mt_status new_copy(mt__build *b, uint32_t original, uint32_t *out_vert)
 /* The general case: several fans at vertex v (or a fan that does not cover
  * all outgoing half-edges). hs[0..n) are its outgoing face half-edges. */
 static mt_status split_fans(mt__build *b, uint32_t v, const uint32_t *hs, uint32_t n,
-                            uint64_t *keys, uint8_t *flags)
+                            uint64_t *keys, uint8_t *flags, uint32_t *out_fans)
 {
     mt_mesh *m = b->m;
     uint32_t *he_next = m->he_next, *he_head = m->he_head;
@@ -71,7 +75,6 @@ static mt_status split_fans(mt__build *b, uint32_t v, const uint32_t *hs, uint32
         uint32_t t = hs[i] ^ 1u;
         if (he_face[t] != MT_NONE) flags[local_index(keys, n, he_next[t])] |= HAS_PRED;
     }
-    if (mt__vec_push(&b->split_verts, &v) != MT_OK) return MT_ERR_NOMEM;
     uint32_t fans = 0;
     /* Open fans first (they start where no rotation leads), then cycles. */
     for (int pass = 0; pass < 2; pass++) {
@@ -107,64 +110,128 @@ static mt_status split_fans(mt__build *b, uint32_t v, const uint32_t *hs, uint32
             }
         }
     }
+    *out_fans = fans;
     return MT_OK;
+}
+
+/* Start of v's single open fan among hs[0..n): the half-edge no rotation
+ * leads to. MT_NONE when there is none (several fans or a corrupt ring). */
+static uint32_t open_fan_start(const mt_mesh *m, const uint32_t *hs, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t j = 0;
+        for (; j < n; j++) {
+            uint32_t t = hs[j] ^ 1u;
+            if (m->he_face[t] != MT_NONE && m->he_next[t] == hs[i]) break;
+        }
+        if (j == n) return hs[i];
+    }
+    return MT_NONE;
+}
+
+/* The usual vertex: one fan. Returns 0 when v needs split_fans. */
+static int single_fan(mt__build *b, mt__part *p, uint32_t v, const uint32_t *hs, uint32_t n,
+                      uint32_t boundary_in)
+{
+    mt_mesh *m = b->m;
+    uint32_t *he_next = m->he_next;
+    const uint32_t *he_face = m->he_face;
+    if (boundary_in == 0) {
+        uint32_t h = he_next[hs[0] ^ 1u], steps = 1;
+        while (h != hs[0] && steps < n) h = he_next[h ^ 1u], steps++;
+        if (h != hs[0] || steps != n) return 0;
+        m->vert_he[v] = hs[0];
+        if (n == 2 && (mt__vec_push(&p->dup_candidates, &he_face[hs[0]]) != MT_OK ||
+                       mt__vec_push(&p->dup_candidates, &he_face[hs[1]]) != MT_OK))
+            p->status = MT_ERR_NOMEM;
+        return 1;
+    }
+    if (boundary_in != 1 || n > MT__FAN_SCAN_LIMIT) return 0;
+    const uint32_t first = open_fan_start(m, hs, n);
+    if (first == MT_NONE) return 0;
+    uint32_t h = first, steps = 1;
+    while (he_face[h ^ 1u] != MT_NONE && steps < n) h = he_next[h ^ 1u], steps++;
+    if (he_face[h ^ 1u] != MT_NONE || steps != n) return 0;
+    const uint32_t b_out = mt__he_prev(m, first) ^ 1u;
+    he_next[h ^ 1u] = b_out; /* close the boundary ring through v */
+    m->vert_he[v] = b_out;
+    return 1;
+}
+
+/* Copies the half-edges of v's bucket into hs; returns how many. */
+static uint32_t outgoing(const mt__build *b, uint32_t v, uint32_t *hs)
+{
+    const mt__side *side = b->bucket + b->bucket_start[v];
+    const uint32_t n = b->bucket_start[v + 1] - b->bucket_start[v];
+    for (uint32_t i = 0; i < n; i++) hs[i] = side[i].item;
+    return n;
+}
+
+static void fans_part(mt__build *b, uint32_t t)
+{
+    mt__part *p = &b->part[t];
+    mt_mesh *m = b->m;
+    uint32_t *he_head = m->he_head;
+    const uint32_t *he_face = m->he_face;
+    uint32_t *hs = mt__malloc(((size_t)b->max_degree + 1) * sizeof(uint32_t));
+    if (!hs) {
+        p->status = MT_ERR_NOMEM;
+        return;
+    }
+    for (uint32_t v = p->vert_begin; v < p->vert_end && p->status == MT_OK; v++) {
+        const uint32_t n = outgoing(b, v, hs);
+        if (n == 0) continue;
+        uint32_t boundary_in = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            uint32_t twin = hs[i] ^ 1u;
+            if (he_face[twin] != MT_NONE) continue;
+            he_head[twin] = v; /* a boundary half-edge into v: v's to set */
+            boundary_in++;
+        }
+        if (!single_fan(b, p, v, hs, n, boundary_in) &&
+            mt__vec_push(&p->split_verts, &v) != MT_OK)
+            p->status = MT_ERR_NOMEM;
+    }
+    mt__free(hs);
 }
 
 mt_status mt__build_fans(mt__build *b)
 {
-    mt_mesh *m = b->m;
-    const uint64_t *bucket = b->bucket;
-    uint32_t *he_next = m->he_next;
-    const uint32_t *he_face = m->he_face;
-    size_t scratch_bytes;
-    const size_t per = 2 * sizeof(uint32_t) + sizeof(uint64_t) + 1;
-    if (!mt__mul_size((size_t)b->max_degree + 1, per, &scratch_bytes)) return MT_ERR_NOMEM;
-    uint32_t *hs = mt__malloc(scratch_bytes);
-    if (!hs) return MT_ERR_NOMEM;
-    uint64_t *keys = (uint64_t *)(hs + 2 * ((size_t)b->max_degree + 1));
-    uint8_t *flags = (uint8_t *)(keys + b->max_degree + 1);
-
-    /* bucket_start was freed; walk the buckets by counting: the bucket is
-     * sorted by tail, and each entry's tail is the twin's head. */
-    mt_status status = MT_OK;
-    uint64_t pos = 0;
-    const uint64_t total = b->num_corners;
-    const uint32_t *he_head = m->he_head;
-    while (pos < total && status == MT_OK) {
-        const uint32_t first = (uint32_t)bucket[pos] & ~MT__FLAG;
-        const uint32_t v = he_head[first ^ 1u];
-        uint32_t n = 0, boundary_in = 0;
-        while (pos < total) {
-            uint32_t h = (uint32_t)bucket[pos] & ~MT__FLAG;
-            if (he_head[h ^ 1u] != v) break;
-            hs[n++] = h;
-            boundary_in += he_face[h ^ 1u] == MT_NONE;
-            pos++;
-        }
-        int single = 0;
-        if (boundary_in == 0) {
-            uint32_t h = he_next[hs[0] ^ 1u], steps = 1;
-            while (h != hs[0] && steps < n) h = he_next[h ^ 1u], steps++;
-            single = h == hs[0] && steps == n;
-            if (single) {
-                m->vert_he[v] = hs[0];
-                if (n == 2 && (mt__vec_push(&b->dup_candidates, &he_face[hs[0]]) != MT_OK ||
-                               mt__vec_push(&b->dup_candidates, &he_face[hs[1]]) != MT_OK))
-                    status = MT_ERR_NOMEM;
-            }
-        } else if (boundary_in == 1) {
-            const uint32_t b_out = m->vert_he[v];
-            uint32_t h = he_next[b_out ^ 1u], steps = 1;
-            while (he_face[h ^ 1u] != MT_NONE && steps < n) h = he_next[h ^ 1u], steps++;
-            single = he_face[h ^ 1u] == MT_NONE && steps == n;
-            if (single) he_next[h ^ 1u] = b_out;
-        }
-        if (!single && status == MT_OK) status = split_fans(b, v, hs, n, keys, flags);
+    mt__parallel_run(b, fans_part);
+    for (uint32_t t = 0; t < b->parts; t++) {
+        mt__part *p = &b->part[t];
+        if (p->status != MT_OK) return p->status;
+        if (mt__vec_append(&b->split_verts, &p->split_verts) != MT_OK ||
+            mt__vec_append(&b->dup_candidates, &p->dup_candidates) != MT_OK)
+            return MT_ERR_NOMEM;
     }
-    mt__free(hs);
+    /* The general case, rare and done on one thread: it makes new vertices. */
+    mt_status status = MT_OK;
+    if (b->split_verts.len) {
+        size_t scratch_bytes;
+        const size_t per = sizeof(uint64_t) + sizeof(uint32_t) + 1;
+        if (!mt__mul_size((size_t)b->max_degree + 1, per, &scratch_bytes)) return MT_ERR_NOMEM;
+        uint64_t *keys = mt__malloc(scratch_bytes);
+        if (!keys) return MT_ERR_NOMEM;
+        uint32_t *hs = (uint32_t *)(keys + b->max_degree + 1);
+        uint8_t *flags = (uint8_t *)(hs + b->max_degree + 1);
+        mt__vec candidates = b->split_verts;
+        b->split_verts = (mt__vec){NULL, 0, 0, sizeof(uint32_t)};
+        const uint32_t *verts = candidates.data;
+        for (size_t i = 0; i < candidates.len && status == MT_OK; i++) {
+            uint32_t v = verts[i], fans = 0;
+            const uint32_t n = outgoing(b, v, hs);
+            status = split_fans(b, v, hs, n, keys, flags, &fans);
+            if (status == MT_OK && fans > 1 && mt__vec_push(&b->split_verts, &v) != MT_OK)
+                status = MT_ERR_NOMEM;
+        }
+        mt__vec_free(&candidates);
+        mt__free(keys);
+    }
     if (status != MT_OK) return status;
 
     /* Publish the copies: originals plus the order used to look them up. */
+    mt_mesh *m = b->m;
     m->num_copies = (uint32_t)b->copy_original.len;
     if (m->num_copies) {
         m->copy_original = b->copy_original.data;

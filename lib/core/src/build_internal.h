@@ -1,10 +1,13 @@
 /* State shared by the build phases (build.c orchestrates them):
  *   faces   (build_faces.c)  classify records, count corners per vertex
  *   edges   (build_edges.c)  counting sort by tail vertex, twin matching
- *   links   (build.c)        next/face/head of every half-edge
+ *   links   (build.c)        next/face/head of every face half-edge
  *   fans    (build_fans.c)   boundary rings, one internal vertex per fan
  *   report  (report_*.c)     components, loops, links, genus, duplicates
- * Every phase is a fixed number of passes over flat arrays. */
+ * Every phase is a fixed number of passes over flat arrays. The first four
+ * run on up to MT__MAX_PARTS threads, each owning a range of faces or of
+ * vertices and writing only elements its range owns; the result does not
+ * depend on the number of threads. */
 #ifndef MESHTOPO_BUILD_INTERNAL_H
 #define MESHTOPO_BUILD_INTERNAL_H
 
@@ -14,37 +17,82 @@
 #include "meshtopo/face_list.h"
 #include "meshtopo/mesh.h"
 
-/* Corners (sides of valid faces) a build accepts: half-edge ids then stay
- * below 2^31, which frees bit 31 for the flags below. */
+/* Corners (sides of valid faces) a build accepts: with two parts numbering
+ * half-edges from 0 and from 2 * corners, ids stay below 2^32 - 4. */
 #define MT__MAX_CORNERS 0x3fffffffu
-#define MT__FLAG 0x80000000u /* in bucket entries: processed; in c2h: twin is boundary */
 
 /* Face sizes counted in a flat histogram; larger ones are collected and sorted. */
 #define MT__SMALL_SIZES 64
 /* Edge use counts counted in a flat histogram; larger ones collected likewise. */
 #define MT__SMALL_USES 16
+/* Threads a build uses at most (the machines it targets have two cores). */
+#define MT__MAX_PARTS 2
+/* Below this many face sides one thread is faster than starting another. */
+#define MT__PARALLEL_MIN_CORNERS 200000u
+
+/* A face side in its tail vertex's bucket. Head and item share a cache
+ * line: matching reads one and writes the other at random places. */
+typedef struct mt__side {
+    uint32_t head; /* head vertex */
+    uint32_t item; /* the side's corner (flat index), then its half-edge */
+} mt__side;
+
+/* What one thread of a parallel phase owns: its range of faces or vertices
+ * and everything it counts or collects; merged by the calling thread. */
+typedef struct mt__part {
+    mt_status status;
+    uint32_t face_begin, face_end; /* faces of this part */
+    uint32_t index_begin;          /* flat index of face_begin's first corner */
+    uint32_t vert_begin, vert_end; /* vertices of this part */
+
+    /* faces */
+    uint32_t *degree; /* [num_verts] corners leaving each vertex in this part's faces,
+                         then the next free bucket slot of each vertex for this part */
+    uint64_t num_corners;
+    uint64_t size_hist[MT__SMALL_SIZES];
+    mt__vec large_sizes;  /* uint32 */
+    mt__vec invalid_refs; /* uint32 */
+    mt__vec defects;      /* mt_defect */
+    mt__vec scratch;      /* uint32 */
+    uint64_t out_of_range_entries;
+    uint32_t out_of_range_faces, degenerate_faces, nonfinite_vertices;
+
+    /* edges */
+    uint32_t edge_base, edges_made; /* internal edge ids edge_base .. edge_base + edges_made */
+    uint64_t num_edges;
+    uint64_t use_hist[MT__SMALL_USES];
+    mt__vec large_uses; /* uint32 */
+    uint64_t boundary_edges, nonmanifold_edges, inconsistent_edges, duplicate_directed_edges;
+    mt__vec bundle_offsets; /* uint32 */
+    mt__vec bundle_edges;   /* uint32 */
+
+    /* fans */
+    mt__vec split_verts;    /* uint32 vertices needing the general fan split */
+    mt__vec dup_candidates; /* uint32 faces */
+} mt__part;
 
 typedef struct mt__build {
     const mt_face_list *in;
     mt_mesh *m;
     mt_diag *diag;
-    uint32_t threads;
+    uint32_t parts;
+    mt__part part[MT__MAX_PARTS];
 
-    /* faces */
-    uint64_t num_corners; /* sides of valid faces */
+    /* faces (merged) */
+    uint64_t num_corners;
     uint64_t size_hist[MT__SMALL_SIZES];
     mt__vec large_sizes;  /* uint32 sizes >= MT__SMALL_SIZES */
     mt__vec invalid_refs; /* uint32 in-range vertices of rejected records */
     mt__vec defects;      /* mt_defect, in discovery order (sorted at the end) */
     uint64_t out_of_range_entries;
     uint32_t out_of_range_faces, degenerate_faces, nonfinite_vertices;
-    mt__vec scratch; /* uint32, sorting the indices of big faces */
 
     /* edges */
-    uint32_t *bucket_start; /* [num_verts + 1] corners leaving each vertex */
-    uint64_t *bucket;       /* [num_corners] (head << 32) | corner, later | half-edge */
-    uint32_t *c2h;          /* [num_indices] half-edge of each corner (| MT__FLAG) */
+    uint32_t *bucket_start;  /* [num_verts + 1] first slot of each vertex's bucket */
+    mt__side *bucket;        /* [num_corners] the sides, by tail vertex */
+    uint32_t *c2h;           /* [num_indices] half-edge of each corner */
     uint32_t max_degree;
+    uint32_t gap_first_he, gap_shift; /* see mt__edge_gap */
     uint32_t num_internal_edges;
     uint64_t num_edges; /* distinct undirected edges */
     uint64_t use_hist[MT__SMALL_USES];
@@ -54,15 +102,28 @@ typedef struct mt__build {
     mt__vec bundle_edges;   /* uint32 internal edge ids, ascending */
 
     /* fans */
-    uint32_t vert_capacity; /* allocated length of m->vert_he */
-    mt__vec copy_original;  /* uint32 */
-    mt__vec split_verts;    /* uint32 caller vertices with more than one fan */
-    mt__vec dup_candidates; /* uint32 faces that may repeat another face */
+    uint32_t vert_capacity;   /* allocated length of m->vert_he */
+    mt__vec copy_original;    /* uint32 */
+    mt__vec split_verts;      /* uint32 caller vertices with more than one fan */
+    mt__vec dup_candidates;   /* uint32 faces that may repeat another face */
 
     /* report */
     uint32_t *vert_comp; /* [num_verts_internal] component of each internal vertex */
     uint32_t num_components;
 } mt__build;
+
+/* Final id of a half-edge numbered by edge matching: ids from part 1's base
+ * on move down by the gap left after part 0's edges (branch-free). */
+static inline uint32_t mt__edge_gap(const mt__build *b, uint32_t he)
+{
+    return he - (he >= b->gap_first_he ? b->gap_shift : 0u);
+}
+
+/* Online processor cores (at least 1). */
+long mt__online_cores(void);
+
+/* Runs fn(b, t) for every part t, part 0 on the calling thread. */
+void mt__parallel_run(mt__build *b, void (*fn)(mt__build *, uint32_t));
 
 mt_status mt__build_faces(mt__build *b);
 mt_status mt__build_edges(mt__build *b);
@@ -100,7 +161,11 @@ static inline void mt__uf_union(uint32_t *parent, uint32_t x, uint32_t y)
  * bundled): an edge used by exactly one face. */
 int mt__is_boundary_edge(const mt_mesh *m, uint32_t e);
 
-/* Adds a defect entry; MT_ERR_NOMEM on failure. */
+/* Adds a defect entry to a list; MT_ERR_NOMEM on failure. */
+mt_status mt__push_defect(mt__vec *defects, mt_defect_kind kind, uint32_t x, uint32_t y,
+                          uint32_t z);
+
+/* The same into the build's merged list (sequential phases). */
 mt_status mt__add_defect(mt__build *b, mt_defect_kind kind, uint32_t x, uint32_t y, uint32_t z);
 
 #endif

@@ -100,6 +100,9 @@ typedef struct mt__vec {
 mt_status mt__vec_push(mt__vec *vec, const void *elem);
 void mt__vec_free(mt__vec *vec);
 
+/* Appends src's elements to dst (same element size) and frees src. */
+mt_status mt__vec_append(mt__vec *dst, mt__vec *src);
+
 /* Overflow-checked size arithmetic: returns 0 and leaves *out alone on overflow. */
 static inline int mt__mul_size(size_t a, size_t b, size_t *out)
 {

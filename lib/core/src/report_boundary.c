@@ -69,9 +69,15 @@ static void component_loops(mt__build *b, uint32_t *parent, uint8_t *touched)
         mt__uf_union(parent, x, y);
         touched[x] = touched[y] = 1;
     }
-    for (uint32_t v = 0; v < nvi; v++)
-        if (touched[v] && mt__uf_find(parent, v) == v)
-            m->report.components[comp[v]].boundary_loops++;
+    /* A root may be a vertex the boundary does not touch (a copy joined to
+     * its original): count each touched vertex's root once. */
+    for (uint32_t v = 0; v < nvi; v++) {
+        if (!(touched[v] & 1)) continue;
+        uint32_t root = mt__uf_find(parent, v);
+        if (touched[root] & 2) continue;
+        touched[root] |= 2;
+        m->report.components[comp[v]].boundary_loops++;
+    }
 }
 
 mt_status mt__report_boundary(mt__build *b)

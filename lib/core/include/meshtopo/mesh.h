@@ -37,8 +37,10 @@ typedef struct mt_build_options {
      * edge or vertex, inconsistent orientation, isolated vertex, non-finite
      * coordinate): the build fails with MT_ERR_DEFECT and diag names the first. */
     bool strict;
-    /* Worker threads for the build: 0 = as many as pay off on this machine
-     * (at most the number of online cores), 1 = build on the calling thread. */
+    /* Worker threads for the build: 0 = as many as pay off (one for small
+     * meshes, else up to two, never more than the online cores), 1 = build on
+     * the calling thread, 2 or more = two threads. The result is the same
+     * whatever the count. */
     uint32_t threads;
 } mt_build_options;
 
