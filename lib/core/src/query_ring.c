@@ -1,14 +1,13 @@
-/* Vertex one-ring and valence. A caller vertex owns one fan per internal
- * vertex (itself, then its copies in ascending id). A fan is one rotation
+/* Vertex one-ring and valence. A caller vertex has one fan per internal
+ * vertex (itself, then its copies in ascending id), each one rotation
  * r(h) = next(twin(h)) from the stored outgoing half-edge (the boundary one
- * on an open fan); r turns clockwise around counter-clockwise faces, so each
- * fan is written reversed to come out counter-clockwise. Time linear in the
- * ring (plus a binary search when the vertex has copies or bundled edges);
- * no allocation. */
+ * on an open fan). r turns clockwise around counter-clockwise faces, so fans
+ * are written reversed. Linear in the ring (plus a binary search at copies
+ * and bundled edges); no allocation. */
 #include "meshtopo/query.h"
 #include "query_internal.h"
 
-/* Sizes of the ring of caller vertex v, and whether any fan is corrupt. */
+/* Sizes of the ring of caller vertex v; MT_ERR_CORRUPT on a broken fan. */
 static mt_status ring_count(const mt_mesh *m, uint32_t v, const uint32_t *copies,
                             uint32_t num_copies, mt_ring *ring)
 {

@@ -3,7 +3,7 @@
  * before anything is dereferenced through them, and each later check relies
  * only on what the earlier ones established, so a corrupted mesh is reported,
  * never read out of bounds. One temporary allocation: a bitmap over the
- * half-edges and a counter per internal vertex. */
+ * half-edges, a counter per internal vertex and a stamp per caller vertex. */
 #include <string.h>
 
 #include "mesh_internal.h"
@@ -12,17 +12,20 @@
 typedef struct scratch {
     uint64_t *bits; /* [bit_words] one bit per half-edge (or edge) */
     size_t bit_words;
-    uint32_t *counter; /* [num_verts_internal] stamps or counts per vertex */
+    uint32_t *counter; /* [num_verts_internal] out-degree per internal vertex */
+    uint32_t *stamp;   /* [num_verts] marks per caller vertex */
 } scratch;
 
 static void bit_set(uint64_t *bits, uint32_t i)
 {
     bits[i >> 6] |= (uint64_t)1 << (i & 63);
 }
+
 static void bit_clear(uint64_t *bits, uint32_t i)
 {
     bits[i >> 6] &= ~((uint64_t)1 << (i & 63));
 }
+
 static bool bit_get(const uint64_t *bits, uint32_t i)
 {
     return (bits[i >> 6] >> (i & 63)) & 1u;
@@ -198,10 +201,15 @@ static mt_status check_half_edges(const mt_mesh *m, mt_diag *diag)
         if (h & 1u) continue;
         const uint32_t e = h >> 1, tail = m->he_head[h ^ 1u];
         const uint32_t from = mt__original(m, tail), to = mt__original(m, head);
-        if (from >= to)
+        if (from == to)
             return mt__fail(diag, MT_ERR_CORRUPT, e,
-                            "edge %u: half-edge %u runs from caller vertex %u to %u; an edge "
-                            "must join two vertices, its first half-edge from the smaller id",
+                            "edge %u: both half-edges point at caller vertex %u (vertices %u "
+                            "and %u); an edge must join two vertices",
+                            e, from, tail, head);
+        if (from > to)
+            return mt__fail(diag, MT_ERR_CORRUPT, e,
+                            "edge %u: half-edge %u runs from caller vertex %u to %u; the first "
+                            "half-edge of an edge must run from the smaller id to the larger",
                             e, h, from, to);
         if (m->he_face[h] == MT_NONE && m->he_face[h ^ 1u] == MT_NONE)
             return mt__fail(diag, MT_ERR_CORRUPT, e, "edge %u has no face on either side", e);
@@ -219,8 +227,8 @@ static mt_status check_half_edges(const mt_mesh *m, mt_diag *diag)
  * lies on that face's ring. Expects every bit set; clears the face rings. */
 static mt_status check_faces(const mt_mesh *m, scratch *s, mt_diag *diag)
 {
-    uint32_t *stamp = s->counter; /* stamp[caller vertex] = face + 1 */
-    memset(stamp, 0, (size_t)m->num_verts_internal * sizeof *stamp);
+    uint32_t *stamp = s->stamp; /* stamp[caller vertex] = face + 1 */
+    memset(stamp, 0, (size_t)m->num_verts * sizeof *stamp);
     uint32_t kept = 0;
     for (uint32_t f = 0; f < m->num_faces; f++) {
         const uint32_t start = m->face_he[f];
@@ -264,59 +272,9 @@ static mt_status check_faces(const mt_mesh *m, scratch *s, mt_diag *diag)
     return MT_OK;
 }
 
-/* Each vertex's outgoing half-edge starts at it; one rotation from it visits
- * every half-edge leaving the vertex (counted beforehand), the first being
- * the vertex's only boundary half-edge when it has one. Copies hold a fan. */
-static mt_status check_vertices(const mt_mesh *m, scratch *s, mt_diag *diag)
-{
-    uint32_t *out_degree = s->counter;
-    memset(out_degree, 0, (size_t)m->num_verts_internal * sizeof *out_degree);
-    for (uint32_t h = 0; h < m->num_half_edges; h++) out_degree[m->he_head[h ^ 1u]]++;
-    for (uint32_t v = 0; v < m->num_verts_internal; v++) {
-        const uint32_t start = m->vert_he[v];
-        if (start == MT_NONE) {
-            if (out_degree[v] != 0)
-                return mt__fail(diag, MT_ERR_CORRUPT, v,
-                                "vertex %u has %u outgoing half-edges but no vert_he", v,
-                                out_degree[v]);
-            if (v >= m->num_verts)
-                return mt__fail(diag, MT_ERR_CORRUPT, v,
-                                "vertex copy %u (of caller vertex %u) holds no fan", v,
-                                mt__original(m, v));
-            continue;
-        }
-        const uint32_t tail = m->he_head[start ^ 1u];
-        if (tail != v)
-            return mt__fail(diag, MT_ERR_CORRUPT, v,
-                            "vertex %u: vert_he[%u]=%u starts at vertex %u, not at %u", v, v, start,
-                            tail, v);
-        const bool start_boundary = m->he_face[start] == MT_NONE;
-        uint32_t h = start, len = 0;
-        do {
-            if (h != start && m->he_face[h] == MT_NONE) {
-                if (!start_boundary)
-                    return mt__fail(diag, MT_ERR_CORRUPT, v,
-                                    "vertex %u has boundary half-edge %u but vert_he[%u]=%u "
-                                    "is not a boundary half-edge",
-                                    v, h, v, start);
-                return mt__fail(diag, MT_ERR_CORRUPT, v,
-                                "vertex %u: its fan holds two boundary half-edges, %u and %u", v,
-                                start, h);
-            }
-            len++;
-            h = m->he_next[h ^ 1u];
-        } while (h != start && len <= out_degree[v]);
-        if (len != out_degree[v])
-            return mt__fail(diag, MT_ERR_CORRUPT, v,
-                            "vertex %u: one rotation from vert_he[%u]=%u visits %u of its %u "
-                            "outgoing half-edges",
-                            v, v, start, len, out_degree[v]);
-    }
-    return MT_OK;
-}
-
 /* copies_sorted is strictly ascending by (original, id): with every entry a
- * copy id (checked earlier) that makes it a permutation of the copies. */
+ * copy id (checked earlier) that makes it a permutation of the copies, and
+ * mt__vert_copies finds every copy under its original. */
 static mt_status check_copies(const mt_mesh *m, mt_diag *diag)
 {
     for (uint32_t k = 1; k < m->num_copies; k++) {
@@ -370,43 +328,105 @@ static mt_status check_bundles(const mt_mesh *m, scratch *s, mt_diag *diag)
     return MT_OK;
 }
 
-/* One internal edge per caller edge outside bundles: around each caller
- * vertex (all its fans) a neighbour reached by a non-bundled edge is reached
- * by no other edge. Uses the counter as stamps (caller vertex + 1). */
-static mt_status check_edge_uniqueness(const mt_mesh *m, scratch *s, mt_diag *diag)
+/* The fan of internal vertex u (a fan of caller vertex v): its outgoing
+ * half-edge starts at it, one rotation from there visits all `degree`
+ * half-edges leaving u, the first being u's only boundary half-edge when it
+ * has one; a copy holds a fan. Stamps the caller vertices reached by
+ * non-bundled edges with v + 1, failing on one reached twice (a caller edge
+ * outside a bundle has one internal edge), and notes bundled edges. */
+static mt_status check_fan(const mt_mesh *m, uint32_t u, uint32_t v, uint32_t degree,
+                           uint32_t *stamp, bool *out_bundled, mt_diag *diag)
 {
-    uint32_t *stamp = s->counter;
-    memset(stamp, 0, (size_t)m->num_verts_internal * sizeof *stamp);
+    const uint32_t start = m->vert_he[u];
+    if (start == MT_NONE) {
+        if (degree != 0)
+            return mt__fail(diag, MT_ERR_CORRUPT, u,
+                            "vertex %u has %u outgoing half-edges but no vert_he", u, degree);
+        if (u >= m->num_verts)
+            return mt__fail(diag, MT_ERR_CORRUPT, u,
+                            "vertex copy %u (of caller vertex %u) holds no fan", u, v);
+        return MT_OK;
+    }
+    const uint32_t tail = m->he_head[start ^ 1u];
+    if (tail != u)
+        return mt__fail(diag, MT_ERR_CORRUPT, u,
+                        "vertex %u: vert_he[%u]=%u starts at vertex %u, not at %u", u, u, start,
+                        tail, u);
+    const bool start_boundary = m->he_face[start] == MT_NONE;
+    uint32_t h = start, len = 0;
+    do {
+        if (h != start && m->he_face[h] == MT_NONE) {
+            if (!start_boundary)
+                return mt__fail(diag, MT_ERR_CORRUPT, u,
+                                "vertex %u has boundary half-edge %u but vert_he[%u]=%u is not "
+                                "a boundary half-edge",
+                                u, h, u, start);
+            return mt__fail(diag, MT_ERR_CORRUPT, u,
+                            "vertex %u: its fan holds two boundary half-edges, %u and %u", u, start,
+                            h);
+        }
+        if (mt__edge_bundle(m, h >> 1) != MT_NONE) {
+            *out_bundled = true;
+        } else {
+            const uint32_t w = mt__original(m, m->he_head[h]);
+            if (stamp[w] == v + 1)
+                return mt__fail(diag, MT_ERR_CORRUPT, h >> 1,
+                                "caller edge %u-%u is held by several internal edges (%u "
+                                "among them) but not by a bundle",
+                                v, w, h >> 1);
+            stamp[w] = v + 1;
+        }
+        len++;
+        h = m->he_next[h ^ 1u];
+    } while (h != start && len <= degree);
+    if (len != degree)
+        return mt__fail(diag, MT_ERR_CORRUPT, u,
+                        "vertex %u: one rotation from vert_he[%u]=%u visits %u of its %u "
+                        "outgoing half-edges",
+                        u, u, start, len, degree);
+    return MT_OK;
+}
+
+/* A bundled edge of caller vertex v must not join it to a vertex that a
+ * non-bundled edge already reaches (stamped by check_fan). */
+static mt_status check_bundled_fan(const mt_mesh *m, uint32_t u, uint32_t v, const uint32_t *stamp,
+                                   mt_diag *diag)
+{
+    const uint32_t start = m->vert_he[u];
+    if (start == MT_NONE) return MT_OK;
+    uint32_t h = start, steps = 0;
+    do {
+        const uint32_t w = mt__original(m, m->he_head[h]);
+        if (stamp[w] == v + 1 && mt__edge_bundle(m, h >> 1) != MT_NONE)
+            return mt__fail(diag, MT_ERR_CORRUPT, h >> 1,
+                            "caller edge %u-%u is held by bundled edge %u and by an edge "
+                            "outside the bundle",
+                            v, w, h >> 1);
+        h = m->he_next[h ^ 1u];
+    } while (h != start && ++steps < m->num_half_edges);
+    return MT_OK;
+}
+
+/* Every internal vertex, visited as one of the fans of its caller vertex
+ * (the copies come from copies_sorted, checked before). */
+static mt_status check_vertices(const mt_mesh *m, scratch *s, mt_diag *diag)
+{
+    uint32_t *out_degree = s->counter;
+    memset(out_degree, 0, (size_t)m->num_verts_internal * sizeof *out_degree);
+    memset(s->stamp, 0, (size_t)m->num_verts * sizeof *s->stamp);
+    for (uint32_t h = 0; h < m->num_half_edges; h++) out_degree[m->he_head[h ^ 1u]]++;
     for (uint32_t v = 0; v < m->num_verts; v++) {
         const uint32_t *copies;
         const uint32_t num_copies = mt__vert_copies(m, v, &copies);
-        for (int pass = 0; pass < 2; pass++) {
-            for (uint32_t i = 0; i <= num_copies; i++) {
-                const uint32_t u = i == 0 ? v : copies[i - 1];
-                const uint32_t start = m->vert_he[u];
-                if (start == MT_NONE) continue;
-                uint32_t h = start, steps = 0;
-                do {
-                    const uint32_t w = mt__original(m, m->he_head[h]);
-                    const bool bundled = mt__edge_bundle(m, h >> 1) != MT_NONE;
-                    /* pass 0 stamps the non-bundled edges, pass 1 checks the
-                     * bundled ones against them */
-                    if (pass == 0 && !bundled) {
-                        if (stamp[w] == v + 1)
-                            return mt__fail(diag, MT_ERR_CORRUPT, h >> 1,
-                                            "caller edge %u-%u is held by several internal "
-                                            "edges (%u among them) but not by a bundle",
-                                            v, w, h >> 1);
-                        stamp[w] = v + 1;
-                    } else if (pass == 1 && bundled && stamp[w] == v + 1) {
-                        return mt__fail(diag, MT_ERR_CORRUPT, h >> 1,
-                                        "caller edge %u-%u is held by bundled edge %u and by "
-                                        "an edge outside the bundle",
-                                        v, w, h >> 1);
-                    }
-                    h = m->he_next[h ^ 1u];
-                } while (h != start && ++steps < m->num_half_edges);
-            }
+        bool bundled = false;
+        for (uint32_t i = 0; i <= num_copies; i++) {
+            const uint32_t u = i == 0 ? v : copies[i - 1];
+            mt_status st = check_fan(m, u, v, out_degree[u], s->stamp, &bundled, diag);
+            if (st != MT_OK) return st;
+        }
+        for (uint32_t i = 0; bundled && i <= num_copies; i++) {
+            mt_status st = check_bundled_fan(m, i == 0 ? v : copies[i - 1], v, s->stamp, diag);
+            if (st != MT_OK) return st;
         }
     }
     return MT_OK;
@@ -422,23 +442,24 @@ mt_status mt_mesh_validate(const mt_mesh *mesh, mt_diag *diag)
 
     scratch s;
     s.bit_words = ((size_t)mesh->num_half_edges + 63) / 64;
-    size_t bit_bytes = s.bit_words * sizeof(uint64_t);
-    size_t counter_bytes = (size_t)mesh->num_verts_internal * sizeof(uint32_t);
-    unsigned char *block = mt__malloc(bit_bytes + counter_bytes);
+    const size_t bit_bytes = s.bit_words * sizeof(uint64_t);
+    const size_t counter_bytes = (size_t)mesh->num_verts_internal * sizeof(uint32_t);
+    const size_t stamp_bytes = (size_t)mesh->num_verts * sizeof(uint32_t);
+    unsigned char *block = mt__malloc(bit_bytes + counter_bytes + stamp_bytes);
     if (!block)
         return mt__fail(diag, MT_ERR_NOMEM, MT_NONE,
                         "validate: cannot allocate %zu bytes of scratch",
-                        bit_bytes + counter_bytes);
+                        bit_bytes + counter_bytes + stamp_bytes);
     s.bits = (uint64_t *)block;
     s.counter = (uint32_t *)(block + bit_bytes);
+    s.stamp = (uint32_t *)(block + bit_bytes + counter_bytes);
 
     st = check_next_permutation(mesh, &s, diag);
     if (st == MT_OK) st = check_half_edges(mesh, diag);
     if (st == MT_OK) st = check_faces(mesh, &s, diag);
-    if (st == MT_OK) st = check_vertices(mesh, &s, diag);
     if (st == MT_OK) st = check_copies(mesh, diag);
     if (st == MT_OK) st = check_bundles(mesh, &s, diag);
-    if (st == MT_OK) st = check_edge_uniqueness(mesh, &s, diag);
+    if (st == MT_OK) st = check_vertices(mesh, &s, diag);
     mt__free(block);
     return st;
 }
