@@ -1,0 +1,116 @@
+/* The meshtopo command-line tool's shared pieces: the command table entry,
+ * parsed arguments, exit codes, id lists and mesh loading. Every subcommand
+ * is one mt_cli_command defined in its own cmd_*.c and listed in main.c.
+ * These names belong to the tool, not to the library API. */
+#ifndef MESHTOPO_CLI_H
+#define MESHTOPO_CLI_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "meshtopo/face_list.h"
+#include "meshtopo/mesh.h"
+
+/* Exit codes shared by every subcommand (documented in `meshtopo --help`). */
+enum {
+    MT_CLI_EXIT_OK =
+        0, /* success: the command did its job (a report is printed whatever its defects) */
+    MT_CLI_EXIT_DEFECT = 1, /* --fail-on-defect and the report lists a defect */
+    MT_CLI_EXIT_USAGE = 2,  /* bad command line */
+    MT_CLI_EXIT_READ = 3,   /* a file could not be read or parsed */
+    MT_CLI_EXIT_BUILD = 4 /* the mesh could not be built (strict mode refused it, too large, ...) */
+};
+
+/* One option of a command: `--name` (a flag) or `--name VALUE` / `--name=VALUE`. */
+typedef struct mt_cli_option {
+    const char *name;       /* without the dashes: "vertices" */
+    const char *value_name; /* NULL for a flag, else shown in help: "LIST" */
+    const char *help;       /* one line */
+} mt_cli_option;
+
+/* A command line after parsing against a command's options: values[i] is the
+ * value of options[i] ("" for a flag that was given), NULL when absent. */
+typedef struct mt_cli_args {
+    const char *command;
+    const mt_cli_option *options;
+    size_t num_options;
+    const char **values; /* [num_options] */
+    char **positionals;  /* the non-option arguments, in order */
+    size_t num_positionals;
+} mt_cli_args;
+
+typedef struct mt_cli_command {
+    const char *name;        /* "inspect" */
+    const char *summary;     /* one line for the command list */
+    const char *synopsis;    /* after "meshtopo NAME ": "FILE [options]" */
+    const char *description; /* paragraphs shown by `meshtopo help NAME` */
+    const mt_cli_option *options;
+    size_t num_options;
+    size_t min_positionals, max_positionals;
+    int (*run)(const mt_cli_args *args); /* returns an exit code */
+} mt_cli_command;
+
+/* The commands, each defined in its cmd_*.c. */
+extern const mt_cli_command mt_cli_cmd_inspect;
+
+/* Parses argv[0..argc) (the arguments after the command name) against the
+ * command's options into *out (arrays malloc'ed; free with mt_cli_args_free).
+ * Sets *out_help when --help or -h is given. Returns MT_CLI_EXIT_OK, or
+ * MT_CLI_EXIT_USAGE after printing the problem to stderr. */
+int mt_cli_args_parse(const mt_cli_command *cmd, int argc, char **argv, mt_cli_args *out,
+                      bool *out_help);
+void mt_cli_args_free(mt_cli_args *args);
+
+/* Value of the option named `name` (NULL when absent, "" for a given flag). */
+const char *mt_cli_arg(const mt_cli_args *args, const char *name);
+bool mt_cli_flag(const mt_cli_args *args, const char *name);
+
+/* Prints a command's full help (synopsis, description, options). */
+void mt_cli_print_command_help(const mt_cli_command *cmd, FILE *out);
+
+/* Prints "meshtopo CMD: " and the message to stderr, with a newline. */
+void mt_cli_error(const char *command, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* An ordered list of element ids as given on the command line. */
+typedef struct mt_id_list {
+    uint32_t *ids;
+    size_t count;
+} mt_id_list;
+
+/* Parses "0,78,157" or ranges "10-20" (inclusive), separated by commas, into
+ * *out (malloc'ed; free with mt_id_list_free). Order and repeats are kept;
+ * an empty string gives an empty list. Each id must be below `limit`; at
+ * most `max_count` ids in all. On error writes a one-line reason into err
+ * and returns false, leaving *out empty. */
+bool mt_id_list_parse(const char *text, uint32_t limit, size_t max_count, mt_id_list *out,
+                      char *err, size_t err_size);
+void mt_id_list_free(mt_id_list *list);
+
+/* A mesh file read and built, with the timings of both steps. */
+typedef struct mt_cli_mesh {
+    mt_face_list list;
+    mt_mesh *mesh;
+    double read_ms, build_ms;
+} mt_cli_mesh;
+
+/* Reads `path` (format auto-detected unless `format_name` names one) and
+ * builds it. Returns MT_CLI_EXIT_OK, MT_CLI_EXIT_USAGE (unknown format
+ * name), MT_CLI_EXIT_READ or MT_CLI_EXIT_BUILD after printing the reason,
+ * naming the file, to stderr. */
+int mt_cli_mesh_load(const char *command, const char *path, const char *format_name,
+                     const mt_build_options *options, mt_cli_mesh *out);
+void mt_cli_mesh_free(mt_cli_mesh *m);
+
+/* Milliseconds on a monotonic clock. */
+double mt_cli_now_ms(void);
+
+/* The last path component ("dir/a.off.gz" -> "a.off.gz"). */
+const char *mt_cli_basename(const char *path);
+
+#endif

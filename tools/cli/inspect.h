@@ -1,0 +1,77 @@
+/* The pieces of `meshtopo inspect` shared by its files: growing query
+ * buffers, the default choice of queried elements (DEFINITIONS.md
+ * "Queries"), and the JSON and readable printers. */
+#ifndef MESHTOPO_CLI_INSPECT_H
+#define MESHTOPO_CLI_INSPECT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "cli.h"
+#include "meshtopo/mesh.h"
+#include "meshtopo/query.h"
+#include "meshtopo/report.h"
+
+/* What to print and about which elements. */
+typedef struct mt_inspect_request {
+    const char *path;        /* as given on the command line */
+    const mt_cli_mesh *mesh; /* read and built */
+    mt_id_list vertices;     /* queried vertices, in order */
+    mt_id_list faces;        /* queried faces, in order */
+    bool json_defects;       /* --json-defects: add the defect list to the JSON */
+    size_t limit;            /* items per list in the readable output, 0 = all */
+} mt_inspect_request;
+
+/* Growable buffers for mt_face_neighbors and mt_face_verts. */
+typedef struct mt_face_adjacency {
+    uint32_t *faces;
+    size_t faces_capacity;
+    uint32_t *offsets;
+    size_t offsets_capacity;
+    size_t num_faces, num_edges;
+} mt_face_adjacency;
+
+typedef struct mt_face_corners {
+    uint32_t *verts;
+    size_t capacity, count;
+} mt_face_corners;
+
+/* Query wrappers that grow the buffers until the answer fits. They return
+ * the library's status (MT_ERR_NOT_FOUND for a rejected face, ...). */
+mt_status mt_inspect_ring(const mt_mesh *mesh, uint32_t vert, mt_ring *ring);
+void mt_inspect_ring_free(mt_ring *ring);
+mt_status mt_inspect_face_adjacency(const mt_mesh *mesh, uint32_t face, mt_face_adjacency *adj);
+void mt_inspect_face_adjacency_free(mt_face_adjacency *adj);
+mt_status mt_inspect_face_corners(const mt_mesh *mesh, uint32_t face, mt_face_corners *corners);
+void mt_inspect_face_corners_free(mt_face_corners *corners);
+
+/* Sorts ids ascending and drops repeats in place; returns the new count. */
+size_t mt_inspect_sort_unique(uint32_t *ids, size_t count);
+
+/* How side i of a face (corner i to corner i+1) is used, in the terms of
+ * DEFINITIONS.md: uses = faces having it as a side (this one included),
+ * same_direction = uses == 2 and the other face runs a -> b as well. */
+typedef struct mt_side_use {
+    size_t uses;
+    bool same_direction;
+} mt_side_use;
+
+mt_status mt_inspect_side_use(const mt_mesh *mesh, const mt_face_corners *corners,
+                              const mt_face_adjacency *adj, size_t side, mt_face_corners *scratch,
+                              mt_side_use *out);
+
+/* Fills the default vertex and/or face queries (DEFINITIONS.md "Queries"). */
+mt_status mt_inspect_default_queries(const mt_mesh *mesh, bool want_vertices,
+                                     mt_id_list *out_vertices, bool want_faces,
+                                     mt_id_list *out_faces);
+
+/* The JSON document (the corpus reference answers' keys, in their order,
+ * plus "defects" at the end with json_defects). Returns an exit code. */
+int mt_inspect_print_json(const mt_inspect_request *req, FILE *out);
+
+/* The readable summary, then the queried one-rings and face neighbours. */
+int mt_inspect_print_text(const mt_inspect_request *req, FILE *out);
+
+#endif

@@ -1,0 +1,148 @@
+/* The default choice of queried elements for `meshtopo inspect`, exactly as
+ * DEFINITIONS.md "Queries" states it, so that `inspect FILE --json` without
+ * --vertices/--faces reproduces a corpus reference answer: first the
+ * interesting spots (non-manifold, isolated, boundary, flipped), then evenly
+ * spread ids, up to 5 of each, no repeats. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "inspect.h"
+
+enum { NUM_QUERIES = 5 };
+
+typedef struct choice {
+    uint32_t ids[NUM_QUERIES];
+    size_t count;
+} choice;
+
+/* Adds id unless the choice is full, id is outside [0, limit) or already chosen. */
+static void choice_add(choice *c, uint64_t id, uint64_t limit)
+{
+    if (c->count == NUM_QUERIES || id >= limit) return;
+    for (size_t i = 0; i < c->count; i++)
+        if (c->ids[i] == id) return;
+    c->ids[c->count++] = (uint32_t)id;
+}
+
+static mt_status choice_store(const choice *c, mt_id_list *out)
+{
+    memset(out, 0, sizeof *out);
+    if (c->count == 0) return MT_OK;
+    out->ids = malloc(c->count * sizeof *out->ids);
+    if (!out->ids) return MT_ERR_NOMEM;
+    memcpy(out->ids, c->ids, c->count * sizeof *out->ids);
+    out->count = c->count;
+    return MT_OK;
+}
+
+/* Smallest `a` among the report's defects of one kind, MT_NONE if none. */
+static uint32_t defect_min_a(const mt_report *report, mt_defect_kind kind)
+{
+    uint32_t best = MT_NONE;
+    for (size_t i = 0; i < report->num_defects; i++) {
+        const mt_defect *d = &report->defects[i];
+        if (d->kind == (uint32_t)kind && d->a < best) best = d->a;
+    }
+    return best;
+}
+
+/* What one sweep over the valid faces finds about their sides. */
+typedef struct side_sweep {
+    uint32_t min_face_nonmanifold;  /* smallest face on an edge used by > 2 faces */
+    uint32_t min_face_inconsistent; /* smallest face on a use-2 same-direction edge */
+    uint32_t min_face_boundary;     /* smallest face on an edge used once */
+    uint32_t min_vert_boundary;     /* smallest vertex on such an edge */
+    uint32_t *valid_faces;          /* ascending; malloc'ed */
+    size_t num_valid_faces;
+} side_sweep;
+
+static mt_status sweep_sides(const mt_mesh *mesh, side_sweep *s)
+{
+    s->min_face_nonmanifold = s->min_face_inconsistent = MT_NONE;
+    s->min_face_boundary = s->min_vert_boundary = MT_NONE;
+    s->num_valid_faces = 0;
+    mt_mesh_view view;
+    mt_mesh_get_view(mesh, &view);
+    /* calloc checks the multiplication for overflow */
+    s->valid_faces = calloc((size_t)view.num_faces + 1, sizeof *s->valid_faces);
+    if (!s->valid_faces) return MT_ERR_NOMEM;
+
+    mt_face_corners corners = {0}, other = {0};
+    mt_face_adjacency adj = {0};
+    mt_status st = MT_OK;
+    for (uint32_t f = 0; f < view.num_faces && st == MT_OK; f++) {
+        if (view.face_he[f] == MT_NONE) continue; /* rejected record */
+        s->valid_faces[s->num_valid_faces++] = f;
+        st = mt_inspect_face_corners(mesh, f, &corners);
+        if (st == MT_OK) st = mt_inspect_face_adjacency(mesh, f, &adj);
+        for (size_t i = 0; st == MT_OK && i < adj.num_edges && i < corners.count; i++) {
+            size_t across = adj.offsets[i + 1] - adj.offsets[i];
+            if (across == 0) {
+                uint32_t a = corners.verts[i], b = corners.verts[(i + 1) % corners.count];
+                if (s->min_face_boundary == MT_NONE) s->min_face_boundary = f;
+                if (a < s->min_vert_boundary) s->min_vert_boundary = a;
+                if (b < s->min_vert_boundary) s->min_vert_boundary = b;
+            } else if (across >= 2) {
+                if (s->min_face_nonmanifold == MT_NONE) s->min_face_nonmanifold = f;
+            } else if (s->min_face_inconsistent == MT_NONE) {
+                mt_side_use use;
+                st = mt_inspect_side_use(mesh, &corners, &adj, i, &other, &use);
+                if (st == MT_OK && use.same_direction) s->min_face_inconsistent = f;
+            }
+        }
+    }
+    mt_inspect_face_corners_free(&corners);
+    mt_inspect_face_corners_free(&other);
+    mt_inspect_face_adjacency_free(&adj);
+    if (st != MT_OK) {
+        free(s->valid_faces);
+        s->valid_faces = NULL;
+    }
+    return st;
+}
+
+mt_status mt_inspect_default_queries(const mt_mesh *mesh, bool want_vertices,
+                                     mt_id_list *out_vertices, bool want_faces,
+                                     mt_id_list *out_faces)
+{
+    if (!want_vertices && !want_faces) return MT_OK;
+    const mt_report *report = mt_mesh_report(mesh);
+    side_sweep sweep;
+    mt_status st = sweep_sides(mesh, &sweep);
+    if (st != MT_OK) return st;
+
+    if (want_vertices) {
+        uint64_t n = mt_mesh_num_verts(mesh);
+        choice c = {{0}, 0};
+        choice_add(&c, defect_min_a(report, MT_DEFECT_NONMANIFOLD_VERTEX), n);
+        choice_add(&c, defect_min_a(report, MT_DEFECT_ISOLATED_VERTEX), n);
+        choice_add(&c, sweep.min_vert_boundary, n);
+        if (n > 0) {
+            const uint64_t spread[] = {0, n / 4, n / 2, 3 * n / 4, n - 1};
+            for (size_t i = 0; i < sizeof spread / sizeof spread[0]; i++)
+                choice_add(&c, spread[i], n);
+        }
+        for (uint64_t v = 1; c.count < NUM_QUERIES && v < n; v++) choice_add(&c, v, n);
+        st = choice_store(&c, out_vertices);
+    }
+    if (st == MT_OK && want_faces) {
+        uint64_t faces = mt_mesh_num_faces(mesh);
+        size_t n = sweep.num_valid_faces;
+        choice c = {{0}, 0};
+        choice_add(&c, sweep.min_face_nonmanifold, faces);
+        choice_add(&c, sweep.min_face_inconsistent, faces);
+        choice_add(&c, sweep.min_face_boundary, faces);
+        if (n > 0) {
+            /* positions 0, n//4, n//2, 3n//4, n-1 (3n//4 written so 3n cannot overflow) */
+            const size_t spread[] = {0, n / 4, n / 2, 3 * (n / 4) + (3 * (n % 4)) / 4, n - 1};
+            for (size_t i = 0; i < sizeof spread / sizeof spread[0]; i++)
+                choice_add(&c, sweep.valid_faces[spread[i]], faces);
+        }
+        for (size_t p = 1; c.count < NUM_QUERIES && p < n; p++)
+            choice_add(&c, sweep.valid_faces[p], faces);
+        st = choice_store(&c, out_faces);
+        if (st != MT_OK && want_vertices) mt_id_list_free(out_vertices);
+    }
+    free(sweep.valid_faces);
+    return st;
+}

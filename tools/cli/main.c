@@ -1,0 +1,112 @@
+/* `meshtopo <command> [args]`: the command table and the dispatch. A new
+ * subcommand is one row in `commands` plus its cmd_*.c file; help, --help,
+ * option parsing and exit codes are handled here for all of them. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+#ifndef MESHTOPO_VERSION
+#define MESHTOPO_VERSION "unknown"
+#endif
+
+static const mt_cli_command *const commands[] = {
+    &mt_cli_cmd_inspect,
+};
+static const size_t num_commands = sizeof commands / sizeof commands[0];
+
+static const mt_cli_command *command_find(const char *name)
+{
+    for (size_t i = 0; i < num_commands; i++)
+        if (strcmp(commands[i]->name, name) == 0) return commands[i];
+    return NULL;
+}
+
+static void print_usage(FILE *out)
+{
+    fprintf(out,
+            "usage: meshtopo <command> [args]\n"
+            "       meshtopo help <command> | meshtopo <command> --help\n"
+            "       meshtopo --help | --version\n"
+            "\n"
+            "commands:\n");
+    for (size_t i = 0; i < num_commands; i++)
+        fprintf(out, "  %-10s %s\n", commands[i]->name, commands[i]->summary);
+}
+
+static void print_help(FILE *out)
+{
+    fprintf(out,
+            "meshtopo: mesh topology tool (half-edge build, defects, queries)\n"
+            "\n");
+    print_usage(out);
+    fprintf(out,
+            "\n"
+            "exit codes (all commands):\n"
+            "  0  success (a report is printed whatever defects it lists)\n"
+            "  1  --fail-on-defect was given and the report lists a defect\n"
+            "  2  usage error (unknown command or option, bad argument)\n"
+            "  3  a file could not be read or parsed\n"
+            "  4  the mesh could not be built (e.g. --strict refused a defect)\n");
+}
+
+static int run_command(const mt_cli_command *cmd, int argc, char **argv)
+{
+    mt_cli_args args;
+    bool help = false;
+    int code = mt_cli_args_parse(cmd, argc, argv, &args, &help);
+    if (code != MT_CLI_EXIT_OK) {
+        fprintf(stderr, "usage: meshtopo %s %s (see meshtopo help %s)\n", cmd->name, cmd->synopsis,
+                cmd->name);
+        return code;
+    }
+    if (help) {
+        mt_cli_print_command_help(cmd, stdout);
+        mt_cli_args_free(&args);
+        return MT_CLI_EXIT_OK;
+    }
+    code = cmd->run(&args);
+    mt_cli_args_free(&args);
+    return code;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        print_usage(stderr);
+        return MT_CLI_EXIT_USAGE;
+    }
+    const char *name = argv[1];
+    if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
+        print_help(stdout);
+        return MT_CLI_EXIT_OK;
+    }
+    if (strcmp(name, "--version") == 0) {
+        printf("meshtopo %s\n", MESHTOPO_VERSION);
+        return MT_CLI_EXIT_OK;
+    }
+    if (strcmp(name, "help") == 0) {
+        if (argc == 2) {
+            print_help(stdout);
+            return MT_CLI_EXIT_OK;
+        }
+        const mt_cli_command *cmd = command_find(argv[2]);
+        if (!cmd || argc > 3) {
+            if (!cmd)
+                fprintf(stderr, "meshtopo: unknown command '%s'\n", argv[2]);
+            else
+                fprintf(stderr, "meshtopo: help takes one command name\n");
+            print_usage(stderr);
+            return MT_CLI_EXIT_USAGE;
+        }
+        mt_cli_print_command_help(cmd, stdout);
+        return MT_CLI_EXIT_OK;
+    }
+    const mt_cli_command *cmd = command_find(name);
+    if (!cmd) {
+        fprintf(stderr, "meshtopo: unknown command '%s'\n", name);
+        print_usage(stderr);
+        return MT_CLI_EXIT_USAGE;
+    }
+    return run_command(cmd, argc - 2, argv + 2);
+}
