@@ -128,6 +128,7 @@ static void build_free_temporaries(mt__build *b)
         mt__vec_free(&p->bundle_offsets);
         mt__vec_free(&p->bundle_edges);
         mt__vec_free(&p->split_verts);
+        mt__vec_free(&p->boundary_halves);
         mt__vec_free(&p->dup_candidates);
     }
     mt__vec_free(&b->large_sizes);
@@ -138,6 +139,7 @@ static void build_free_temporaries(mt__build *b)
     mt__vec_free(&b->bundle_edges);
     mt__vec_free(&b->copy_original);
     mt__vec_free(&b->split_verts);
+    mt__vec_free(&b->boundary_halves);
     mt__vec_free(&b->dup_candidates);
 }
 
@@ -195,6 +197,7 @@ static void plan_parts(mt__build *b, uint32_t threads)
         p->scratch.elem_size = p->large_uses.elem_size = sizeof(uint32_t);
         p->bundle_offsets.elem_size = p->bundle_edges.elem_size = sizeof(uint32_t);
         p->split_verts.elem_size = p->dup_candidates.elem_size = sizeof(uint32_t);
+        p->boundary_halves.elem_size = sizeof(uint32_t);
         p->defects.elem_size = sizeof(mt_defect);
     }
 }
@@ -260,6 +263,7 @@ mt_status mt_mesh_build(const mt_face_list *in, const mt_build_options *options,
     b.large_uses.elem_size = sizeof(uint32_t);
     b.bundle_offsets.elem_size = b.bundle_edges.elem_size = sizeof(uint32_t);
     b.copy_original.elem_size = b.split_verts.elem_size = sizeof(uint32_t);
+    b.boundary_halves.elem_size = sizeof(uint32_t);
     b.dup_candidates.elem_size = sizeof(uint32_t);
     b.defects.elem_size = sizeof(mt_defect);
     b.m = mt__calloc(1, sizeof(mt_mesh));

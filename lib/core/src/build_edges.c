@@ -17,6 +17,9 @@
 
 #include "build_internal.h"
 
+/* Bucket slots between a prefetch and its use in matching. */
+#define MT__PREFETCH_DISTANCE 16
+
 /* Sides after which a bucket lookup switches from a scan to binary search. */
 #define MT__SCAN_LIMIT 16
 
@@ -207,6 +210,15 @@ static void match_part(mt__build *b, uint32_t t)
     for (uint32_t a = p->vert_begin; a < p->vert_end; a++) {
         const uint32_t end_a = start[a + 1];
         for (uint32_t i = start[a]; i < end_a;) {
+            /* The twin sides sit in another vertex's bucket, at random in a
+             * scan-ordered mesh: fetch those (and where the corners' half-edges
+             * go) ahead of use. */
+            if (i + MT__PREFETCH_DISTANCE < b->num_corners) {
+                __builtin_prefetch(&start[bucket[i + MT__PREFETCH_DISTANCE].head]);
+                const mt__side *near = &bucket[i + MT__PREFETCH_DISTANCE / 2];
+                __builtin_prefetch(&bucket[start[near->head]]);
+                if (near->item < b->in->num_indices) __builtin_prefetch(&b->c2h[near->item], 1);
+            }
             const uint32_t bv = bucket[i].head;
             uint32_t na = 1;
             while (i + na < end_a && bucket[i + na].head == bv) na++;

@@ -187,6 +187,7 @@ static void fans_part(mt__build *b, uint32_t t)
             if (he_face[twin] != MT_NONE) continue;
             he_head[twin] = v; /* a boundary half-edge into v: v's to set */
             boundary_in++;
+            if (mt__vec_push(&p->boundary_halves, &twin) != MT_OK) p->status = MT_ERR_NOMEM;
         }
         if (!single_fan(b, p, v, hs, n, boundary_in) &&
             mt__vec_push(&p->split_verts, &v) != MT_OK)
@@ -201,7 +202,8 @@ mt_status mt__build_fans(mt__build *b)
     for (uint32_t t = 0; t < b->parts; t++) {
         mt__part *p = &b->part[t];
         if (p->status != MT_OK) return p->status;
-        if (mt__vec_append(&b->split_verts, &p->split_verts) != MT_OK ||
+        if (mt__vec_append(&b->boundary_halves, &p->boundary_halves) != MT_OK ||
+            mt__vec_append(&b->split_verts, &p->split_verts) != MT_OK ||
             mt__vec_append(&b->dup_candidates, &p->dup_candidates) != MT_OK)
             return MT_ERR_NOMEM;
     }

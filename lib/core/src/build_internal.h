@@ -67,6 +67,7 @@ typedef struct mt__part {
     mt__vec bundle_edges;   /* uint32 */
 
     /* fans */
+    mt__vec boundary_halves; /* uint32 half-edges without a face, into this part's vertices */
     mt__vec split_verts;    /* uint32 vertices needing the general fan split */
     mt__vec dup_candidates; /* uint32 faces */
 } mt__part;
@@ -103,6 +104,8 @@ typedef struct mt__build {
 
     /* fans */
     uint32_t vert_capacity;   /* allocated length of m->vert_he */
+    mt__vec boundary_halves;  /* uint32 every half-edge without a face; in the
+                                 report, the boundary edges (used by one face) */
     mt__vec copy_original;    /* uint32 */
     mt__vec split_verts;      /* uint32 caller vertices with more than one fan */
     mt__vec dup_candidates;   /* uint32 faces that may repeat another face */
@@ -157,9 +160,6 @@ static inline void mt__uf_union(uint32_t *parent, uint32_t x, uint32_t y)
         parent[x] = y;
 }
 
-/* 1 when internal edge e has a half-edge without a face and is alone (not
- * bundled): an edge used by exactly one face. */
-int mt__is_boundary_edge(const mt_mesh *m, uint32_t e);
 
 /* Adds a defect entry to a list; MT_ERR_NOMEM on failure. */
 mt_status mt__push_defect(mt__vec *defects, mt_defect_kind kind, uint32_t x, uint32_t y,

@@ -68,6 +68,20 @@ static mt_status publish_bundles(mt__build *b)
     return MT_OK;
 }
 
+/* Turns the list of half-edges without a face into the list of boundary
+ * edges: edges used by one face, leaving out the seams of edge bundles. */
+static void keep_boundary_edges(mt__build *b)
+{
+    const mt_mesh *m = b->m;
+    uint32_t *list = b->boundary_halves.data;
+    size_t kept = 0;
+    for (size_t i = 0; i < b->boundary_halves.len; i++) {
+        uint32_t e = list[i] >> 1;
+        if (m->num_bundles == 0 || mt__edge_bundle(m, e) == MT_NONE) list[kept++] = e;
+    }
+    b->boundary_halves.len = kept;
+}
+
 static mt_status report_isolated(mt__build *b)
 {
     mt_mesh *m = b->m;
@@ -127,6 +141,7 @@ mt_status mt__build_report(mt__build *b)
     r->euler_characteristic = (int64_t)in->num_verts - (int64_t)b->num_edges + r->num_faces_valid;
 
     mt_status s = publish_bundles(b);
+    if (s == MT_OK) keep_boundary_edges(b);
     if (s == MT_OK) s = mt__report_components(b);
     if (s == MT_OK) s = mt__report_boundary(b);
     if (s == MT_OK) s = mt__report_links(b);

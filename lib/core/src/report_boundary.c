@@ -19,10 +19,12 @@ static mt_status global_loops(mt__build *b, uint32_t *parent, uint32_t *degree)
 {
     mt_mesh *m = b->m;
     mt_report *r = &m->report;
-    const uint32_t nv = m->num_verts, num_edges = m->num_half_edges / 2;
+    const uint32_t nv = m->num_verts;
+    const uint32_t *edges = b->boundary_halves.data;
+    const size_t num_edges = b->boundary_halves.len;
     for (uint32_t v = 0; v < nv; v++) parent[v] = v, degree[v] = 0;
-    for (uint32_t e = 0; e < num_edges; e++) {
-        if (!mt__is_boundary_edge(m, e)) continue;
+    for (size_t i = 0; i < num_edges; i++) {
+        const uint32_t e = edges[i];
         uint32_t x = mt__original(m, m->he_head[2 * e]), y = mt__original(m, m->he_head[2 * e + 1]);
         mt__uf_union(parent, x, y);
         degree[x]++;
@@ -39,9 +41,8 @@ static mt_status global_loops(mt__build *b, uint32_t *parent, uint32_t *degree)
     /* Number the roots, then count edges per root (degree[] reused as ids). */
     uint32_t next = 0;
     for (uint32_t v = 0; v < nv; v++) degree[v] = (degree[v] && parent[v] == v) ? next++ : MT_NONE;
-    for (uint32_t e = 0; e < num_edges; e++) {
-        if (!mt__is_boundary_edge(m, e)) continue;
-        uint32_t x = mt__original(m, m->he_head[2 * e]);
+    for (size_t i = 0; i < num_edges; i++) {
+        uint32_t x = mt__original(m, m->he_head[2 * edges[i]]);
         r->boundary_loop_lengths[degree[mt__uf_find(parent, x)]]++;
     }
     qsort(r->boundary_loop_lengths, loops, sizeof(uint32_t), compare_u32);
@@ -53,7 +54,9 @@ static mt_status global_loops(mt__build *b, uint32_t *parent, uint32_t *degree)
 static void component_loops(mt__build *b, uint32_t *parent, uint8_t *touched)
 {
     mt_mesh *m = b->m;
-    const uint32_t nvi = m->num_verts_internal, num_edges = m->num_half_edges / 2;
+    const uint32_t nvi = m->num_verts_internal;
+    const uint32_t *edges = b->boundary_halves.data;
+    const size_t num_edges = b->boundary_halves.len;
     const uint32_t *comp = b->vert_comp;
     for (uint32_t v = 0; v < nvi; v++) parent[v] = v, touched[v] = 0;
     for (uint32_t i = 0; i < m->num_copies; i++) {
@@ -63,9 +66,8 @@ static void component_loops(mt__build *b, uint32_t *parent, uint8_t *touched)
             if (comp[m->num_verts + j - 1] == comp[copy])
                 mt__uf_union(parent, copy, m->num_verts + j - 1);
     }
-    for (uint32_t e = 0; e < num_edges; e++) {
-        if (!mt__is_boundary_edge(m, e)) continue;
-        uint32_t x = m->he_head[2 * e], y = m->he_head[2 * e + 1];
+    for (size_t i = 0; i < num_edges; i++) {
+        uint32_t x = m->he_head[2 * edges[i]], y = m->he_head[2 * edges[i] + 1];
         mt__uf_union(parent, x, y);
         touched[x] = touched[y] = 1;
     }

@@ -7,12 +7,6 @@
 
 #include "build_internal.h"
 
-int mt__is_boundary_edge(const mt_mesh *m, uint32_t e)
-{
-    if (m->he_face[2 * e] != MT_NONE && m->he_face[2 * e + 1] != MT_NONE) return 0;
-    return m->num_bundles == 0 || mt__edge_bundle(m, e) == MT_NONE;
-}
-
 /* Vertex-connected components: components joined through vertex copies. */
 static mt_status count_vertex_components(mt__build *b)
 {
@@ -36,6 +30,55 @@ static mt_status count_vertex_components(mt__build *b)
     return MT_OK;
 }
 
+/* One component: its counts are the mesh's. */
+static void count_single_component(mt__build *b)
+{
+    mt_report *r = &b->m->report;
+    mt_component_info *c = &r->components[0];
+    c->min_face = 0;
+    while (b->m->face_he[c->min_face] == MT_NONE) c->min_face++;
+    c->faces = r->num_faces_valid;
+    c->vertices = r->num_verts; /* every vertex with a face: all copies share it */
+    for (uint32_t v = 0; v < b->m->num_verts; v++) c->vertices -= b->m->vert_he[v] == MT_NONE;
+    c->edges = r->num_edges;
+    c->boundary_edges = r->boundary_edges;
+}
+
+/* Several components: faces, vertices, edges and boundary edges of each. */
+static void count_per_component(mt__build *b)
+{
+    mt_mesh *m = b->m;
+    const uint32_t *comp = b->vert_comp;
+    mt_component_info *ci = m->report.components;
+    for (uint32_t c = 0; c < b->num_components; c++) ci[c].min_face = MT_NONE;
+    for (uint32_t f = 0; f < m->num_faces; f++) {
+        if (m->face_he[f] == MT_NONE) continue;
+        mt_component_info *c = &ci[comp[m->he_head[m->face_he[f]]]];
+        if (c->min_face == MT_NONE) c->min_face = f;
+        c->faces++;
+    }
+    /* Vertices: a caller vertex counts once per component it touches. Its
+     * copies come right after one another in id order per original. */
+    for (uint32_t v = 0; v < m->num_verts; v++)
+        if (comp[v] != MT_NONE) ci[comp[v]].vertices++;
+    for (uint32_t i = 0; i < m->num_copies; i++) {
+        uint32_t copy = m->num_verts + i, original = m->copy_original[i];
+        int seen = comp[original] == comp[copy];
+        for (uint32_t j = i; j > 0 && !seen && m->copy_original[j - 1] == original; j--)
+            seen = comp[m->num_verts + j - 1] == comp[copy];
+        if (!seen) ci[comp[copy]].vertices++;
+    }
+    const uint32_t num_edges = m->num_half_edges / 2;
+    for (uint32_t e = 0; e < num_edges; e++) ci[comp[m->he_head[2 * e]]].edges++;
+    for (uint32_t k = 0; k < m->num_bundles; k++) {
+        uint32_t first = m->bundle_edges[m->bundle_offsets[k]];
+        ci[comp[m->he_head[2 * first]]].edges -= m->bundle_offsets[k + 1] - m->bundle_offsets[k] - 1;
+    }
+    const uint32_t *boundary = b->boundary_halves.data;
+    for (size_t i = 0; i < b->boundary_halves.len; i++)
+        ci[comp[m->he_head[2 * boundary[i]]]].boundary_edges++;
+}
+
 mt_status mt__report_components(mt__build *b)
 {
     mt_mesh *m = b->m;
@@ -55,22 +98,26 @@ mt_status mt__report_components(mt__build *b)
             mt__uf_union(parent, m->he_head[2 * first + 1], m->he_head[2 * e + 1]);
         }
     }
-    /* Number components by smallest face: reuse parent roots as "unnumbered"
-     * marks through a second array. */
+    /* Number components by smallest face. Roots are counted first so that
+     * the walk over the faces stops once every component has its number. */
     uint32_t *comp = mt__malloc((size_t)nvi * sizeof(uint32_t));
     if (!comp) {
         mt__free(parent);
         return MT_ERR_NOMEM;
     }
-    memset(comp, 0xff, (size_t)nvi * sizeof(uint32_t));
+    uint32_t roots = 0;
+    for (uint32_t v = 0; v < nvi; v++) {
+        comp[v] = MT_NONE;
+        roots += m->vert_he[v] != MT_NONE && mt__uf_find(parent, v) == v;
+    }
     uint32_t count = 0;
-    for (uint32_t f = 0; f < m->num_faces; f++) {
+    for (uint32_t f = 0; f < m->num_faces && count < roots; f++) {
         if (m->face_he[f] == MT_NONE) continue;
         uint32_t root = mt__uf_find(parent, m->he_head[m->face_he[f]]);
         if (comp[root] == MT_NONE) comp[root] = count++;
     }
     for (uint32_t v = 0; v < nvi; v++)
-        comp[v] = m->vert_he[v] == MT_NONE ? MT_NONE : comp[mt__uf_find(parent, v)];
+        if (m->vert_he[v] != MT_NONE) comp[v] = comp[mt__uf_find(parent, v)];
     mt__free(parent);
     b->vert_comp = comp;
     b->num_components = count;
@@ -78,35 +125,11 @@ mt_status mt__report_components(mt__build *b)
 
     r->components = mt__calloc(count ? count : 1, sizeof(mt_component_info));
     if (!r->components) return MT_ERR_NOMEM;
+    if (count == 1)
+        count_single_component(b);
+    else
+        count_per_component(b);
     mt_component_info *ci = r->components;
-    for (uint32_t c = 0; c < count; c++) ci[c].min_face = MT_NONE;
-    for (uint32_t f = 0; f < m->num_faces; f++) {
-        if (m->face_he[f] == MT_NONE) continue;
-        mt_component_info *c = &ci[comp[m->he_head[m->face_he[f]]]];
-        if (c->min_face == MT_NONE) c->min_face = f;
-        c->faces++;
-    }
-    /* Vertices: a caller vertex counts once per component it touches. Its
-     * copies come right after one another in id order per original. */
-    for (uint32_t v = 0; v < m->num_verts; v++)
-        if (comp[v] != MT_NONE) ci[comp[v]].vertices++;
-    for (uint32_t i = 0; i < m->num_copies; i++) {
-        uint32_t copy = m->num_verts + i, original = m->copy_original[i];
-        int seen = comp[original] == comp[copy];
-        for (uint32_t j = i; j > 0 && !seen && m->copy_original[j - 1] == original; j--)
-            seen = comp[m->num_verts + j - 1] == comp[copy];
-        if (!seen) ci[comp[copy]].vertices++;
-    }
-    for (uint32_t e = 0; e < num_edges; e++) {
-        mt_component_info *c = &ci[comp[m->he_head[2 * e]]];
-        c->edges++;
-        if (mt__is_boundary_edge(m, e)) c->boundary_edges++;
-    }
-    for (uint32_t k = 0; k < m->num_bundles; k++) {
-        uint32_t first = m->bundle_edges[m->bundle_offsets[k]];
-        ci[comp[m->he_head[2 * first]]].edges -=
-            m->bundle_offsets[k + 1] - m->bundle_offsets[k] - 1;
-    }
     for (uint32_t c = 0; c < count; c++) {
         ci[c].euler_characteristic = (int64_t)ci[c].vertices - (int64_t)ci[c].edges + ci[c].faces;
         ci[c].closed = ci[c].boundary_edges == 0;
