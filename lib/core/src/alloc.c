@@ -1,8 +1,13 @@
 /* Allocation for the core library: every allocation of the builder and the
  * edits goes through here so that tests can make the Nth one fail and check
- * that each failure path cleans up (the SQLite fail-after-N technique). */
+ * that each failure path cleans up (the SQLite fail-after-N technique).
+ * Large arrays are aligned to 2 MiB and marked for transparent huge pages:
+ * a build touches fresh memory once, and with 4 KiB pages a quarter of its
+ * time went to page faults. */
+#define _DEFAULT_SOURCE /* madvise, MADV_HUGEPAGE */
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #include "mesh_internal.h"
 
@@ -23,9 +28,25 @@ static int should_fail(void)
     return 0;
 }
 
+/* Arrays from this size on get huge-page backing. */
+#define MT__HUGE_MIN ((size_t)4 << 20)
+#define MT__HUGE_PAGE ((size_t)2 << 20)
+
+static void *alloc_huge(size_t bytes)
+{
+    size_t rounded = (bytes + MT__HUGE_PAGE - 1) & ~(MT__HUGE_PAGE - 1);
+    if (rounded < bytes) return NULL;
+    void *p = aligned_alloc(MT__HUGE_PAGE, rounded);
+#ifdef MADV_HUGEPAGE
+    if (p) madvise(p, rounded, MADV_HUGEPAGE); /* advice only: failure is harmless */
+#endif
+    return p;
+}
+
 void *mt__malloc(size_t bytes)
 {
     if (should_fail()) return NULL;
+    if (bytes >= MT__HUGE_MIN) return alloc_huge(bytes);
     return malloc(bytes ? bytes : 1);
 }
 
@@ -33,6 +54,12 @@ void *mt__calloc(size_t count, size_t size)
 {
     if (should_fail()) return NULL;
     if (count == 0 || size == 0) return calloc(1, 1);
+    if (count > SIZE_MAX / size) return NULL;
+    if (count * size >= MT__HUGE_MIN) {
+        void *p = alloc_huge(count * size);
+        if (p) memset(p, 0, count * size);
+        return p;
+    }
     return calloc(count, size);
 }
 

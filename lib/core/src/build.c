@@ -21,9 +21,7 @@ static void report_free(mt_report *r)
 void mt_mesh_destroy(mt_mesh *m)
 {
     if (!m) return;
-    mt__free(m->he_head);
-    mt__free(m->he_next);
-    mt__free(m->he_face);
+    mt__free(m->he_head); /* the block holding he_next and he_face too */
     mt__free(m->face_he);
     mt__free(m->vert_he);
     mt__free(m->positions);
@@ -103,6 +101,9 @@ static void link_part(mt__build *b, uint32_t t)
     }
 }
 
+/* Bytes between the half-edge arrays in their block: a page and three lines. */
+#define MT__HE_STAGGER (4096 + 3 * 64)
+
 static void *alloc_array(size_t count, size_t elem, int fill_none)
 {
     size_t bytes;
@@ -110,6 +111,22 @@ static void *alloc_array(size_t count, size_t elem, int fill_none)
     void *p = mt__malloc(bytes);
     if (p && fill_none) memset(p, 0xff, bytes);
     return p;
+}
+
+/* The three half-edge arrays live in one block, staggered so that entry h
+ * of each falls in a different cache set: the build and the queries touch
+ * all three at the same index, and equal offsets modulo the page size made
+ * them evict one another. he_face starts as all MT_NONE. */
+static mt_status alloc_half_edges(mt_mesh *m)
+{
+    const size_t n = m->num_half_edges, stagger = MT__HE_STAGGER / sizeof(uint32_t);
+    uint32_t *block = alloc_array(3 * n + 2 * stagger, sizeof(uint32_t), 0);
+    if (!block) return MT_ERR_NOMEM;
+    m->he_head = block;
+    m->he_next = block + n + stagger;
+    m->he_face = m->he_next + n + stagger;
+    memset(m->he_face, 0xff, n * sizeof(uint32_t));
+    return MT_OK;
 }
 
 static void build_free_temporaries(mt__build *b)
@@ -231,12 +248,10 @@ static mt_status build(mt__build *b)
     }
 
     m->num_half_edges = 2 * b->num_internal_edges;
-    m->he_head = alloc_array(m->num_half_edges, sizeof(uint32_t), 0);
-    m->he_next = alloc_array(m->num_half_edges, sizeof(uint32_t), 0);
-    m->he_face = alloc_array(m->num_half_edges, sizeof(uint32_t), 1);
+    if (alloc_half_edges(m) != MT_OK) return MT_ERR_NOMEM;
     m->vert_he = alloc_array(in->num_verts, sizeof(uint32_t), 1);
     b->vert_capacity = in->num_verts;
-    if (!m->he_head || !m->he_next || !m->he_face || !m->vert_he) return MT_ERR_NOMEM;
+    if (!m->vert_he) return MT_ERR_NOMEM;
     mt__parallel_run(b, link_part);
     mt__free(b->c2h);
     b->c2h = NULL;
