@@ -3,7 +3,11 @@
  * element touches a non-manifold spot). Outputs are caller-owned: pass NULL
  * buffers (or capacity 0) to learn the sizes, then call again to fill; a call
  * whose buffers are too small returns MT_ERR_BUFFER_TOO_SMALL, writes the
- * needed sizes and nothing else. */
+ * needed sizes and nothing else. An id past the caller's counts gives
+ * MT_ERR_OUT_OF_RANGE; a face record the build rejected gives
+ * MT_ERR_NOT_FOUND. A fan's boundary flag means the half-edge structure
+ * opens there: a real boundary, or a seam where an edge is non-manifold or
+ * crossed twice in the same direction (see the report for which). */
 #ifndef MESHTOPO_QUERY_H
 #define MESHTOPO_QUERY_H
 
