@@ -205,28 +205,44 @@ static void match_part(mt__build *b, uint32_t t)
 {
     mt__part *p = &b->part[t];
     const uint32_t *start = b->bucket_start;
-    const mt__side *bucket = b->bucket;
-    p->edge_base = t * (uint32_t)b->num_corners;
+    mt__side *bucket = b->bucket;
+    uint32_t *c2h = b->c2h;
+    const uint64_t num_corners = b->num_corners, num_indices = b->in->num_indices;
+    p->edge_base = t * (uint32_t)num_corners;
     for (uint32_t a = p->vert_begin; a < p->vert_end; a++) {
         const uint32_t end_a = start[a + 1];
         for (uint32_t i = start[a]; i < end_a;) {
             /* The twin sides sit in another vertex's bucket, at random in a
              * scan-ordered mesh: fetch those (and where the corners' half-edges
              * go) ahead of use. */
-            if (i + MT__PREFETCH_DISTANCE < b->num_corners) {
+            if (i + MT__PREFETCH_DISTANCE < num_corners) {
                 __builtin_prefetch(&start[bucket[i + MT__PREFETCH_DISTANCE].head]);
                 const mt__side *near = &bucket[i + MT__PREFETCH_DISTANCE / 2];
                 __builtin_prefetch(&bucket[start[near->head]]);
-                if (near->item < b->in->num_indices) __builtin_prefetch(&b->c2h[near->item], 1);
+                if (near->item < num_indices) __builtin_prefetch(&c2h[near->item], 1);
             }
             const uint32_t bv = bucket[i].head;
             uint32_t na = 1;
             while (i + na < end_a && bucket[i + na].head == bv) na++;
-            const uint32_t sb = lower_bound(bucket, start[bv], start[bv + 1], a);
+            const uint32_t end_b = start[bv + 1];
+            const uint32_t sb = lower_bound(bucket, start[bv], end_b, a);
             uint32_t nb = 0;
-            while (sb + nb < start[bv + 1] && bucket[sb + nb].head == a) nb++;
+            while (sb + nb < end_b && bucket[sb + nb].head == a) nb++;
             /* Owned by a unless b is smaller and has a side in the group. */
-            if (bv > a || nb == 0) {
+            if (bv < a && nb > 0) {
+                i += na;
+                continue;
+            }
+            if (na == 1 && nb == 1) { /* the manifold case, inline */
+                const uint32_t e = p->edge_base + p->edges_made++;
+                const uint32_t ha = 2 * e + (a < bv ? 0u : 1u);
+                c2h[bucket[i].item] = ha;
+                bucket[i].item = ha;
+                c2h[bucket[sb].item] = ha ^ 1u;
+                bucket[sb].item = ha ^ 1u;
+                p->num_edges++;
+                p->use_hist[2]++;
+            } else {
                 const uint32_t first_edge = p->edge_base + p->edges_made;
                 pair_group(b, p, a, bv, i, na, sb, nb);
                 if (record_group(p, a, bv, na, nb, first_edge) != MT_OK) {
