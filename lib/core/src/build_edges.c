@@ -207,19 +207,18 @@ static void match_part(mt__build *b, uint32_t t)
     const uint32_t *start = b->bucket_start;
     mt__side *bucket = b->bucket;
     uint32_t *c2h = b->c2h;
-    const uint64_t num_corners = b->num_corners, num_indices = b->in->num_indices;
+    const uint64_t num_corners = b->num_corners;
     p->edge_base = t * (uint32_t)num_corners;
     for (uint32_t a = p->vert_begin; a < p->vert_end; a++) {
         const uint32_t end_a = start[a + 1];
         for (uint32_t i = start[a]; i < end_a;) {
             /* The twin sides sit in another vertex's bucket, at random in a
-             * scan-ordered mesh: fetch those (and where the corners' half-edges
-             * go) ahead of use. */
+             * scan-ordered mesh: fetch those ahead of use. (Heads do not
+             * change during matching; items may be written by another part,
+             * so they are not read ahead.) */
             if (i + MT__PREFETCH_DISTANCE < num_corners) {
                 __builtin_prefetch(&start[bucket[i + MT__PREFETCH_DISTANCE].head]);
-                const mt__side *near = &bucket[i + MT__PREFETCH_DISTANCE / 2];
-                __builtin_prefetch(&bucket[start[near->head]]);
-                if (near->item < num_indices) __builtin_prefetch(&c2h[near->item], 1);
+                __builtin_prefetch(&bucket[start[bucket[i + MT__PREFETCH_DISTANCE / 2].head]]);
             }
             const uint32_t bv = bucket[i].head;
             uint32_t na = 1;

@@ -111,6 +111,7 @@ typedef struct mt__build {
     mt__vec dup_candidates;   /* uint32 faces that may repeat another face */
 
     /* report */
+    _Atomic uint32_t *shared_parent; /* union-find shared by the parts */
     uint32_t *vert_comp; /* [num_verts_internal] component of each internal vertex */
     uint32_t num_components;
 } mt__build;

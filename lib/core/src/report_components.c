@@ -3,6 +3,7 @@
  * bundles: each fan's faces share its internal vertex, so this joins exactly
  * the faces that share an edge), numbered by smallest face id, with their
  * face, vertex and edge counts; and the vertex-connected count. */
+#include <stdatomic.h>
 #include <string.h>
 
 #include "build_internal.h"
@@ -79,46 +80,89 @@ static void count_per_component(mt__build *b)
         ci[comp[m->he_head[2 * boundary[i]]]].boundary_edges++;
 }
 
+/* Concurrent union-find over atomics (the parts join edges of their own
+ * ranges at the same time). A root is only ever linked below a smaller id by
+ * compare-and-swap, so every set ends with its smallest vertex as root
+ * whatever the interleaving; path halving only ever skips to an ancestor. */
+static uint32_t shared_find(_Atomic uint32_t *parent, uint32_t x)
+{
+    for (;;) {
+        uint32_t p = atomic_load_explicit(&parent[x], memory_order_relaxed);
+        if (p == x) return x;
+        uint32_t gp = atomic_load_explicit(&parent[p], memory_order_relaxed);
+        if (gp != p)
+            atomic_compare_exchange_weak_explicit(&parent[x], &p, gp, memory_order_relaxed,
+                                                  memory_order_relaxed);
+        x = gp;
+    }
+}
+
+static void shared_union(_Atomic uint32_t *parent, uint32_t x, uint32_t y)
+{
+    for (;;) {
+        x = shared_find(parent, x);
+        y = shared_find(parent, y);
+        if (x == y) return;
+        if (x > y) {
+            uint32_t swap = x;
+            x = y;
+            y = swap;
+        }
+        uint32_t expected = y;
+        if (atomic_compare_exchange_strong_explicit(&parent[y], &expected, x, memory_order_acq_rel,
+                                                    memory_order_relaxed))
+            return;
+    }
+}
+
+static void join_edges_part(mt__build *b, uint32_t t)
+{
+    const mt_mesh *m = b->m;
+    const uint64_t num_edges = m->num_half_edges / 2;
+    for (uint64_t e = num_edges * t / b->parts, end = num_edges * (t + 1) / b->parts; e < end; e++)
+        shared_union(b->shared_parent, m->he_head[2 * e], m->he_head[2 * e + 1]);
+}
+
 mt_status mt__report_components(mt__build *b)
 {
     mt_mesh *m = b->m;
     mt_report *r = &m->report;
     const uint32_t nvi = m->num_verts_internal;
-    uint32_t *parent = mt__malloc((size_t)nvi * sizeof(uint32_t));
+    _Atomic uint32_t *parent = mt__malloc((size_t)nvi * sizeof *parent);
     if (!parent) return MT_ERR_NOMEM;
-    for (uint32_t v = 0; v < nvi; v++) parent[v] = v;
-    const uint32_t num_edges = m->num_half_edges / 2;
-    for (uint32_t e = 0; e < num_edges; e++)
-        mt__uf_union(parent, m->he_head[2 * e], m->he_head[2 * e + 1]);
+    for (uint32_t v = 0; v < nvi; v++) atomic_init(&parent[v], v);
+    b->shared_parent = parent;
+    mt__parallel_run(b, join_edges_part);
+    b->shared_parent = NULL;
     for (uint32_t k = 0; k < m->num_bundles; k++) {
         uint32_t first = m->bundle_edges[m->bundle_offsets[k]];
         for (uint32_t i = m->bundle_offsets[k] + 1; i < m->bundle_offsets[k + 1]; i++) {
             uint32_t e = m->bundle_edges[i];
-            mt__uf_union(parent, m->he_head[2 * first], m->he_head[2 * e]);
-            mt__uf_union(parent, m->he_head[2 * first + 1], m->he_head[2 * e + 1]);
+            shared_union(parent, m->he_head[2 * first], m->he_head[2 * e]);
+            shared_union(parent, m->he_head[2 * first + 1], m->he_head[2 * e + 1]);
         }
     }
     /* Number components by smallest face. Roots are counted first so that
      * the walk over the faces stops once every component has its number. */
     uint32_t *comp = mt__malloc((size_t)nvi * sizeof(uint32_t));
     if (!comp) {
-        mt__free(parent);
+        mt__free((void *)parent);
         return MT_ERR_NOMEM;
     }
     uint32_t roots = 0;
     for (uint32_t v = 0; v < nvi; v++) {
         comp[v] = MT_NONE;
-        roots += m->vert_he[v] != MT_NONE && mt__uf_find(parent, v) == v;
+        roots += m->vert_he[v] != MT_NONE && shared_find(parent, v) == v;
     }
     uint32_t count = 0;
     for (uint32_t f = 0; f < m->num_faces && count < roots; f++) {
         if (m->face_he[f] == MT_NONE) continue;
-        uint32_t root = mt__uf_find(parent, m->he_head[m->face_he[f]]);
+        uint32_t root = shared_find(parent, m->he_head[m->face_he[f]]);
         if (comp[root] == MT_NONE) comp[root] = count++;
     }
     for (uint32_t v = 0; v < nvi; v++)
-        if (m->vert_he[v] != MT_NONE) comp[v] = comp[mt__uf_find(parent, v)];
-    mt__free(parent);
+        if (m->vert_he[v] != MT_NONE) comp[v] = comp[shared_find(parent, v)];
+    mt__free((void *)parent);
     b->vert_comp = comp;
     b->num_components = count;
     r->connected_components = count;
