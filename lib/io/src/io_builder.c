@@ -1,0 +1,101 @@
+/* The face list a reader fills: three arrays that grow geometrically (so n
+ * appends cost O(log n) reallocations, never one allocation per element)
+ * and are trimmed and handed over as an mt_face_list at the end. */
+#include <stdlib.h>
+
+#include "io_internal.h"
+
+/* Grows *data (elem bytes each, capacity *cap) to hold at least n elements. */
+static int grow(void **data, size_t *cap, size_t n, size_t elem)
+{
+    if (n <= *cap) return 1;
+    size_t max = SIZE_MAX / elem;
+    if (n > max) return 0;
+    size_t want = *cap < 1024 ? 1024 : *cap;
+    while (want < n) want = want > max / 2 ? max : want * 2;
+    if (want > max) want = max;
+    void *p = realloc(*data, want * elem);
+    if (!p) {
+        /* the doubling may be too greedy for the memory left: try exactly n */
+        if (want == n) return 0;
+        p = realloc(*data, n * elem);
+        if (!p) return 0;
+        want = n;
+    }
+    *data = p;
+    *cap = want;
+    return 1;
+}
+
+int mt__builder_reserve_verts(mt__builder *b, size_t n)
+{
+    if (n > SIZE_MAX / 3) return 0;
+    void *data = b->positions;
+    size_t cap = b->cap_verts;
+    if (!grow(&data, &cap, n, 3 * sizeof(double))) return 0;
+    b->positions = data;
+    b->cap_verts = cap;
+    return 1;
+}
+
+int mt__builder_reserve_faces(mt__builder *b, size_t n)
+{
+    void *data = b->sizes;
+    size_t cap = b->cap_faces;
+    if (!grow(&data, &cap, n, sizeof(uint32_t))) return 0;
+    b->sizes = data;
+    b->cap_faces = cap;
+    return 1;
+}
+
+int mt__builder_reserve_indices(mt__builder *b, size_t n)
+{
+    void *data = b->indices;
+    size_t cap = b->cap_indices;
+    if (!grow(&data, &cap, n, sizeof(uint32_t))) return 0;
+    b->indices = data;
+    b->cap_indices = cap;
+    return 1;
+}
+
+/* Shrinks an array to exactly n elements (at least one, so that pointers
+ * are never NULL); keeps the larger block when realloc refuses. */
+static void *trim(void *data, size_t n, size_t elem)
+{
+    void *p = realloc(data, (n ? n : 1) * elem);
+    return p ? p : data;
+}
+
+mt_status mt__builder_finish(mt__builder *b, mt_face_list *out, const mt__io_src *src,
+                             mt_diag *diag)
+{
+    memset(out, 0, sizeof *out);
+    if (b->num_verts > MT__IO_MAX_VERTS)
+        return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_NONE, 0, MT_NONE,
+                           "%zu vertices: more than meshtopo's limit of %u", b->num_verts,
+                           MT__IO_MAX_VERTS);
+    if (b->num_faces > UINT32_MAX)
+        return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_NONE, 0, MT_NONE,
+                           "%zu faces: more than meshtopo's limit of %u", b->num_faces, UINT32_MAX);
+    /* Make sure every array exists (a list of 0 faces still gets pointers). */
+    if ((!b->positions && !mt__builder_reserve_verts(b, 1)) ||
+        (!b->sizes && !mt__builder_reserve_faces(b, 1)) ||
+        (!b->indices && !mt__builder_reserve_indices(b, 1)))
+        return mt__io_fail_nomem(diag, src);
+    out->num_verts = (uint32_t)b->num_verts;
+    out->num_faces = (uint32_t)b->num_faces;
+    out->num_indices = b->num_indices;
+    out->positions = trim(b->positions, 3 * b->num_verts, sizeof(double));
+    out->face_sizes = trim(b->sizes, b->num_faces, sizeof(uint32_t));
+    out->face_indices = trim(b->indices, b->num_indices, sizeof(uint32_t));
+    memset(b, 0, sizeof *b);
+    return MT_OK;
+}
+
+void mt__builder_free(mt__builder *b)
+{
+    free(b->positions);
+    free(b->sizes);
+    free(b->indices);
+    memset(b, 0, sizeof *b);
+}
