@@ -18,7 +18,10 @@ void mt_test_fail(const char *file, int line, const char *fmt, ...)
     failures++;
 }
 
-int mt_test_failures(void) { return failures; }
+int mt_test_failures(void)
+{
+    return failures;
+}
 
 const char *mt_test_corpus_dir(void)
 {

@@ -42,26 +42,26 @@ int mt_test_failures(void);
  * relative to the source tree). */
 const char *mt_test_corpus_dir(void);
 
-#define CHECK(cond)                                                                \
-    do {                                                                           \
-        if (!(cond)) mt_test_fail(__FILE__, __LINE__, "CHECK(%s) failed", #cond);  \
+#define CHECK(cond)                                                               \
+    do {                                                                          \
+        if (!(cond)) mt_test_fail(__FILE__, __LINE__, "CHECK(%s) failed", #cond); \
     } while (0)
 
-#define CHECK_EQ(a, b)                                                                     \
-    do {                                                                                   \
-        long long mt__a = (long long)(a), mt__b = (long long)(b);                          \
-        if (mt__a != mt__b)                                                                \
-            mt_test_fail(__FILE__, __LINE__, "%s == %s failed: %lld != %lld", #a, #b,      \
-                         mt__a, mt__b);                                                    \
+#define CHECK_EQ(a, b)                                                                       \
+    do {                                                                                     \
+        long long mt__a = (long long)(a), mt__b = (long long)(b);                            \
+        if (mt__a != mt__b)                                                                  \
+            mt_test_fail(__FILE__, __LINE__, "%s == %s failed: %lld != %lld", #a, #b, mt__a, \
+                         mt__b);                                                             \
     } while (0)
 
 /* Checks that a call returned `expected` (an mt_status). */
-#define CHECK_STATUS(expr, expected)                                                       \
-    do {                                                                                   \
-        int mt__s = (int)(expr);                                                           \
-        if (mt__s != (int)(expected))                                                      \
-            mt_test_fail(__FILE__, __LINE__, "%s returned %d (%s), expected %s", #expr,    \
-                         mt__s, mt_strerror((mt_status)mt__s), #expected);                 \
+#define CHECK_STATUS(expr, expected)                                                           \
+    do {                                                                                       \
+        int mt__s = (int)(expr);                                                               \
+        if (mt__s != (int)(expected))                                                          \
+            mt_test_fail(__FILE__, __LINE__, "%s returned %d (%s), expected %s", #expr, mt__s, \
+                         mt_strerror((mt_status)mt__s), #expected);                            \
     } while (0)
 
 #define CHECK_OK(expr) CHECK_STATUS(expr, MT_OK)

@@ -410,7 +410,8 @@ static void check_same_mesh(const mt_mesh *a_mesh, const mt_mesh *b_mesh)
     mt_mesh_get_view(b_mesh, &b);
     CHECK_EQ(a.num_half_edges, b.num_half_edges);
     CHECK_EQ(a.num_verts_internal, b.num_verts_internal);
-    if (a.num_half_edges != b.num_half_edges || a.num_verts_internal != b.num_verts_internal) return;
+    if (a.num_half_edges != b.num_half_edges || a.num_verts_internal != b.num_verts_internal)
+        return;
     CHECK(memcmp(a.he_next, b.he_next, a.num_half_edges * sizeof(uint32_t)) == 0);
     CHECK(memcmp(a.he_head, b.he_head, a.num_half_edges * sizeof(uint32_t)) == 0);
     CHECK(memcmp(a.he_face, b.he_face, a.num_half_edges * sizeof(uint32_t)) == 0);

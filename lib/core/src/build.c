@@ -205,7 +205,8 @@ static void plan_parts(mt__build *b, uint32_t threads)
         const uint64_t goal = in->num_indices * (t + 1) / parts;
         p->face_begin = f;
         p->index_begin = (uint32_t)offset;
-        while (f < in->num_faces && (t + 1 == parts || offset < goal)) offset += in->face_sizes[f++];
+        while (f < in->num_faces && (t + 1 == parts || offset < goal))
+            offset += in->face_sizes[f++];
         p->face_end = f;
         p->vert_begin = (uint32_t)((uint64_t)in->num_verts * t / parts);
         p->vert_end = (uint32_t)((uint64_t)in->num_verts * (t + 1) / parts);

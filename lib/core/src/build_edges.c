@@ -161,9 +161,11 @@ static mt_status record_group(mt__part *p, uint32_t a, uint32_t bv, uint32_t na,
     if (na >= 2 || nb >= 2) {
         p->duplicate_directed_edges++;
         if (uses == 2) p->inconsistent_edges++;
-        if (na >= 2 && mt__push_defect(&p->defects, MT_DEFECT_SAME_DIRECTION_EDGE, a, bv, na) != MT_OK)
+        if (na >= 2 &&
+            mt__push_defect(&p->defects, MT_DEFECT_SAME_DIRECTION_EDGE, a, bv, na) != MT_OK)
             return MT_ERR_NOMEM;
-        if (nb >= 2 && mt__push_defect(&p->defects, MT_DEFECT_SAME_DIRECTION_EDGE, bv, a, nb) != MT_OK)
+        if (nb >= 2 &&
+            mt__push_defect(&p->defects, MT_DEFECT_SAME_DIRECTION_EDGE, bv, a, nb) != MT_OK)
             return MT_ERR_NOMEM;
     }
     uint32_t count = na > nb ? na : nb;
@@ -179,8 +181,8 @@ static mt_status record_group(mt__part *p, uint32_t a, uint32_t bv, uint32_t na,
 /* Pairs the sides of group {a, b}: slots [sa, sa + na) of a's bucket hold
  * the a -> b sides, [sb, sb + nb) of b's the b -> a sides. Half-edge 2e
  * points from the smaller vertex id. */
-static void pair_group(mt__build *b, mt__part *p, uint32_t a, uint32_t bv, uint32_t sa,
-                       uint32_t na, uint32_t sb, uint32_t nb)
+static void pair_group(mt__build *b, mt__part *p, uint32_t a, uint32_t bv, uint32_t sa, uint32_t na,
+                       uint32_t sb, uint32_t nb)
 {
     mt__side *bucket = b->bucket;
     uint32_t *c2h = b->c2h;
@@ -280,7 +282,8 @@ static mt_status merge_parts(mt__build *b)
         b->duplicate_directed_edges += p->duplicate_directed_edges;
         uint32_t *edges = p->bundle_edges.data, *offsets = p->bundle_offsets.data;
         for (size_t i = 0; t > 0 && i < p->bundle_edges.len; i++) edges[i] -= shift;
-        for (size_t i = 0; i < p->bundle_offsets.len; i++) offsets[i] += (uint32_t)b->bundle_edges.len;
+        for (size_t i = 0; i < p->bundle_offsets.len; i++)
+            offsets[i] += (uint32_t)b->bundle_edges.len;
         if (mt__vec_append(&b->large_uses, &p->large_uses) != MT_OK ||
             mt__vec_append(&b->defects, &p->defects) != MT_OK ||
             mt__vec_append(&b->bundle_offsets, &p->bundle_offsets) != MT_OK ||

@@ -10,8 +10,7 @@
 
 #include "build_internal.h"
 
-mt_status mt__push_defect(mt__vec *defects, mt_defect_kind kind, uint32_t x, uint32_t y,
-                          uint32_t z)
+mt_status mt__push_defect(mt__vec *defects, mt_defect_kind kind, uint32_t x, uint32_t y, uint32_t z)
 {
     mt_defect d = {(uint32_t)kind, x, y, z};
     return mt__vec_push(defects, &d);
@@ -96,7 +95,8 @@ static mt_status copy_positions(mt__build *b, mt__part *p)
 {
     const mt_face_list *in = b->in;
     if (!in->positions) return MT_OK;
-    const size_t first = 3 * (size_t)p->vert_begin, count = 3 * (size_t)(p->vert_end - p->vert_begin);
+    const size_t first = 3 * (size_t)p->vert_begin,
+                 count = 3 * (size_t)(p->vert_end - p->vert_begin);
     memcpy(b->m->positions + first, in->positions + first, count * sizeof(double));
     for (uint32_t v = p->vert_begin; v < p->vert_end; v++) {
         const double *pos = &in->positions[3 * (size_t)v];
@@ -119,7 +119,7 @@ static mt_status classify_faces(mt__build *b, mt__part *p)
     uint32_t offset = p->index_begin;
     for (uint32_t f = p->face_begin; f < p->face_end; f++) {
         const uint32_t n = in->face_sizes[f];
-        const uint32_t *idx = in->face_indices + offset;
+        const uint32_t *idx = n ? in->face_indices + offset : NULL; /* NULL when no indices */
         offset += n;
         if (n < MT__SMALL_SIZES)
             p->size_hist[n]++;

@@ -189,8 +189,7 @@ static void fans_part(mt__build *b, uint32_t t)
             boundary_in++;
             if (mt__vec_push(&p->boundary_halves, &twin) != MT_OK) p->status = MT_ERR_NOMEM;
         }
-        if (!single_fan(b, p, v, hs, n, boundary_in) &&
-            mt__vec_push(&p->split_verts, &v) != MT_OK)
+        if (!single_fan(b, p, v, hs, n, boundary_in) && mt__vec_push(&p->split_verts, &v) != MT_OK)
             p->status = MT_ERR_NOMEM;
     }
     mt__free(hs);

@@ -68,8 +68,8 @@ typedef struct mt__part {
 
     /* fans */
     mt__vec boundary_halves; /* uint32 half-edges without a face, into this part's vertices */
-    mt__vec split_verts;    /* uint32 vertices needing the general fan split */
-    mt__vec dup_candidates; /* uint32 faces */
+    mt__vec split_verts;     /* uint32 vertices needing the general fan split */
+    mt__vec dup_candidates;  /* uint32 faces */
 } mt__part;
 
 typedef struct mt__build {
@@ -89,9 +89,9 @@ typedef struct mt__build {
     uint32_t out_of_range_faces, degenerate_faces, nonfinite_vertices;
 
     /* edges */
-    uint32_t *bucket_start;  /* [num_verts + 1] first slot of each vertex's bucket */
-    mt__side *bucket;        /* [num_corners] the sides, by tail vertex */
-    uint32_t *c2h;           /* [num_indices] half-edge of each corner */
+    uint32_t *bucket_start; /* [num_verts + 1] first slot of each vertex's bucket */
+    mt__side *bucket;       /* [num_corners] the sides, by tail vertex */
+    uint32_t *c2h;          /* [num_indices] half-edge of each corner */
     uint32_t max_degree;
     uint32_t gap_first_he, gap_shift; /* see mt__edge_gap */
     uint32_t num_internal_edges;
@@ -103,16 +103,16 @@ typedef struct mt__build {
     mt__vec bundle_edges;   /* uint32 internal edge ids, ascending */
 
     /* fans */
-    uint32_t vert_capacity;   /* allocated length of m->vert_he */
-    mt__vec boundary_halves;  /* uint32 every half-edge without a face; in the
-                                 report, the boundary edges (used by one face) */
-    mt__vec copy_original;    /* uint32 */
-    mt__vec split_verts;      /* uint32 caller vertices with more than one fan */
-    mt__vec dup_candidates;   /* uint32 faces that may repeat another face */
+    uint32_t vert_capacity;  /* allocated length of m->vert_he */
+    mt__vec boundary_halves; /* uint32 every half-edge without a face; in the
+                                report, the boundary edges (used by one face) */
+    mt__vec copy_original;   /* uint32 */
+    mt__vec split_verts;     /* uint32 caller vertices with more than one fan */
+    mt__vec dup_candidates;  /* uint32 faces that may repeat another face */
 
     /* report */
     _Atomic uint32_t *shared_parent; /* union-find shared by the parts */
-    uint32_t *vert_comp; /* [num_verts_internal] component of each internal vertex */
+    uint32_t *vert_comp;             /* [num_verts_internal] component of each internal vertex */
     uint32_t num_components;
 } mt__build;
 
@@ -160,7 +160,6 @@ static inline void mt__uf_union(uint32_t *parent, uint32_t x, uint32_t y)
     else if (y < x)
         parent[x] = y;
 }
-
 
 /* Adds a defect entry to a list; MT_ERR_NOMEM on failure. */
 mt_status mt__push_defect(mt__vec *defects, mt_defect_kind kind, uint32_t x, uint32_t y,

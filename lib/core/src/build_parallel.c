@@ -27,7 +27,8 @@ void mt__parallel_run(mt__build *b, void (*fn)(mt__build *, uint32_t))
     worker workers[MT__MAX_PARTS];
     for (uint32_t t = 1; t < b->parts; t++) {
         workers[t] = (worker){.fn = fn, .b = b, .part = t};
-        workers[t].started = pthread_create(&workers[t].thread, NULL, worker_main, &workers[t]) == 0;
+        workers[t].started =
+            pthread_create(&workers[t].thread, NULL, worker_main, &workers[t]) == 0;
     }
     fn(b, 0);
     for (uint32_t t = 1; t < b->parts; t++) {

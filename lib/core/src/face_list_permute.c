@@ -91,10 +91,9 @@ mt_status mt_face_list_permute(mt_face_list *list, uint64_t seed, mt_diag *diag)
     uint64_t out = 0;
     for (uint32_t i = 0; i < nf; i++) {
         uint32_t f = order[i];
-        const uint32_t *src = list->face_indices + start[f];
         sizes[i] = list->face_sizes[f];
         for (uint32_t k = 0; k < sizes[i]; k++) {
-            uint32_t v = src[k];
+            uint32_t v = list->face_indices[start[f] + k];
             indices[out++] = v < nv ? new_id[v] : v; /* out-of-range ids stay as they are */
         }
     }

@@ -73,7 +73,8 @@ static void count_per_component(mt__build *b)
     for (uint32_t e = 0; e < num_edges; e++) ci[comp[m->he_head[2 * e]]].edges++;
     for (uint32_t k = 0; k < m->num_bundles; k++) {
         uint32_t first = m->bundle_edges[m->bundle_offsets[k]];
-        ci[comp[m->he_head[2 * first]]].edges -= m->bundle_offsets[k + 1] - m->bundle_offsets[k] - 1;
+        ci[comp[m->he_head[2 * first]]].edges -=
+            m->bundle_offsets[k + 1] - m->bundle_offsets[k] - 1;
     }
     const uint32_t *boundary = b->boundary_halves.data;
     for (size_t i = 0; i < b->boundary_halves.len; i++)

@@ -91,10 +91,10 @@ typedef struct mt_mesh_view {
     const uint32_t *he_head;     /* [num_half_edges] internal vertex the half-edge points to */
     const uint32_t *he_next;     /* [num_half_edges] next half-edge in its face or boundary ring */
     const uint32_t *he_face;     /* [num_half_edges] face, MT_NONE on a boundary */
-    const uint32_t *face_he;     /* [num_faces] half-edge from the face's first to its second vertex */
-    const uint32_t *vert_he;     /* [num_verts_internal] outgoing half-edge, boundary one on a
-                                    boundary vertex, MT_NONE for an isolated vertex */
-    const double *positions;     /* [3 * num_verts] or NULL */
+    const uint32_t *face_he; /* [num_faces] half-edge from the face's first to its second vertex */
+    const uint32_t *vert_he; /* [num_verts_internal] outgoing half-edge, boundary one on a
+                                boundary vertex, MT_NONE for an isolated vertex */
+    const double *positions; /* [3 * num_verts] or NULL */
 } mt_mesh_view;
 
 void mt_mesh_get_view(const mt_mesh *mesh, mt_mesh_view *out_view);
@@ -102,9 +102,18 @@ void mt_mesh_get_view(const mt_mesh *mesh, mt_mesh_view *out_view);
 /* Caller's id of an internal vertex id (identity below num_verts). */
 uint32_t mt_vert_original(const mt_mesh *mesh, uint32_t internal_vert);
 
-static inline uint32_t mt_he_twin(uint32_t he) { return he ^ 1u; }
-static inline uint32_t mt_he_edge(uint32_t he) { return he >> 1; }
-static inline uint32_t mt_he_tail(const mt_mesh_view *v, uint32_t he) { return v->he_head[he ^ 1u]; }
+static inline uint32_t mt_he_twin(uint32_t he)
+{
+    return he ^ 1u;
+}
+static inline uint32_t mt_he_edge(uint32_t he)
+{
+    return he >> 1;
+}
+static inline uint32_t mt_he_tail(const mt_mesh_view *v, uint32_t he)
+{
+    return v->he_head[he ^ 1u];
+}
 /* Next outgoing half-edge around the tail of he (one rotation step). Starting
  * from a vertex's vert_he it visits the whole fan; on a boundary vertex it
  * starts at the boundary half-edge and returns to it. */
@@ -145,8 +154,8 @@ static inline void mt_ring_step(const mt_mesh_view *v, mt_ring_iter *it)
     if (it->current == it->start) it->current = MT_NONE;
 }
 
-#define MT_FOR_VERT_OUT(view, vert, it)                                              \
-    for (mt_ring_iter it = mt_ring_begin((view), (vert)); mt_ring_valid(&it);     \
+#define MT_FOR_VERT_OUT(view, vert, it)                                       \
+    for (mt_ring_iter it = mt_ring_begin((view), (vert)); mt_ring_valid(&it); \
          mt_ring_step((view), &it))
 
 #ifdef __cplusplus

@@ -56,8 +56,8 @@ mt_status mt_vert_valence(const mt_mesh *mesh, uint32_t vert, uint32_t *out_vale
 
 /* Caller vertex ids of a face in its stored order. MT_ERR_NOT_FOUND for a
  * rejected face record. */
-mt_status mt_face_verts(const mt_mesh *mesh, uint32_t face, uint32_t *out_verts,
-                        size_t capacity, size_t *out_count);
+mt_status mt_face_verts(const mt_mesh *mesh, uint32_t face, uint32_t *out_verts, size_t capacity,
+                        size_t *out_count);
 
 /* Faces across each edge of `face`: edge i runs from the face's vertex i to
  * vertex i+1. out_offsets gets face size + 1 entries (CSR): the faces across
@@ -65,9 +65,8 @@ mt_status mt_face_verts(const mt_mesh *mesh, uint32_t face, uint32_t *out_verts,
  * non-manifold edge every other face on that edge is listed; a boundary edge
  * has none. out_num_edges gets the face size, out_num_faces the total. */
 mt_status mt_face_neighbors(const mt_mesh *mesh, uint32_t face, uint32_t *out_faces,
-                            size_t faces_capacity, uint32_t *out_offsets,
-                            size_t offsets_capacity, size_t *out_num_faces,
-                            size_t *out_num_edges);
+                            size_t faces_capacity, uint32_t *out_offsets, size_t offsets_capacity,
+                            size_t *out_num_faces, size_t *out_num_edges);
 
 /* Faces (ascending ids) that have {a, b} as a side. MT_ERR_NOT_FOUND when no
  * valid face does. */
@@ -80,8 +79,8 @@ mt_status mt_edge_faces(const mt_mesh *mesh, uint32_t a, uint32_t b, uint32_t *o
  * a flipped face a ring also runs along that edge, and a pinched boundary
  * gives one ring per fan. out_offsets needs num_loops + 1 entries. */
 mt_status mt_boundary_loops(const mt_mesh *mesh, uint32_t *out_verts, size_t verts_capacity,
-                            uint32_t *out_offsets, size_t offsets_capacity,
-                            size_t *out_num_verts, size_t *out_num_loops);
+                            uint32_t *out_offsets, size_t offsets_capacity, size_t *out_num_verts,
+                            size_t *out_num_loops);
 
 /* Edge-connected component of a face, numbered as report->components.
  * MT_ERR_NOT_FOUND for a rejected face record. */

@@ -18,25 +18,25 @@ extern "C" {
 
 /* What a defect entry means; a, b, c are per kind. Generated from one table
  * so names and descriptions stay together. */
-#define MT_DEFECT_TABLE(X)                                                                    \
-    /* a = face, b = first bad index value (as stored), c = its position in the face */      \
+#define MT_DEFECT_TABLE(X)                                                                         \
+    /* a = face, b = first bad index value (as stored), c = its position in the face */            \
     X(MT_DEFECT_OUT_OF_RANGE_INDEX, "out_of_range_index", "face uses a vertex index out of range") \
-    /* a = face, b = number of distinct vertices, c = face size */                            \
-    X(MT_DEFECT_DEGENERATE_FACE, "degenerate_face", "face has fewer than 3 distinct vertices") \
-    /* a = face, b = earlier face with the same vertex cycle (either direction) */            \
-    X(MT_DEFECT_DUPLICATE_FACE, "duplicate_face", "face repeats an earlier face")            \
-    /* a, b = edge vertices (a < b), c = number of faces using the edge (> 2) */              \
-    X(MT_DEFECT_NONMANIFOLD_EDGE, "nonmanifold_edge", "edge used by more than two faces")    \
-    /* a -> b = a directed side used by c >= 2 faces; one entry per such direction */       \
-    X(MT_DEFECT_SAME_DIRECTION_EDGE, "same_direction_edge",                                  \
-      "two faces cross an edge in the same direction")                                      \
-    /* a = vertex, b = connected parts (fans) of its link, c = 1 if a link vertex            \
-       has degree > 2 (the vertex is on a non-manifold edge). b > 1 is a bowtie. */          \
-    X(MT_DEFECT_NONMANIFOLD_VERTEX, "nonmanifold_vertex",                                    \
-      "vertex whose faces do not form a single fan")                                        \
-    /* a = vertex */                                                                         \
-    X(MT_DEFECT_ISOLATED_VERTEX, "isolated_vertex", "vertex used by no valid face")          \
-    /* a = vertex, b = coordinate axis (0, 1, 2) */                                           \
+    /* a = face, b = number of distinct vertices, c = face size */                                 \
+    X(MT_DEFECT_DEGENERATE_FACE, "degenerate_face", "face has fewer than 3 distinct vertices")     \
+    /* a = face, b = earlier face with the same vertex cycle (either direction) */                 \
+    X(MT_DEFECT_DUPLICATE_FACE, "duplicate_face", "face repeats an earlier face")                  \
+    /* a, b = edge vertices (a < b), c = number of faces using the edge (> 2) */                   \
+    X(MT_DEFECT_NONMANIFOLD_EDGE, "nonmanifold_edge", "edge used by more than two faces")          \
+    /* a -> b = a directed side used by c >= 2 faces; one entry per such direction */              \
+    X(MT_DEFECT_SAME_DIRECTION_EDGE, "same_direction_edge",                                        \
+      "two faces cross an edge in the same direction")                                             \
+    /* a = vertex, b = connected parts (fans) of its link, c = 1 if a link vertex                  \
+       has degree > 2 (the vertex is on a non-manifold edge). b > 1 is a bowtie. */                \
+    X(MT_DEFECT_NONMANIFOLD_VERTEX, "nonmanifold_vertex",                                          \
+      "vertex whose faces do not form a single fan")                                               \
+    /* a = vertex */                                                                               \
+    X(MT_DEFECT_ISOLATED_VERTEX, "isolated_vertex", "vertex used by no valid face")                \
+    /* a = vertex, b = coordinate axis (0, 1, 2) */                                                \
     X(MT_DEFECT_NONFINITE_COORD, "nonfinite_coordinate", "vertex has a NaN or infinite coordinate")
 
 typedef enum mt_defect_kind {
@@ -62,10 +62,10 @@ typedef struct mt_histogram_bin {
 
 /* One edge-connected component of valid faces. */
 typedef struct mt_component_info {
-    uint32_t min_face;       /* smallest face id in it; components are ordered by it */
+    uint32_t min_face; /* smallest face id in it; components are ordered by it */
     uint32_t faces;
-    uint32_t vertices;       /* distinct caller vertices of its faces */
-    uint64_t edges;          /* distinct undirected edges */
+    uint32_t vertices; /* distinct caller vertices of its faces */
+    uint64_t edges;    /* distinct undirected edges */
     int64_t euler_characteristic;
     uint64_t boundary_edges; /* edges used by exactly one face */
     uint32_t boundary_loops; /* connected parts of its boundary-edge graph */
@@ -82,9 +82,9 @@ typedef struct mt_report {
     uint64_t num_half_edges;  /* sum of all record sizes (degenerate ones too) */
 
     uint64_t boundary_edges;
-    uint32_t boundary_loops;          /* parts of the boundary-edge graph */
-    bool boundary_loops_ambiguous;    /* some vertex has boundary degree other than 2 */
-    uint32_t *boundary_loop_lengths;  /* [boundary_loops] edge counts, ascending */
+    uint32_t boundary_loops;         /* parts of the boundary-edge graph */
+    bool boundary_loops_ambiguous;   /* some vertex has boundary degree other than 2 */
+    uint32_t *boundary_loop_lengths; /* [boundary_loops] edge counts, ascending */
 
     uint64_t nonmanifold_edges;              /* used by more than two faces */
     uint64_t inconsistent_orientation_edges; /* used by exactly two faces, same direction */

@@ -13,18 +13,18 @@ extern "C" {
 /* "No element": the one invalid index sentinel for vertices, faces, edges, half-edges. */
 #define MT_NONE UINT32_MAX
 
-#define MT_STATUS_TABLE(X)                                                       \
-    X(MT_OK, "success")                                                          \
-    X(MT_ERR_INVALID_ARG, "invalid argument")                                    \
-    X(MT_ERR_NOMEM, "out of memory")                                             \
-    X(MT_ERR_TOO_LARGE, "size exceeds meshtopo's limits")                        \
-    X(MT_ERR_DEFECT, "mesh has a defect (strict mode refuses it)")               \
-    X(MT_ERR_BUFFER_TOO_SMALL, "output buffer too small")                        \
-    X(MT_ERR_OUT_OF_RANGE, "element id out of range")                            \
-    X(MT_ERR_NOT_FOUND, "no such element")                                       \
-    X(MT_ERR_IO, "input/output error")                                           \
-    X(MT_ERR_PARSE, "malformed mesh file")                                       \
-    X(MT_ERR_UNSUPPORTED, "unsupported format or feature")                       \
+#define MT_STATUS_TABLE(X)                                         \
+    X(MT_OK, "success")                                            \
+    X(MT_ERR_INVALID_ARG, "invalid argument")                      \
+    X(MT_ERR_NOMEM, "out of memory")                               \
+    X(MT_ERR_TOO_LARGE, "size exceeds meshtopo's limits")          \
+    X(MT_ERR_DEFECT, "mesh has a defect (strict mode refuses it)") \
+    X(MT_ERR_BUFFER_TOO_SMALL, "output buffer too small")          \
+    X(MT_ERR_OUT_OF_RANGE, "element id out of range")              \
+    X(MT_ERR_NOT_FOUND, "no such element")                         \
+    X(MT_ERR_IO, "input/output error")                             \
+    X(MT_ERR_PARSE, "malformed mesh file")                         \
+    X(MT_ERR_UNSUPPORTED, "unsupported format or feature")         \
     X(MT_ERR_CORRUPT, "mesh structure is inconsistent")
 
 typedef enum mt_status {

@@ -18,7 +18,7 @@ extern "C" {
 #endif
 
 typedef enum mt_format {
-    MT_FORMAT_AUTO = 0,     /* reading: from the content (and the name); writing: from the name */
+    MT_FORMAT_AUTO = 0, /* reading: from the content (and the name); writing: from the name */
     MT_FORMAT_OFF,
     MT_FORMAT_OBJ,
     MT_FORMAT_PLY_ASCII,

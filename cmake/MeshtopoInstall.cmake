@@ -1,0 +1,99 @@
+# Install rules: the libraries (static by default, shared with
+# -DBUILD_SHARED_LIBS=ON), their headers under include/meshtopo/, a CMake
+# package (find_package(meshtopo) gives meshtopo::core and meshtopo::io) and
+# pkg-config files. Included once from the top-level CMakeLists.txt after
+# every library target exists; the installed tree is relocatable.
+include(CMakePackageConfigHelpers)
+
+set(MESHTOPO_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/meshtopo)
+
+# --- Libraries and headers ------------------------------------------------
+# Exported as meshtopo::core and meshtopo::io, the same names as the aliases
+# the build tree uses, so consumer code reads the same either way.
+set_target_properties(meshtopo_core PROPERTIES EXPORT_NAME core)
+set_target_properties(meshtopo_io PROPERTIES EXPORT_NAME io)
+foreach(lib meshtopo_core meshtopo_io)
+  set_target_properties(${lib} PROPERTIES VERSION ${PROJECT_VERSION}
+                        SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
+endforeach()
+
+install(TARGETS meshtopo_core meshtopo_io
+  EXPORT meshtopoTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/core/include/meshtopo
+                  ${PROJECT_SOURCE_DIR}/lib/io/include/meshtopo
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  FILES_MATCHING PATTERN "*.h")
+
+# --- CMake package ----------------------------------------------------------
+# A static install carries its private dependencies in the exported link
+# interface ($<LINK_ONLY:ZLIB::ZLIB>, Threads::Threads, m), so the config file
+# must find them; a shared install hides them and needs nothing.
+if(BUILD_SHARED_LIBS)
+  set(MESHTOPO_CONFIG_STATIC OFF)
+else()
+  set(MESHTOPO_CONFIG_STATIC ON)
+endif()
+
+install(EXPORT meshtopoTargets
+  NAMESPACE meshtopo::
+  FILE meshtopoTargets.cmake
+  DESTINATION ${MESHTOPO_INSTALL_CMAKEDIR})
+
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/meshtopoConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/meshtopoConfig.cmake
+  INSTALL_DESTINATION ${MESHTOPO_INSTALL_CMAKEDIR})
+
+# 0.x releases may break the API between minor versions.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/meshtopoConfigVersion.cmake
+  VERSION ${PROJECT_VERSION}
+  COMPATIBILITY SameMinorVersion)
+
+install(FILES ${PROJECT_BINARY_DIR}/meshtopoConfig.cmake
+              ${PROJECT_BINARY_DIR}/meshtopoConfigVersion.cmake
+  DESTINATION ${MESHTOPO_INSTALL_CMAKEDIR})
+
+# --- pkg-config -------------------------------------------------------------
+# One .pc per library, named like the CMake targets (meshtopo-core,
+# meshtopo-io), so a program that only builds meshes does not drag in zlib,
+# plus meshtopo.pc for "all of meshtopo". Paths are relative to the .pc
+# file's own directory (${pcfiledir}), so `cmake --install --prefix` anywhere
+# works. For a static install the private dependencies go into Libs/Requires:
+# there is no shared library to carry them, and plain `pkg-config --libs`
+# must give a command line that links (no --static needed).
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+  set(MESHTOPO_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+else()
+  file(RELATIVE_PATH MESHTOPO_PC_UP "/meshtopo-prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig"
+       "/meshtopo-prefix")
+  set(MESHTOPO_PC_PREFIX "\${pcfiledir}/${MESHTOPO_PC_UP}")
+endif()
+foreach(dir LIBDIR INCLUDEDIR)
+  if(IS_ABSOLUTE "${CMAKE_INSTALL_${dir}}")
+    set(MESHTOPO_PC_${dir} "${CMAKE_INSTALL_${dir}}")
+  else()
+    set(MESHTOPO_PC_${dir} "\${prefix}/${CMAKE_INSTALL_${dir}}")
+  endif()
+endforeach()
+
+if(BUILD_SHARED_LIBS)
+  set(MESHTOPO_PC_CORE_LIBS "")
+  set(MESHTOPO_PC_CORE_LIBS_PRIVATE "-lm -pthread")
+  set(MESHTOPO_PC_IO_REQUIRES "meshtopo-core = ${PROJECT_VERSION}")
+  set(MESHTOPO_PC_IO_REQUIRES_PRIVATE "zlib")
+else()
+  set(MESHTOPO_PC_CORE_LIBS " -lm -pthread")
+  set(MESHTOPO_PC_CORE_LIBS_PRIVATE "")
+  set(MESHTOPO_PC_IO_REQUIRES "meshtopo-core = ${PROJECT_VERSION}, zlib")
+  set(MESHTOPO_PC_IO_REQUIRES_PRIVATE "")
+endif()
+
+foreach(pc meshtopo-core meshtopo-io meshtopo)
+  configure_file(${CMAKE_CURRENT_LIST_DIR}/${pc}.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/${pc}.pc
+                 @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/${pc}.pc
+          DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+endforeach()

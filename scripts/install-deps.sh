@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages meshtopo needs to build, test, fuzz and
+# benchmark (the one package list; .ci/run calls this too). Run as root:
+#   sudo scripts/install-deps.sh
+set -euo pipefail
+
+packages=(
+    build-essential cmake ninja-build pkg-config   # compiler and build
+    zlib1g-dev                                     # meshtopo::io reads .gz meshes
+    libcjson-dev python3                           # tests: JSON reference answers
+    clang libclang-rt-14-dev clang-format          # fuzzers (libFuzzer), format check
+    libopenmesh-dev libcgal-dev                    # benchmark peers (optional)
+)
+
+if [ "$(id -u)" -ne 0 ]; then
+    echo "install-deps.sh: run as root (sudo scripts/install-deps.sh)" >&2
+    exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update
+apt-get install -y --no-install-recommends "${packages[@]}"

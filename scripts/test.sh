@@ -1,0 +1,217 @@
+#!/usr/bin/env bash
+# meshtopo's full test suite (the README's test command; .ci/run calls it):
+#   normal  RelWithDebInfo build with -Werror, every ctest, then the demo
+#   asan    clang ASan+UBSan build (shared libraries), every ctest
+#   tsan    clang ThreadSanitizer build, the core library's tests (builds run
+#           on two threads)
+#   fuzz    clang libFuzzer build, each fuzz target for FUZZ_SECONDS seconds
+#   format  clang-format check of the C sources
+# usage: scripts/test.sh [normal] [asan] [tsan] [fuzz] [format]   (default: all)
+# environment: FUZZ_SECONDS (default 60), MESHTOPO_BUILD_ROOT (default build/test),
+#              MESHTOPO_CORPUS (default ../shared/corpus).
+# Every step runs even after one fails; the exit status is 1 if any failed.
+set -euo pipefail
+
+repo=$(cd "$(dirname "$0")/.." && pwd)
+build_root=${MESHTOPO_BUILD_ROOT:-$repo/build/test}
+fuzz_seconds=${FUZZ_SECONDS:-60}
+corpus=${MESHTOPO_CORPUS:-$repo/../shared/corpus}
+jobs=$(nproc 2>/dev/null || echo 2)
+export MESHTOPO_CORPUS="$corpus"
+
+header() {
+    printf '\n'
+    printf '=%.0s' {1..78}
+    printf '\n== %s\n' "$*"
+    printf '=%.0s' {1..78}
+    printf '\n'
+}
+
+configure_and_build() {
+    local dir=$1
+    shift
+    cmake -S "$repo" -B "$dir" -G Ninja "$@"
+    cmake --build "$dir" -j "$jobs"
+}
+
+run_ctest() {
+    ctest --test-dir "$1" --output-on-failure -j 2
+}
+
+step_normal() {
+    local dir=$build_root/normal
+    configure_and_build "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHTOPO_WERROR=ON
+    run_ctest "$dir"
+    echo
+    echo "-- demo (scripts/demo.sh with this build)"
+    MESHTOPO_BUILD_DIR=$dir bash "$repo/scripts/demo.sh" >"$dir/demo.log" 2>&1 || {
+        cat "$dir/demo.log"
+        echo "demo failed" >&2
+        return 1
+    }
+    echo "demo ran: $(grep -c '^\$ meshtopo' "$dir/demo.log") commands, output in $dir/demo.log"
+}
+
+step_asan() {
+    local dir=$build_root/asan
+    command -v clang >/dev/null ||
+        { echo "clang is not installed: run sudo scripts/install-deps.sh" >&2; return 1; }
+    # clang: its UBSan also catches pointer arithmetic on NULL, and its -Werror
+    # warnings complement gcc's from the normal build. -O1 keeps asserts (no
+    # NDEBUG) and stays fast enough for the corpus tests.
+    configure_and_build "$dir" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+        -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+        -DMESHTOPO_SANITIZE=ON -DMESHTOPO_WERROR=ON -DBUILD_SHARED_LIBS=ON
+    ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:check_initialization_order=1 \
+        UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 run_ctest "$dir"
+}
+
+step_tsan() {
+    local dir=$build_root/tsan
+    command -v clang >/dev/null ||
+        { echo "clang is not installed: run sudo scripts/install-deps.sh" >&2; return 1; }
+    configure_and_build "$dir" -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DCMAKE_C_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" \
+        -DMESHTOPO_BUILD_BENCH=OFF -DMESHTOPO_WERROR=ON
+    TSAN_OPTIONS=halt_on_error=1 ctest --test-dir "$dir" --output-on-failure -j 2 -R '^test_core\.'
+}
+
+# Seeds for one fuzz target: its committed regressions, tests/fuzz/seeds/<target>/
+# if present, and for fuzz_read_<ext> the small corpus meshes of that format
+# (one gzip-compressed too).
+seed_corpus() {
+    local target=$1 dir=$2 src
+    mkdir -p "$dir"
+    for src in "$repo/tests/fuzz/regressions/$target" "$repo/tests/fuzz/seeds/$target"; do
+        if [ -d "$src" ]; then find "$src" -maxdepth 1 -type f -exec cp {} "$dir/" \;; fi
+    done
+    case $target in
+    fuzz_read_*)
+        local ext=${target#fuzz_read_} first=""
+        [ -d "$corpus" ] || return 0
+        while IFS= read -r src; do
+            cp "$src" "$dir/"
+            [ -n "$first" ] || first=$src
+        done < <(find "$corpus" -maxdepth 1 -name "*.$ext" -size -16k | sort)
+        if [ -n "$first" ]; then gzip -c "$first" >"$dir/$(basename "$first").gz"; fi
+        ;;
+    esac
+}
+
+step_fuzz() {
+    local dir=$build_root/fuzz
+    command -v clang >/dev/null ||
+        { echo "clang is not installed: run sudo scripts/install-deps.sh" >&2; return 1; }
+    configure_and_build "$dir" -DCMAKE_C_COMPILER=clang \
+        -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" \
+        -DMESHTOPO_BUILD_FUZZERS=ON -DMESHTOPO_BUILD_TESTS=OFF -DMESHTOPO_BUILD_BENCH=OFF \
+        -DMESHTOPO_WERROR=ON
+    local targets=()
+    mapfile -t targets < <(find "$dir/tests/fuzz" -maxdepth 1 -type f -name 'fuzz_*' -perm -u+x |
+        sort)
+    if [ ${#targets[@]} -eq 0 ]; then
+        echo "no fuzz targets were built" >&2
+        return 1
+    fi
+    echo "fuzzing ${#targets[@]} targets for ${fuzz_seconds}s each, $jobs at a time"
+    local crashes=$dir/crashes logs=$dir/logs
+    rm -rf "$crashes"
+    mkdir -p "$crashes" "$logs"
+    # Run the targets $jobs at a time; each is single-threaded.
+    local pids=() names=() bin name i
+    for bin in "${targets[@]}"; do
+        name=$(basename "$bin")
+        seed_corpus "$name" "$dir/corpus/$name"
+        mkdir -p "$crashes/$name"
+        "$bin" -max_total_time="$fuzz_seconds" -timeout=10 -rss_limit_mb=2048 \
+            -print_final_stats=1 -artifact_prefix="$crashes/$name/" "$dir/corpus/$name" \
+            >"$logs/$name.log" 2>&1 &
+        pids+=($!)
+        names+=("$name")
+        while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do sleep 1; done
+    done
+    local failed=0
+    for i in "${!pids[@]}"; do
+        name=${names[$i]}
+        if wait "${pids[$i]}"; then
+            printf '%-24s ok   %s\n' "$name" "$(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' \
+                "$logs/$name.log" | sed 's/.*: */runs: /')"
+        else
+            failed=1
+            printf '%-24s FAILED (log: %s)\n' "$name" "$logs/$name.log"
+            tail -n 40 "$logs/$name.log"
+        fi
+    done
+    if [ "$failed" -ne 0 ] || [ -n "$(find "$crashes" -type f | head -1)" ]; then
+        echo
+        echo "Crashing inputs (reproduce with: $dir/tests/fuzz/<target> FILE; once fixed, commit"
+        echo "each into tests/fuzz/regressions/<target>/ so the normal build replays it):"
+        find "$crashes" -type f | sed 's/^/  /'
+        return 1
+    fi
+}
+
+step_format() {
+    command -v clang-format >/dev/null ||
+        { echo "clang-format is not installed: run sudo scripts/install-deps.sh" >&2; return 1; }
+    local files=()
+    if git -C "$repo" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+        mapfile -t files < <(git -C "$repo" ls-files --cached --others --exclude-standard \
+            '*.c' '*.h' | sed "s|^|$repo/|")
+    else
+        mapfile -t files < <(find "$repo" -path "$repo/build*" -prune -o \
+            \( -name '*.c' -o -name '*.h' \) -type f -print)
+    fi
+    echo "clang-format --dry-run --Werror on ${#files[@]} files"
+    [ ${#files[@]} -eq 0 ] || clang-format --dry-run --Werror "${files[@]}"
+}
+
+steps=("$@")
+[ ${#steps[@]} -gt 0 ] || steps=(normal asan tsan fuzz format)
+for s in "${steps[@]}"; do
+    case $s in
+    normal | asan | tsan | fuzz | format) ;;
+    *)
+        echo "usage: $0 [normal] [asan] [tsan] [fuzz] [format]" >&2
+        exit 2
+        ;;
+    esac
+done
+
+declare -A titles=(
+    [normal]="normal build (RelWithDebInfo, -Werror) + ctest + demo"
+    [asan]="clang ASan+UBSan build (shared libraries) + ctest"
+    [tsan]="clang ThreadSanitizer build + core ctests"
+    [fuzz]="libFuzzer build + ${fuzz_seconds}s per fuzz target"
+    [format]="clang-format check"
+)
+passed=0
+failed=0
+summary=()
+n=0
+for s in "${steps[@]}"; do
+    n=$((n + 1))
+    header "[$n/${#steps[@]}] ${titles[$s]}"
+    start=$SECONDS
+    set +e
+    (
+        set -euo pipefail
+        "step_$s"
+    )
+    rc=$?
+    set -e
+    took=$((SECONDS - start))
+    if [ "$rc" -eq 0 ]; then
+        passed=$((passed + 1))
+        summary+=("$(printf 'PASS  %-7s %4ds  %s' "$s" "$took" "${titles[$s]}")")
+    else
+        failed=$((failed + 1))
+        summary+=("$(printf 'FAIL  %-7s %4ds  %s' "$s" "$took" "${titles[$s]}")")
+    fi
+done
+
+header "Summary"
+printf '%s\n' "${summary[@]}"
+echo "steps: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
