@@ -571,9 +571,10 @@ bool mt_oracle_compute(const mt_face_list *list, mt_oracle *out)
     qsort(ends, 2 * num_boundary, sizeof *ends, cmp_boundary_end);
     uint32_t *whole_uf = uf_new(num_boundary);
     uint32_t *comp_uf = uf_new(num_boundary);
-    for (size_t i = 0; i < 2 * num_boundary;) {
-        size_t j = i;
-        while (j < 2 * num_boundary && ends[j].v == ends[i].v) j++;
+    const size_t num_ends = 2 * num_boundary;
+    for (size_t i = 0; i < num_ends;) {
+        size_t j = i + 1;
+        while (j < num_ends && ends[j].v == ends[i].v) j++;
         if (j - i != 2) r->boundary_loops_ambiguous = true;
         for (size_t k = i + 1; k < j; k++) {
             uf_union(whole_uf, ends[i].edge, ends[k].edge);

@@ -1,0 +1,29 @@
+/* The two meters of meshtopo-bench: a monotonic clock in milliseconds and
+ * the bytes the heap has handed out (mallinfo2: all arenas plus mmapped
+ * blocks, so a difference taken around a build is the memory the build
+ * keeps). Without glibc 2.33+ the heap meter answers -1 (unknown). */
+#include <time.h>
+
+#include "bench.h"
+
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 33))
+#include <malloc.h>
+#define MT__BENCH_HAVE_MALLINFO2 1
+#endif
+
+double mt__bench_now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+int64_t mt__bench_heap_bytes(void)
+{
+#ifdef MT__BENCH_HAVE_MALLINFO2
+    struct mallinfo2 info = mallinfo2();
+    return (int64_t)(info.uordblks + info.hblkhd);
+#else
+    return -1;
+#endif
+}

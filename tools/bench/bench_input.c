@@ -1,0 +1,147 @@
+/* The benchmark inputs: a triangulated grid in its natural order and the
+ * same grid with vertex ids and face order shuffled, each also written to a
+ * raw file so the peer programs read byte-identical input.
+ *
+ * Raw file layout (native byte order, read back only on the same machine):
+ *   0  char[8]  "MTBENCH1"
+ *   8  uint32   num_verts
+ *   12 uint32   num_faces
+ *   16 uint64   num_indices
+ *   24 uint32   1 if positions follow, else 0
+ *   28 uint32   0 (reserved)
+ *   32 double   positions[3 * num_verts] (x, y, z), when present
+ *      uint32   face_sizes[num_faces]
+ *      uint32   face_indices[num_indices]
+ * peer_common.hpp reads it and checks the file size matches exactly. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "bench.h"
+#include "meshtopo/generate.h"
+
+static bool write_all(FILE *f, const void *data, size_t elem_size, size_t count)
+{
+    if (count == 0) return true;
+    return fwrite(data, elem_size, count, f) == count;
+}
+
+bool mt__bench_input_write(const mt_face_list *list, const char *path, char *err, size_t err_size)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        snprintf(err, err_size, "cannot create %s: %s", path, strerror(errno));
+        return false;
+    }
+    uint32_t has_positions = list->positions != NULL;
+    uint32_t reserved = 0;
+    bool ok = write_all(f, "MTBENCH1", 1, 8) && write_all(f, &list->num_verts, 4, 1) &&
+              write_all(f, &list->num_faces, 4, 1) && write_all(f, &list->num_indices, 8, 1) &&
+              write_all(f, &has_positions, 4, 1) && write_all(f, &reserved, 4, 1);
+    if (ok && has_positions)
+        ok = write_all(f, list->positions, sizeof(double), 3 * (size_t)list->num_verts);
+    ok = ok && write_all(f, list->face_sizes, 4, list->num_faces) &&
+         write_all(f, list->face_indices, 4, (size_t)list->num_indices);
+    int saved = errno;
+    if (fclose(f) != 0 && ok) {
+        saved = errno;
+        ok = false;
+    }
+    if (!ok) {
+        snprintf(err, err_size, "cannot write %s: %s", path, strerror(saved));
+        remove(path);
+    }
+    return ok;
+}
+
+static bool face_list_copy(const mt_face_list *in, mt_face_list *out, char *err, size_t err_size)
+{
+    mt_diag diag;
+    mt_diag_clear(&diag);
+    mt_status st = mt_face_list_alloc(out, in->num_verts, in->num_faces, in->num_indices, &diag);
+    if (st != MT_OK) {
+        snprintf(err, err_size, "cannot copy the face list: %s", diag.message);
+        return false;
+    }
+    if (in->positions) {
+        memcpy(out->positions, in->positions, 3 * sizeof(double) * (size_t)in->num_verts);
+    }
+    memcpy(out->face_sizes, in->face_sizes, sizeof(uint32_t) * (size_t)in->num_faces);
+    memcpy(out->face_indices, in->face_indices, sizeof(uint32_t) * (size_t)in->num_indices);
+    return true;
+}
+
+/* nx by ny cells, two triangles each, as square as the face count allows. */
+static void grid_size(uint64_t faces, uint32_t *nx, uint32_t *ny)
+{
+    double cells = (double)(faces < 2 ? 2 : faces) / 2.0;
+    double x = floor(sqrt(cells));
+    if (x < 1) x = 1;
+    double y = floor(cells / x + 0.5);
+    if (y < 1) y = 1;
+    *nx = (uint32_t)x;
+    *ny = (uint32_t)y;
+}
+
+bool mt__bench_cases_make(const mt__bench_options *options, const char *dir, mt__bench_case *cases,
+                          uint32_t *out_num_cases, char *err, size_t err_size)
+{
+    *out_num_cases = 0;
+    uint32_t nx, ny;
+    grid_size(options->faces, &nx, &ny);
+
+    mt__bench_case *ordered = &cases[0];
+    mt__bench_case *permuted = &cases[1];
+    memset(ordered, 0, sizeof *ordered);
+    memset(permuted, 0, sizeof *permuted);
+
+    mt_status st = mt_gen_grid(nx, ny, true, &ordered->list);
+    if (st != MT_OK) {
+        snprintf(err, err_size, "mt_gen_grid(%u, %u) failed: %s", nx, ny, mt_strerror(st));
+        return false;
+    }
+    snprintf(ordered->mesh, sizeof ordered->mesh, "grid %ux%u", nx, ny);
+    snprintf(ordered->order, sizeof ordered->order, "ordered");
+    *out_num_cases = 1;
+
+    if (!face_list_copy(&ordered->list, &permuted->list, err, err_size)) return false;
+    *out_num_cases = 2;
+    mt_diag diag;
+    mt_diag_clear(&diag);
+    st = mt_face_list_permute(&permuted->list, options->seed, &diag);
+    if (st != MT_OK) {
+        snprintf(err, err_size, "mt_face_list_permute failed: %s", diag.message);
+        return false;
+    }
+    snprintf(permuted->mesh, sizeof permuted->mesh, "%s", ordered->mesh);
+    snprintf(permuted->order, sizeof permuted->order, "permuted");
+
+    for (uint32_t i = 0; i < *out_num_cases; i++) {
+        int n = snprintf(cases[i].path, sizeof cases[i].path, "%s/case%u-%s.mtbench", dir, i,
+                         cases[i].order);
+        if (n < 0 || (size_t)n >= sizeof cases[i].path) {
+            snprintf(err, err_size, "temporary directory path too long: %s", dir);
+            return false;
+        }
+        if (!mt__bench_input_write(&cases[i].list, cases[i].path, err, err_size)) {
+            cases[i].path[0] = '\0';
+            return false;
+        }
+    }
+    return true;
+}
+
+void mt__bench_cases_remove_files(mt__bench_case *cases, uint32_t num_cases)
+{
+    for (uint32_t i = 0; i < num_cases; i++) {
+        if (cases[i].path[0]) remove(cases[i].path);
+        cases[i].path[0] = '\0';
+    }
+}
+
+void mt__bench_cases_free(mt__bench_case *cases, uint32_t num_cases)
+{
+    mt__bench_cases_remove_files(cases, num_cases);
+    for (uint32_t i = 0; i < num_cases; i++) mt_face_list_free(&cases[i].list);
+}
