@@ -91,15 +91,30 @@ static int face_is_valid(mt__part *p, const uint32_t *idx, uint32_t n, uint32_t 
     return distinct == n;
 }
 
+/* 1 when a double is NaN or infinite: all exponent bits set. */
+static inline uint64_t nonfinite_bits(double x)
+{
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    return (bits >> 52 & 0x7ff) == 0x7ff;
+}
+
 static mt_status copy_positions(mt__build *b, mt__part *p)
 {
     const mt_face_list *in = b->in;
     if (!in->positions) return MT_OK;
-    const size_t first = 3 * (size_t)p->vert_begin,
-                 count = 3 * (size_t)(p->vert_end - p->vert_begin);
-    memcpy(b->m->positions + first, in->positions + first, count * sizeof(double));
+    const size_t first = 3 * (size_t)p->vert_begin, end = 3 * (size_t)p->vert_end;
+    const double *src = in->positions;
+    double *dst = b->m->positions;
+    /* Copy and test in one pass; name the bad vertices only if there are any. */
+    uint64_t any_bad = 0;
+    for (size_t i = first; i < end; i++) {
+        dst[i] = src[i];
+        any_bad |= nonfinite_bits(src[i]);
+    }
+    if (!any_bad) return MT_OK;
     for (uint32_t v = p->vert_begin; v < p->vert_end; v++) {
-        const double *pos = &in->positions[3 * (size_t)v];
+        const double *pos = &src[3 * (size_t)v];
         for (uint32_t axis = 0; axis < 3; axis++) {
             if (isfinite(pos[axis])) continue;
             p->nonfinite_vertices++;

@@ -91,9 +91,9 @@ static uint32_t shared_find(_Atomic uint32_t *parent, uint32_t x)
         uint32_t p = atomic_load_explicit(&parent[x], memory_order_relaxed);
         if (p == x) return x;
         uint32_t gp = atomic_load_explicit(&parent[p], memory_order_relaxed);
-        if (gp != p)
-            atomic_compare_exchange_weak_explicit(&parent[x], &p, gp, memory_order_relaxed,
-                                                  memory_order_relaxed);
+        /* x is not a root, so its parent only ever moves up its own tree: a
+         * plain store of an ancestor cannot lose a link. */
+        if (gp != p) atomic_store_explicit(&parent[x], gp, memory_order_relaxed);
         x = gp;
     }
 }
