@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "corpus_keys.h"
 #include "harness.h"
 #include "meshtopo/core.h"
 #include "meshtopo/io.h"
@@ -557,45 +558,6 @@ static void check_boundary_rings(const ctx *c)
 
 /* ---- the shared checker ------------------------------------------------ */
 
-/* Every key an expected file may hold; any other key fails the test so a
- * new reference quantity cannot go unchecked. */
-static const char *const known_keys[] = {
-    "oracle_version",
-    "V",
-    "F",
-    "F_valid",
-    "E",
-    "half_edges",
-    "face_size_histogram",
-    "edge_use_histogram",
-    "boundary_edges",
-    "boundary_loops",
-    "nonmanifold_edges",
-    "inconsistent_orientation_edges",
-    "duplicate_directed_edges",
-    "nonmanifold_vertices",
-    "nonmanifold_vertices_list_head",
-    "bowtie_vertices",
-    "isolated_vertices",
-    "unreferenced_vertices",
-    "degenerate_faces",
-    "out_of_range_indices",
-    "faces_with_out_of_range_indices",
-    "connected_components",
-    "vertex_connected_components",
-    "euler_characteristic",
-    "closed",
-    "manifold",
-    "orientable",
-    "consistently_oriented",
-    "genus",
-    "component_genera",
-    "components",
-    "vertex_queries",
-    "face_queries",
-    "file",
-};
-
 static void check_report(const ctx *c, const cJSON *e)
 {
     const mt_report *r = c->report;
@@ -681,13 +643,13 @@ static void check_corpus(const char *name)
     ctx c = {name, NULL, NULL};
     for (const cJSON *e = expected->child; e; e = e->next) {
         bool known = false;
-        for (size_t i = 0; i < sizeof known_keys / sizeof known_keys[0]; i++)
-            known |= strcmp(e->string, known_keys[i]) == 0;
+        for (size_t i = 0; i < mt_test_num_corpus_keys; i++)
+            known |= strcmp(e->string, mt_test_corpus_keys[i]) == 0;
         if (!known) fail_key(&c, e->string, "key not checked by this test");
     }
-    for (size_t i = 0; i < sizeof known_keys / sizeof known_keys[0]; i++)
-        if (!cJSON_HasObjectItem(expected, known_keys[i]))
-            fail_key(&c, known_keys[i], "missing from the expected file");
+    for (size_t i = 0; i < mt_test_num_corpus_keys; i++)
+        if (!cJSON_HasObjectItem(expected, mt_test_corpus_keys[i]))
+            fail_key(&c, mt_test_corpus_keys[i], "missing from the expected file");
 
     /* "file" names the mesh: NAME.off or NAME.off.gz. */
     const cJSON *file = cJSON_GetObjectItemCaseSensitive(expected, "file");
