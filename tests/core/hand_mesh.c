@@ -247,3 +247,23 @@ mt_mesh *hand_fin(hand_faces *out_faces)
     set_faces(out_faces, 5, 3, tri3, idx);
     return hand_mesh_new(&s);
 }
+
+mt_mesh *hand_triangle_isolated(void)
+{
+    static const uint32_t head[] = {1, 0, 2, 1, 2, 0};
+    static const uint32_t next[] = {2, 4, 5, 1, 3, 0};
+    static const uint32_t face[] = {0, N, 0, N, N, 0};
+    static const uint32_t face_he[] = {0, N};
+    static const uint32_t vert_he[] = {4, 1, 3, N};
+    hand_spec s = {0};
+    s.num_verts = 4;
+    s.num_faces = 2;
+    s.num_half_edges = 6;
+    s.he_head = head;
+    s.he_next = next;
+    s.he_face = face;
+    s.face_he = face_he;
+    s.vert_he = vert_he;
+    s.components = 1;
+    return hand_mesh_new(&s);
+}

@@ -41,6 +41,8 @@ mt_mesh *hand_triangle(hand_faces *out_faces);
 mt_mesh *hand_rectangle(hand_faces *out_faces);
 /* A closed tetrahedron: (0, 2, 1), (0, 1, 3), (1, 2, 3), (0, 3, 2). */
 mt_mesh *hand_tetrahedron(hand_faces *out_faces);
+/* The triangle plus an isolated vertex 3 and a rejected face record 1. */
+mt_mesh *hand_triangle_isolated(void);
 /* Bowtie (0, 1, 2), (0, 3, 4): vertex 0 has a copy, 5, holding face 1's fan;
  * two components. */
 mt_mesh *hand_bowtie(hand_faces *out_faces);
