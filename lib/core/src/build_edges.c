@@ -1,12 +1,13 @@
 /* Build phase "edges": twin matching in linear time. The corners (face sides
  * a -> b) are counting-sorted by tail vertex a, each part scattering its own
  * faces into slots reserved for it, so the order does not depend on the
- * number of parts; each bucket is then sorted by head vertex. Then, vertex
- * by vertex, each side's group {a, b} is gathered from the buckets of a and
- * b and paired: each a -> b side with one b -> a side becomes an internal
- * edge, every side left over gets an edge of its own with a boundary twin. A
- * group needing several internal edges (used by more than two faces, or by
- * two faces running the same way) is recorded as a bundle.
+ * number of parts; a bucket repeating a head is sorted by head (see
+ * sort_part). Then, vertex by vertex, each side's group {a, b} is gathered
+ * from the buckets of a and b and paired: each a -> b side with one b -> a
+ * side becomes an internal edge, every side left over gets an edge of its
+ * own with a boundary twin. A group needing several internal edges (used
+ * by more than two faces, or by two faces running the same way) is
+ * recorded as a bundle.
  *
  * Ownership, which makes the parts independent: a group belongs to its
  * smaller vertex if that one has a side in it, otherwise to the larger one.
@@ -20,7 +21,8 @@
 /* Bucket slots between a prefetch and its use in matching. */
 #define MT__PREFETCH_DISTANCE 16
 
-/* Sides after which a bucket lookup switches from a scan to binary search. */
+/* Sides up to which a bucket is scanned (and sorted only when it repeats a
+ * head); larger buckets are sorted and searched. */
 #define MT__SCAN_LIMIT 16
 
 /* Exclusive prefix sum of the per-part counts: vertex v's bucket holds part
@@ -67,7 +69,27 @@ static void scatter_part(mt__build *b, uint32_t t)
     }
 }
 
-/* Insertion sort of a small bucket by head. */
+/* 1 when two sides of a small bucket share a head. Branch-free: the usual
+ * bucket has none, and on a shuffled mesh a search that stops early
+ * mispredicts. Heads distinct modulo 64 (most buckets) are told apart
+ * with one pass over a bit mask; only a collision there compares pairs. */
+static uint32_t repeats_head(const mt__side *s, uint32_t n)
+{
+    uint64_t seen = 0, collisions = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        const uint64_t bit = (uint64_t)1 << (s[i].head & 63u);
+        collisions |= seen & bit;
+        seen |= bit;
+    }
+    if (!collisions) return 0;
+    uint32_t repeats = 0;
+    for (uint32_t i = 1; i < n; i++)
+        for (uint32_t j = 0; j < i; j++) repeats |= s[i].head == s[j].head;
+    return repeats;
+}
+
+/* Insertion sort of a bucket by head (stable: equal heads keep their
+ * corner order). */
 static void sort_bucket(mt__side *s, uint32_t n)
 {
     for (uint32_t i = 1; i < n; i++) {
@@ -108,25 +130,43 @@ static void heap_sort_bucket(mt__side *s, uint32_t n)
     }
 }
 
+/* Matching needs the sides of each group next to one another. A small
+ * bucket whose heads are all distinct already has that and stays in corner
+ * order; only one that repeats a head is sorted. Larger buckets are always
+ * sorted, for binary search. */
 static void sort_part(mt__build *b, uint32_t t)
 {
     mt__part *p = &b->part[t];
     const uint32_t *start = b->bucket_start;
     for (uint32_t v = p->vert_begin; v < p->vert_end; v++) {
-        uint32_t n = start[v + 1] - start[v];
-        if (n <= 32)
-            sort_bucket(b->bucket + start[v], n);
-        else
-            heap_sort_bucket(b->bucket + start[v], n);
+        mt__side *s = b->bucket + start[v];
+        const uint32_t n = start[v + 1] - start[v];
+        if (n <= MT__SCAN_LIMIT) {
+            if (repeats_head(s, n)) sort_bucket(s, n);
+        } else if (n <= 32) {
+            sort_bucket(s, n);
+        } else {
+            heap_sort_bucket(s, n);
+        }
     }
 }
 
-/* First slot in [lo, hi) of the sorted bucket whose head is >= v. */
-static uint32_t lower_bound(const mt__side *s, uint32_t lo, uint32_t hi, uint32_t v)
+/* The sides with head v in bucket [lo, hi): first slot and count. A small
+ * bucket is scanned whole (its sides with head v are adjacent if there are
+ * several, see sort_part); a large one is searched. */
+static uint32_t find_head(const mt__side *s, uint32_t lo, uint32_t hi, uint32_t v,
+                          uint32_t *out_count)
 {
+    const uint32_t end = hi;
+    uint32_t first = hi, count = 0;
     if (hi - lo <= MT__SCAN_LIMIT) {
-        while (lo < hi && s[lo].head < v) lo++;
-        return lo;
+        for (uint32_t j = hi; j-- > lo;) {
+            const uint32_t hit = s[j].head == v;
+            count += hit;
+            first = hit ? j : first;
+        }
+        *out_count = count;
+        return first;
     }
     while (lo < hi) {
         uint32_t mid = lo + (hi - lo) / 2;
@@ -135,6 +175,8 @@ static uint32_t lower_bound(const mt__side *s, uint32_t lo, uint32_t hi, uint32_
         else
             hi = mid;
     }
+    while (lo + count < end && s[lo + count].head == v) count++;
+    *out_count = count;
     return lo;
 }
 
@@ -225,10 +267,8 @@ static void match_part(mt__build *b, uint32_t t)
             const uint32_t bv = bucket[i].head;
             uint32_t na = 1;
             while (i + na < end_a && bucket[i + na].head == bv) na++;
-            const uint32_t end_b = start[bv + 1];
-            const uint32_t sb = lower_bound(bucket, start[bv], end_b, a);
-            uint32_t nb = 0;
-            while (sb + nb < end_b && bucket[sb + nb].head == a) nb++;
+            uint32_t nb;
+            const uint32_t sb = find_head(bucket, start[bv], start[bv + 1], a, &nb);
             /* Owned by a unless b is smaller and has a side in the group. */
             if (bv < a && nb > 0) {
                 i += na;
