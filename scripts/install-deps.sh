@@ -10,6 +10,11 @@ packages=(
     libcjson-dev python3                           # tests: JSON reference answers
     clang libclang-rt-14-dev clang-format          # fuzzers (libFuzzer), format check
     libopenmesh-dev libcgal-dev                    # benchmark peers (optional)
+    # LCM: library, lcm-gen, lcm.jar; a JDK builds meshtopo-msgs.jar for lcm-spy
+    # (jchart2d draws its charts); lcm.pc names glib-2.0, which liblcm-dev
+    # does not pull in
+    liblcm-dev liblcm-bin liblcm-java default-jdk-headless libjchart2d-java libglib2.0-dev
+    nftables iproute2                              # tests/netns: private network, packet loss
 )
 
 if [ "$(id -u)" -ne 0 ]; then

@@ -1,0 +1,262 @@
+/* meshtopod's flags and MESHTOPOD_* variables, from one table. Parsing is
+ * by hand over that table rather than getopt_long: the same entry then
+ * serves the flag, its variable, range checks and the help text, and the
+ * parser keeps no global state between calls (tests parse many times). */
+#include "config.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef enum setting_kind {
+    KIND_TEXT,
+    KIND_CHANNEL,
+    KIND_U32,
+    KIND_BYTES,
+    KIND_LEVEL
+} setting_kind;
+
+typedef struct setting {
+    const char *flag; /* without the leading "--" */
+    const char *env;
+    setting_kind kind;
+    size_t offset; /* into mtd_config */
+    size_t size;   /* of the text buffer (text kinds) */
+    uint64_t min, max;
+    const char *help;
+} setting;
+
+#define TEXT_FIELD(field) offsetof(mtd_config, field), sizeof(((mtd_config *)0)->field)
+#define FIELD(field) offsetof(mtd_config, field), 0
+
+static const setting settings[] = {
+    {"lcm-url", "MESHTOPOD_LCM_URL", KIND_TEXT, TEXT_FIELD(lcm_url), 0, 0,
+     "LCM provider URL (default: LCM's own, from LCM_DEFAULT_URL)"},
+    {"prefix", "MESHTOPOD_PREFIX", KIND_CHANNEL, TEXT_FIELD(channel_prefix), 0, 0,
+     "channel prefix: PREFIX + SUBMIT, QUERY, TOPOLOGY, STATUS"},
+    {"name", "MESHTOPOD_NAME", KIND_CHANNEL, TEXT_FIELD(name), 1, 0,
+     "instance name reported in the heartbeat"},
+    {"workers", "MESHTOPOD_WORKERS", KIND_U32, FIELD(workers), 1, 64,
+     "threads building meshes (queries are never queued behind builds)"},
+    {"max-verts", "MESHTOPOD_MAX_VERTS", KIND_U32, FIELD(max_verts), 1, 0x7fffffff,
+     "largest vertex count accepted"},
+    {"max-faces", "MESHTOPOD_MAX_FACES", KIND_U32, FIELD(max_faces), 1, 0x7fffffff,
+     "largest face count accepted"},
+    {"max-indices", "MESHTOPOD_MAX_INDICES", KIND_BYTES, FIELD(max_indices), 1, 0x7fffffff,
+     "largest face-index count accepted (suffixes k, M, G allowed)"},
+    {"max-store-bytes", "MESHTOPOD_MAX_STORE_BYTES", KIND_BYTES, FIELD(max_store_bytes), 0,
+     UINT64_MAX, "memory for built meshes, 0 = no limit (suffixes k, M, G)"},
+    {"max-versions", "MESHTOPOD_MAX_VERSIONS", KIND_U32, FIELD(max_versions), 0, UINT32_MAX,
+     "versions kept per mesh id, 0 = all"},
+    {"heartbeat-ms", "MESHTOPOD_HEARTBEAT_MS", KIND_U32, FIELD(heartbeat_ms), 10, 3600000,
+     "period of the status message"},
+    {"log-level", "MESHTOPOD_LOG_LEVEL", KIND_LEVEL, FIELD(log_level), 0, 0,
+     "error, warn, info or debug"},
+};
+
+#define NUM_SETTINGS (sizeof settings / sizeof settings[0])
+
+static void set_defaults(mtd_config *c)
+{
+    memset(c, 0, sizeof *c);
+    strcpy(c->channel_prefix, "MESHTOPO_");
+    strcpy(c->name, "meshtopod");
+    c->workers = 2;
+    c->max_verts = 16u << 20;
+    c->max_faces = 32u << 20;
+    c->max_indices = 128u << 20;
+    c->max_versions = 8;
+    c->heartbeat_ms = 1000;
+    c->log_level = MTD_LOG_INFO;
+}
+
+/* Fills diag with "ORIGIN 'VALUE': problem" and returns MT_ERR_INVALID_ARG. */
+static mt_status fail(mt_diag *diag, const char *origin, const char *value, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+static mt_status fail(mt_diag *diag, const char *origin, const char *value, const char *fmt, ...)
+{
+    if (!diag) return MT_ERR_INVALID_ARG;
+    mt_diag_clear(diag);
+    diag->status = MT_ERR_INVALID_ARG;
+    char problem[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(problem, sizeof problem, fmt, ap);
+    va_end(ap);
+    if (value)
+        snprintf(diag->message, sizeof diag->message, "%s '%.200s': %s", origin, value, problem);
+    else
+        snprintf(diag->message, sizeof diag->message, "%s: %s", origin, problem);
+    return MT_ERR_INVALID_ARG;
+}
+
+/* Parses a decimal count with an optional binary suffix k, M or G. */
+static int parse_count(const char *text, int allow_suffix, uint64_t *out)
+{
+    if (!text[0] || text[0] == '-' || text[0] == '+') return 0;
+    errno = 0;
+    char *end = NULL;
+    unsigned long long v = strtoull(text, &end, 10);
+    if (errno || end == text) return 0;
+    unsigned shift = 0;
+    if (allow_suffix && *end) {
+        const char *suffixes = "kMG";
+        const char *at = strchr(suffixes, *end);
+        if (!at) return 0;
+        shift = 10u * (unsigned)(at - suffixes + 1);
+        end++;
+    }
+    if (*end) return 0;
+    if (shift && v > (UINT64_MAX >> shift)) return 0;
+    *out = (uint64_t)v << shift;
+    return 1;
+}
+
+/* Channel-name text: printable ASCII without spaces (LCM channel names
+ * travel in every packet and are matched as regexes by subscribers). */
+static int channel_text_ok(const char *text)
+{
+    for (const char *p = text; *p; p++)
+        if (*p <= ' ' || *p > '~') return 0;
+    return 1;
+}
+
+static mt_status apply(const setting *s, const char *value, const char *origin, mtd_config *c,
+                       mt_diag *diag)
+{
+    char *field = (char *)c + s->offset;
+    uint64_t n = 0;
+    switch (s->kind) {
+        case KIND_TEXT:
+        case KIND_CHANNEL:
+            if (strlen(value) >= s->size)
+                return fail(diag, origin, value, "longer than %zu bytes", s->size - 1);
+            if (s->kind == KIND_CHANNEL && !channel_text_ok(value))
+                return fail(diag, origin, value,
+                            "only printable characters without spaces are allowed");
+            if (s->min && !value[0]) return fail(diag, origin, value, "must not be empty");
+            strcpy(field, value);
+            return MT_OK;
+        case KIND_LEVEL:
+            if (mtd_log_level_parse(value, (mtd_log_level *)(void *)field) != MT_OK)
+                return fail(diag, origin, value, "expected error, warn, info or debug");
+            return MT_OK;
+        case KIND_U32:
+        case KIND_BYTES:
+            if (!parse_count(value, s->kind == KIND_BYTES, &n))
+                return fail(diag, origin, value, "expected a non-negative whole number%s",
+                            s->kind == KIND_BYTES ? " (optionally with k, M or G)" : "");
+            if (n < s->min || n > s->max)
+                return fail(diag, origin, value, "must be between %llu and %llu",
+                            (unsigned long long)s->min, (unsigned long long)s->max);
+            if (s->kind == KIND_U32)
+                *(uint32_t *)(void *)field = (uint32_t)n;
+            else
+                *(uint64_t *)(void *)field = n;
+            return MT_OK;
+    }
+    return MT_ERR_INVALID_ARG;
+}
+
+static const setting *find_flag(const char *name, size_t len)
+{
+    for (size_t i = 0; i < NUM_SETTINGS; i++)
+        if (strlen(settings[i].flag) == len && strncmp(settings[i].flag, name, len) == 0)
+            return &settings[i];
+    return NULL;
+}
+
+mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_action *out_action,
+                           mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    set_defaults(out);
+    *out_action = MTD_CONFIG_RUN;
+    char origin[96];
+    for (size_t i = 0; i < NUM_SETTINGS; i++) {
+        const char *value = getenv(settings[i].env);
+        if (!value) continue;
+        snprintf(origin, sizeof origin, "environment variable %s", settings[i].env);
+        mt_status s = apply(&settings[i], value, origin, out, diag);
+        if (s != MT_OK) return s;
+    }
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
+            *out_action = MTD_CONFIG_HELP;
+            return MT_OK;
+        }
+        if (strcmp(arg, "--version") == 0) {
+            *out_action = MTD_CONFIG_VERSION;
+            return MT_OK;
+        }
+        if (strncmp(arg, "--", 2) != 0)
+            return fail(diag, "argument", arg, "meshtopod takes no positional arguments");
+        const char *name = arg + 2, *eq = strchr(name, '=');
+        const size_t len = eq ? (size_t)(eq - name) : strlen(name);
+        const setting *s = find_flag(name, len);
+        if (!s) return fail(diag, "option", arg, "unknown (see --help)");
+        const char *value = eq ? eq + 1 : NULL;
+        if (!value) {
+            if (i + 1 >= argc) return fail(diag, "option", arg, "needs a value");
+            value = argv[++i];
+        }
+        snprintf(origin, sizeof origin, "option --%s", s->flag);
+        mt_status st = apply(s, value, origin, out, diag);
+        if (st != MT_OK) return st;
+    }
+    return MT_OK;
+}
+
+void mtd_config_usage(FILE *to)
+{
+    fprintf(to,
+            "usage: meshtopod [--OPTION VALUE]...\n"
+            "The meshtopo daemon: builds the meshes submitted over LCM, answers topology\n"
+            "queries and publishes reports and a heartbeat. Each option can also be set\n"
+            "by its environment variable; the option wins. SIGINT or SIGTERM stop it.\n\n");
+    mtd_config defaults;
+    set_defaults(&defaults);
+    for (size_t i = 0; i < NUM_SETTINGS; i++) {
+        const setting *s = &settings[i];
+        const char *field = (const char *)&defaults + s->offset;
+        char shown[80];
+        switch (s->kind) {
+            case KIND_TEXT:
+            case KIND_CHANNEL:
+                snprintf(shown, sizeof shown, "\"%s\"", field);
+                break;
+            case KIND_LEVEL:
+                snprintf(shown, sizeof shown, "%s",
+                         mtd_log_level_name(*(const mtd_log_level *)(const void *)field));
+                break;
+            case KIND_U32:
+                snprintf(shown, sizeof shown, "%u", *(const uint32_t *)(const void *)field);
+                break;
+            case KIND_BYTES:
+                snprintf(shown, sizeof shown, "%llu",
+                         (unsigned long long)*(const uint64_t *)(const void *)field);
+                break;
+        }
+        fprintf(to, "  --%-16s %s\n  %-18s env %s, default %s\n", s->flag, s->help, "", s->env,
+                shown);
+    }
+    fprintf(to, "  --help             this text\n  --version          the version\n");
+}
+
+void mtd_config_log(const mtd_config *c)
+{
+    mtd_log(MTD_LOG_INFO, "config",
+            "lcm_url=%s prefix=%s name=%s workers=%u max_verts=%u max_faces=%u "
+            "max_indices=%llu max_store_bytes=%llu max_versions=%u heartbeat_ms=%u log_level=%s",
+            c->lcm_url[0] ? c->lcm_url : "(lcm default)", c->channel_prefix, c->name, c->workers,
+            c->max_verts, c->max_faces, (unsigned long long)c->max_indices,
+            (unsigned long long)c->max_store_bytes, c->max_versions, c->heartbeat_ms,
+            mtd_log_level_name(c->log_level));
+}

@@ -1,0 +1,49 @@
+/* meshtopod's settings: each one a command-line flag with an environment
+ * default (flag > environment > built-in default), checked and reported by
+ * name when wrong. The table in config.c is the one list: parsing, --help
+ * and the unit file's documentation all follow it. */
+#ifndef MESHTOPOD_CONFIG_H
+#define MESHTOPOD_CONFIG_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "log.h"
+#include "meshtopo/status.h"
+
+#define MTD_CONFIG_TEXT_MAX 256
+
+typedef struct mtd_config {
+    char lcm_url[MTD_CONFIG_TEXT_MAX]; /* "" = LCM's own default (LCM_DEFAULT_URL) */
+    char channel_prefix[64];           /* channels are PREFIX + SUBMIT, QUERY, ... */
+    char name[64];                     /* instance name in the heartbeat */
+    uint32_t workers;                  /* build threads */
+    uint32_t max_verts;                /* largest mesh accepted */
+    uint32_t max_faces;
+    uint64_t max_indices;
+    uint64_t max_store_bytes; /* memory for built meshes, 0 = no limit */
+    uint32_t max_versions;    /* versions kept per mesh id, 0 = all */
+    uint32_t heartbeat_ms;    /* period of the status message */
+    mtd_log_level log_level;
+} mtd_config;
+
+/* What the command line asks for. */
+typedef enum mtd_config_action {
+    MTD_CONFIG_RUN = 0,
+    MTD_CONFIG_HELP = 1,
+    MTD_CONFIG_VERSION = 2,
+} mtd_config_action;
+
+/* Fills out with the defaults, then the MESHTOPOD_* environment variables,
+ * then argv (argv[0] is the program name). On error returns
+ * MT_ERR_INVALID_ARG with diag naming the flag or variable and the value. */
+mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_action *out_action,
+                           mt_diag *diag);
+
+/* Writes the --help text: every flag, its variable, its default. */
+void mtd_config_usage(FILE *to);
+
+/* Logs every setting at info level, one line (the "config" event). */
+void mtd_config_log(const mtd_config *config);
+
+#endif

@@ -1,0 +1,536 @@
+/* The mesh store: a sorted array of ids, each holding its versions in
+ * ascending order; entries are reference counted with C11 atomics so they
+ * outlive removal while a query holds them.
+ *
+ * Why a sorted array and not a hash table: a robot holds tens to a few
+ * thousand mesh ids, lookup is a binary search over pointers (a few cache
+ * misses), a new id costs one memmove of pointers, and `list` comes out in
+ * order for free. libc has nothing better here: hsearch() keeps one global
+ * table and cannot remove, and tsearch() allocates per node and its twalk()
+ * takes no context pointer, so `list` would need a global.
+ *
+ * Why one mutex and not a rwlock: every critical section is pointer
+ * bookkeeping (a binary search, a reference count increment, a memmove of a
+ * few pointers, the occasional growth of a pointer array). Meshes are built
+ * before mtd_store_add and queries run on an acquired entry after the lock is
+ * dropped, so nobody holds the lock long enough for shared reading to pay;
+ * glibc's rwlock costs more per acquisition and, preferring readers, lets a
+ * steady stream of queries starve add and remove. */
+#include "mesh_store.h"
+
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct mtd_mesh_entry {
+    atomic_size_t refs;
+    mt_mesh *mesh;
+    mtd_mesh_info info; /* info.id and info.source point into strings[] */
+    mtd_entry_free_fn on_free;
+    void *on_free_ctx;
+    char strings[]; /* id NUL source NUL */
+};
+
+/* One mesh id. Kept after its last version is removed so that the id's
+ * version numbers keep increasing (a client told "v3" never sees another
+ * mesh as v3); that costs a few hundred bytes per id ever seen. */
+typedef struct id_slot {
+    char *id;
+    uint32_t highest_version; /* highest version the id ever had */
+    uint32_t num_versions;
+    uint32_t cap_versions;
+    mtd_mesh_entry **versions; /* [num_versions], ascending version */
+} id_slot;
+
+struct mtd_store {
+    pthread_mutex_t lock;
+    mtd_store_options options;
+    id_slot **slots; /* [num_slots], ascending strcmp order of id */
+    size_t num_slots;
+    size_t cap_slots;
+    mtd_store_totals totals;
+};
+
+/* ---- mesh ids ------------------------------------------------------------ */
+
+static void diag_set(mt_diag *diag, mt_status status, uint64_t byte_offset, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+static void diag_set(mt_diag *diag, mt_status status, uint64_t byte_offset, const char *fmt, ...)
+{
+    if (!diag) return;
+    mt_diag_clear(diag);
+    diag->status = status;
+    diag->byte_offset = byte_offset;
+    va_list args;
+    va_start(args, fmt);
+    vsnprintf(diag->message, sizeof diag->message, fmt, args);
+    va_end(args);
+}
+
+mt_status mtd_mesh_id_check(const char *id, mt_diag *diag)
+{
+    if (!id) {
+        diag_set(diag, MT_ERR_INVALID_ARG, UINT64_MAX, "mesh id is missing (NULL)");
+        return MT_ERR_INVALID_ARG;
+    }
+    if (id[0] == '\0') {
+        diag_set(diag, MT_ERR_INVALID_ARG, UINT64_MAX, "mesh id is empty");
+        return MT_ERR_INVALID_ARG;
+    }
+    size_t len = strlen(id);
+    if (len > MTD_MESH_ID_MAX) {
+        diag_set(diag, MT_ERR_INVALID_ARG, UINT64_MAX,
+                 "mesh id is %zu bytes long; the limit is %d bytes", len, MTD_MESH_ID_MAX);
+        return MT_ERR_INVALID_ARG;
+    }
+    for (size_t i = 0; i < len; i++) {
+        unsigned char c = (unsigned char)id[i];
+        if (c < 0x20 || c > 0x7e) {
+            diag_set(diag, MT_ERR_INVALID_ARG, i,
+                     "mesh id byte %zu is 0x%02x: only printable ASCII (0x20 to 0x7e) is allowed",
+                     i, c);
+            return MT_ERR_INVALID_ARG;
+        }
+        if (c == '/') {
+            diag_set(diag, MT_ERR_INVALID_ARG, i,
+                     "mesh id contains '/' at byte %zu: ids must not look like paths", i);
+            return MT_ERR_INVALID_ARG;
+        }
+        if (c == '.' && id[i + 1] == '.') {
+            diag_set(diag, MT_ERR_INVALID_ARG, i,
+                     "mesh id contains \"..\" at byte %zu: ids must not look like paths", i);
+            return MT_ERR_INVALID_ARG;
+        }
+    }
+    if (diag) mt_diag_clear(diag);
+    return MT_OK;
+}
+
+/* ---- entries ------------------------------------------------------------- */
+
+mtd_mesh_entry *mtd_entry_retain(mtd_mesh_entry *entry)
+{
+    /* Relaxed is enough: the caller already holds a reference, so the entry
+     * cannot be freed concurrently (the classic shared_ptr argument). */
+    atomic_fetch_add_explicit(&entry->refs, 1, memory_order_relaxed);
+    return entry;
+}
+
+void mtd_entry_release(mtd_mesh_entry *entry)
+{
+    if (!entry) return;
+    /* acq_rel: every earlier use of the entry happens before the free. */
+    if (atomic_fetch_sub_explicit(&entry->refs, 1, memory_order_acq_rel) != 1) return;
+    if (entry->on_free) entry->on_free(entry->on_free_ctx, entry->mesh, &entry->info);
+    mt_mesh_destroy(entry->mesh);
+    free(entry);
+}
+
+const mt_mesh *mtd_entry_mesh(const mtd_mesh_entry *entry)
+{
+    return entry->mesh;
+}
+
+const mtd_mesh_info *mtd_entry_info(const mtd_mesh_entry *entry)
+{
+    return &entry->info;
+}
+
+/* A new entry with one reference; the version is set when it is stored. */
+static mtd_mesh_entry *entry_new(const mtd_store *store, const char *id, mt_mesh *mesh,
+                                 const mtd_mesh_meta *meta)
+{
+    const char *source = meta->source ? meta->source : "";
+    size_t id_len = strlen(id); /* <= MTD_MESH_ID_MAX, checked */
+    size_t source_len = strlen(source);
+    size_t strings = id_len + 1;
+    if (source_len > SIZE_MAX - sizeof(mtd_mesh_entry) - strings - 1) return NULL;
+    strings += source_len + 1;
+    size_t bytes = sizeof(mtd_mesh_entry) + strings;
+    mtd_mesh_entry *e = malloc(bytes);
+    if (!e) return NULL;
+    atomic_init(&e->refs, 1);
+    e->mesh = mesh;
+    memcpy(e->strings, id, id_len + 1);
+    memcpy(e->strings + id_len + 1, source, source_len + 1);
+    e->info.id = e->strings;
+    e->info.source = e->strings + id_len + 1;
+    e->info.version = 0;
+    e->info.utime = meta->utime;
+    e->info.content_hash = meta->content_hash;
+    size_t mesh_bytes = mt_mesh_memory_bytes(mesh);
+    size_t report_bytes = mt_mesh_report_memory_bytes(mesh);
+    size_t total = bytes;
+    total = mesh_bytes > SIZE_MAX - total ? SIZE_MAX : total + mesh_bytes;
+    total = report_bytes > SIZE_MAX - total ? SIZE_MAX : total + report_bytes;
+    e->info.memory_bytes = total;
+    e->on_free = store->options.on_entry_free;
+    e->on_free_ctx = store->options.on_entry_free_ctx;
+    return e;
+}
+
+/* ---- the store ----------------------------------------------------------- */
+
+mt_status mtd_store_create(const mtd_store_options *options, mtd_store **out_store)
+{
+    *out_store = NULL;
+    mtd_store *s = calloc(1, sizeof *s);
+    if (!s) return MT_ERR_NOMEM;
+    if (options) s->options = *options;
+    if (pthread_mutex_init(&s->lock, NULL) != 0) {
+        free(s);
+        return MT_ERR_NOMEM;
+    }
+    *out_store = s;
+    return MT_OK;
+}
+
+void mtd_store_destroy(mtd_store *store)
+{
+    if (!store) return;
+    for (size_t i = 0; i < store->num_slots; i++) {
+        id_slot *slot = store->slots[i];
+        for (uint32_t v = 0; v < slot->num_versions; v++) mtd_entry_release(slot->versions[v]);
+        free(slot->versions);
+        free(slot->id);
+        free(slot);
+    }
+    free(store->slots);
+    pthread_mutex_destroy(&store->lock);
+    free(store);
+}
+
+/* Index of the first slot whose id is >= id; *out_found when equal. */
+static size_t slot_lower_bound(const mtd_store *store, const char *id, int *out_found)
+{
+    size_t lo = 0, hi = store->num_slots;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (strcmp(store->slots[mid]->id, id) < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    *out_found = lo < store->num_slots && strcmp(store->slots[lo]->id, id) == 0;
+    return lo;
+}
+
+static id_slot *slot_find(const mtd_store *store, const char *id)
+{
+    int found;
+    size_t at = slot_lower_bound(store, id, &found);
+    return found ? store->slots[at] : NULL;
+}
+
+/* Index of `version` in slot->versions, or UINT32_MAX. */
+static uint32_t version_index(const id_slot *slot, uint32_t version)
+{
+    uint32_t lo = 0, hi = slot->num_versions;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        uint32_t v = slot->versions[mid]->info.version;
+        if (v == version) return mid;
+        if (v < version)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return UINT32_MAX;
+}
+
+/* Makes room for one more version; MT_OK, MT_ERR_TOO_LARGE or MT_ERR_NOMEM
+ * (slot unchanged). */
+static mt_status slot_reserve(id_slot *slot)
+{
+    if (slot->num_versions < slot->cap_versions) return MT_OK;
+    if (slot->cap_versions > UINT32_MAX / 2) return MT_ERR_TOO_LARGE;
+    uint32_t cap = slot->cap_versions ? slot->cap_versions * 2 : 4;
+#if SIZE_MAX / 8 < UINT32_MAX /* only where size_t is narrower than 35 bits */
+    if ((size_t)cap > SIZE_MAX / sizeof(mtd_mesh_entry *)) return MT_ERR_TOO_LARGE;
+#endif
+    mtd_mesh_entry **grown = realloc(slot->versions, (size_t)cap * sizeof *grown);
+    if (!grown) return MT_ERR_NOMEM;
+    slot->versions = grown;
+    slot->cap_versions = cap;
+    return MT_OK;
+}
+
+/* A new empty slot inserted at index `at`; NULL when out of memory. */
+static id_slot *slot_insert(mtd_store *store, size_t at, const char *id)
+{
+    if (store->num_slots == store->cap_slots) {
+        size_t cap = store->cap_slots ? store->cap_slots * 2 : 16;
+        if (cap > SIZE_MAX / sizeof(id_slot *)) return NULL;
+        id_slot **grown = realloc(store->slots, cap * sizeof *grown);
+        if (!grown) return NULL;
+        store->slots = grown;
+        store->cap_slots = cap;
+    }
+    id_slot *slot = calloc(1, sizeof *slot);
+    if (!slot) return NULL;
+    size_t len = strlen(id);
+    slot->id = malloc(len + 1);
+    if (!slot->id || slot_reserve(slot) != MT_OK) {
+        free(slot->id);
+        free(slot);
+        return NULL;
+    }
+    memcpy(slot->id, id, len + 1);
+    memmove(&store->slots[at + 1], &store->slots[at], (store->num_slots - at) * sizeof(id_slot *));
+    store->slots[at] = slot;
+    store->num_slots++;
+    return slot;
+}
+
+mt_status mtd_store_add(mtd_store *store, const char *id, mt_mesh *mesh, const mtd_mesh_meta *meta,
+                        uint32_t *out_version, mtd_mesh_entry **out_entry, mt_diag *diag)
+{
+    if (out_version) *out_version = 0;
+    if (out_entry) *out_entry = NULL;
+    mt_status status = mtd_mesh_id_check(id, diag);
+    if (status != MT_OK) return status;
+    if (!mesh) {
+        diag_set(diag, MT_ERR_INVALID_ARG, UINT64_MAX, "no mesh to add under id '%s'", id);
+        return MT_ERR_INVALID_ARG;
+    }
+    static const mtd_mesh_meta no_meta;
+    if (!meta) meta = &no_meta;
+
+    /* Everything that copies bytes happens before the lock. */
+    mtd_mesh_entry *entry = entry_new(store, id, mesh, meta);
+    if (!entry) {
+        diag_set(diag, MT_ERR_NOMEM, UINT64_MAX, "out of memory storing mesh '%s'", id);
+        return MT_ERR_NOMEM;
+    }
+    if (out_entry) atomic_init(&entry->refs, 2);
+
+    mtd_mesh_entry *dropped = NULL;
+    pthread_mutex_lock(&store->lock);
+    int found;
+    size_t at = slot_lower_bound(store, id, &found);
+    id_slot *slot = found ? store->slots[at] : NULL;
+    uint32_t highest = slot ? slot->highest_version : 0;
+    uint32_t held = slot ? slot->num_versions : 0;
+    uint32_t version = meta->version;
+    if (version == 0 && highest == UINT32_MAX) {
+        status = MT_ERR_TOO_LARGE;
+        diag_set(diag, status, UINT64_MAX, "mesh '%s' has used every version number", id);
+        goto fail;
+    }
+    if (version == 0) version = highest + 1;
+    if (version <= highest) {
+        status = MT_ERR_INVALID_ARG;
+        diag_set(diag, status, UINT64_MAX,
+                 "version %u of mesh '%s' requested, but the id already had version %u",
+                 (unsigned)version, id, (unsigned)highest);
+        goto fail;
+    }
+    /* Versions held never exceed the limit, so one add drops at most one. */
+    uint32_t limit = store->options.max_versions_per_id;
+    size_t freed_bytes = 0;
+    if (limit && held >= limit) freed_bytes = slot->versions[0]->info.memory_bytes;
+    size_t after = store->totals.memory_bytes - freed_bytes;
+    if (store->options.max_bytes && (entry->info.memory_bytes > store->options.max_bytes ||
+                                     after > store->options.max_bytes - entry->info.memory_bytes)) {
+        status = MT_ERR_TOO_LARGE;
+        diag_set(diag, status, UINT64_MAX,
+                 "mesh '%s' needs %zu bytes; the store holds %zu of its %zu-byte limit", id,
+                 entry->info.memory_bytes, after, store->options.max_bytes);
+        goto fail;
+    }
+    if (!slot) {
+        slot = slot_insert(store, at, id);
+        if (!slot) {
+            status = MT_ERR_NOMEM;
+            diag_set(diag, status, UINT64_MAX, "out of memory storing mesh '%s'", id);
+            goto fail;
+        }
+    }
+    if (!(limit && held >= limit)) {
+        status = slot_reserve(slot);
+        if (status != MT_OK) {
+            /* Only an existing slot gets here (slot_insert reserves room), so
+             * the store is unchanged. */
+            diag_set(diag, status, UINT64_MAX, "cannot hold another version of mesh '%s'", id);
+            goto fail;
+        }
+    }
+
+    /* Commit: nothing below fails. */
+    if (limit && held >= limit) {
+        dropped = slot->versions[0];
+        memmove(&slot->versions[0], &slot->versions[1],
+                (slot->num_versions - 1) * sizeof(mtd_mesh_entry *));
+        slot->num_versions--;
+        store->totals.versions--;
+        store->totals.memory_bytes -= dropped->info.memory_bytes;
+    }
+    entry->info.version = version;
+    slot->versions[slot->num_versions++] = entry;
+    slot->highest_version = version;
+    if (slot->num_versions == 1) store->totals.ids++;
+    store->totals.versions++;
+    store->totals.memory_bytes += entry->info.memory_bytes;
+    pthread_mutex_unlock(&store->lock);
+
+    mtd_entry_release(dropped);
+    if (out_version) *out_version = version;
+    if (out_entry) *out_entry = entry;
+    if (diag) mt_diag_clear(diag);
+    return MT_OK;
+
+fail:
+    pthread_mutex_unlock(&store->lock);
+    entry->mesh = NULL; /* the caller keeps the mesh */
+    free(entry);
+    return status;
+}
+
+mt_status mtd_store_acquire(mtd_store *store, const char *id, uint32_t version,
+                            mtd_mesh_entry **out_entry, mt_diag *diag)
+{
+    *out_entry = NULL;
+    mt_status status = mtd_mesh_id_check(id, diag);
+    if (status != MT_OK) return status;
+    mtd_mesh_entry *entry = NULL;
+    pthread_mutex_lock(&store->lock);
+    id_slot *slot = slot_find(store, id);
+    if (slot && slot->num_versions > 0) {
+        if (version == 0) {
+            entry = slot->versions[slot->num_versions - 1];
+        } else {
+            uint32_t i = version_index(slot, version);
+            if (i != UINT32_MAX) entry = slot->versions[i];
+        }
+        if (entry) mtd_entry_retain(entry);
+    }
+    pthread_mutex_unlock(&store->lock);
+    if (!entry) {
+        if (version == 0)
+            diag_set(diag, MT_ERR_NOT_FOUND, UINT64_MAX, "no mesh '%s'", id);
+        else
+            diag_set(diag, MT_ERR_NOT_FOUND, UINT64_MAX, "no version %u of mesh '%s'",
+                     (unsigned)version, id);
+        return MT_ERR_NOT_FOUND;
+    }
+    *out_entry = entry;
+    return MT_OK;
+}
+
+mt_status mtd_store_remove(mtd_store *store, const char *id, uint32_t version, mt_diag *diag)
+{
+    mt_status status = mtd_mesh_id_check(id, diag);
+    if (status != MT_OK) return status;
+    if (version == 0) {
+        diag_set(diag, MT_ERR_INVALID_ARG, UINT64_MAX,
+                 "removing mesh '%s' needs a version (1 or more), not 0", id);
+        return MT_ERR_INVALID_ARG;
+    }
+    mtd_mesh_entry *entry = NULL;
+    pthread_mutex_lock(&store->lock);
+    id_slot *slot = slot_find(store, id);
+    uint32_t i = slot ? version_index(slot, version) : UINT32_MAX;
+    if (i != UINT32_MAX) {
+        entry = slot->versions[i];
+        memmove(&slot->versions[i], &slot->versions[i + 1],
+                (slot->num_versions - i - 1) * sizeof(mtd_mesh_entry *));
+        slot->num_versions--;
+        if (slot->num_versions == 0) store->totals.ids--;
+        store->totals.versions--;
+        store->totals.memory_bytes -= entry->info.memory_bytes;
+    }
+    pthread_mutex_unlock(&store->lock);
+    if (!entry) {
+        diag_set(diag, MT_ERR_NOT_FOUND, UINT64_MAX, "no version %u of mesh '%s'",
+                 (unsigned)version, id);
+        return MT_ERR_NOT_FOUND;
+    }
+    mtd_entry_release(entry); /* the store's reference; the mesh lives on while held */
+    if (diag) mt_diag_clear(diag);
+    return MT_OK;
+}
+
+void mtd_store_get_totals(mtd_store *store, mtd_store_totals *out_totals)
+{
+    pthread_mutex_lock(&store->lock);
+    *out_totals = store->totals;
+    pthread_mutex_unlock(&store->lock);
+}
+
+/* ---- listing ------------------------------------------------------------- */
+
+/* Adds b to *a; 0 on overflow. */
+static int add_size(size_t *a, size_t b)
+{
+    if (b > SIZE_MAX - *a) return 0;
+    *a += b;
+    return 1;
+}
+
+mt_status mtd_store_list(mtd_store *store, mtd_store_listing **out_listing)
+{
+    *out_listing = NULL;
+    pthread_mutex_lock(&store->lock);
+    /* One block: the listing, the id rows, the info rows, then the strings. */
+    size_t ids = store->totals.ids, versions = store->totals.versions;
+    size_t bytes = sizeof(mtd_store_listing);
+    int ok = ids <= SIZE_MAX / sizeof(mtd_listed_id) &&
+             versions <= SIZE_MAX / sizeof(mtd_mesh_info) &&
+             add_size(&bytes, ids * sizeof(mtd_listed_id)) &&
+             add_size(&bytes, versions * sizeof(mtd_mesh_info));
+    size_t head = bytes;
+    for (size_t i = 0; ok && i < store->num_slots; i++) {
+        const id_slot *slot = store->slots[i];
+        if (slot->num_versions == 0) continue;
+        ok = add_size(&bytes, strlen(slot->id) + 1);
+        for (uint32_t v = 0; ok && v < slot->num_versions; v++)
+            ok = add_size(&bytes, strlen(slot->versions[v]->info.source) + 1);
+    }
+    mtd_store_listing *listing = ok ? malloc(bytes) : NULL;
+    if (!listing) {
+        pthread_mutex_unlock(&store->lock);
+        return MT_ERR_NOMEM;
+    }
+    listing->num_ids = ids;
+    listing->ids = (mtd_listed_id *)(listing + 1);
+    listing->totals = store->totals;
+    mtd_mesh_info *info = (mtd_mesh_info *)(listing->ids + ids);
+    char *text = (char *)listing + head;
+    size_t row = 0;
+    for (size_t i = 0; i < store->num_slots; i++) {
+        const id_slot *slot = store->slots[i];
+        if (slot->num_versions == 0) continue;
+        size_t len = strlen(slot->id) + 1;
+        memcpy(text, slot->id, len);
+        const char *id = text;
+        text += len;
+        listing->ids[row].id = id;
+        listing->ids[row].num_versions = slot->num_versions;
+        listing->ids[row].versions = info;
+        for (uint32_t v = 0; v < slot->num_versions; v++) {
+            *info = slot->versions[v]->info;
+            info->id = id;
+            len = strlen(info->source) + 1;
+            memcpy(text, info->source, len);
+            info->source = text;
+            text += len;
+            info++;
+        }
+        row++;
+    }
+    pthread_mutex_unlock(&store->lock);
+    *out_listing = listing;
+    return MT_OK;
+}
+
+void mtd_store_listing_free(mtd_store_listing *listing)
+{
+    free(listing);
+}

@@ -1,0 +1,154 @@
+/* meshtopod's store of built meshes: mesh id -> versions, each version an
+ * immutable, reference-counted entry (the built mesh, its source, utime,
+ * content hash and memory size). A query acquires an entry and may keep using
+ * it while newer versions are added or the entry is removed; the mesh is freed
+ * on the last release. Thread safe; meshes are built before they are added,
+ * never under the store's lock. */
+#ifndef MESHTOPOD_MESH_STORE_H
+#define MESHTOPOD_MESH_STORE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "meshtopo/mesh.h"
+#include "meshtopo/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Longest mesh id in bytes (without the terminating NUL). */
+#define MTD_MESH_ID_MAX 255
+
+/* Checks a mesh id: not NULL, not empty, at most MTD_MESH_ID_MAX bytes,
+ * printable ASCII only (0x20 to 0x7e), no '/' and no "..". Mesh ids come
+ * from the network and end up in archive names and logs, so a bad one is
+ * refused rather than repaired. Returns MT_OK or MT_ERR_INVALID_ARG with diag
+ * (NULL-safe) naming the rule broken and diag->byte_offset the offending byte
+ * (UINT64_MAX for the empty and the length rule). */
+mt_status mtd_mesh_id_check(const char *id, mt_diag *diag);
+
+/* What is known about one stored version; every string is NUL-terminated. */
+typedef struct mtd_mesh_info {
+    const char *id;
+    uint32_t version;      /* 1, 2, ... per id, in the order they were added */
+    const char *source;    /* who sent it (the node's source name), "" if none */
+    int64_t utime;         /* microseconds since the epoch, from the submission */
+    uint64_t content_hash; /* opaque, from the caller */
+    size_t memory_bytes;   /* mesh + report + entry bookkeeping */
+} mtd_mesh_info;
+
+/* One immutable stored version. Valid from mtd_store_add (out_entry) or
+ * mtd_store_acquire until the matching mtd_entry_release, whatever happens to
+ * the store meanwhile (removal, newer versions, mtd_store_destroy). */
+typedef struct mtd_mesh_entry mtd_mesh_entry;
+
+/* Called once per entry when its last reference is dropped, just before the
+ * mesh is freed, on whichever thread dropped it and outside the store's lock.
+ * It may read the mesh and info but must not keep them. */
+typedef void (*mtd_entry_free_fn)(void *ctx, const mt_mesh *mesh, const mtd_mesh_info *info);
+
+/* Store options; a zeroed struct (or NULL) gives the defaults. */
+typedef struct mtd_store_options {
+    /* Versions kept per id: adding one more drops the oldest (0 = keep all). */
+    uint32_t max_versions_per_id;
+    /* Total memory_bytes of the versions held; an add that would exceed it
+     * (after dropping versions per max_versions_per_id) fails with
+     * MT_ERR_TOO_LARGE (0 = no limit). Removed entries still referenced by a
+     * query do not count. */
+    size_t max_bytes;
+    mtd_entry_free_fn on_entry_free; /* optional */
+    void *on_entry_free_ctx;
+} mtd_store_options;
+
+typedef struct mtd_store mtd_store;
+
+/* Creates an empty store. Returns MT_OK or MT_ERR_NOMEM (*out_store NULL). */
+mt_status mtd_store_create(const mtd_store_options *options, mtd_store **out_store);
+
+/* Drops the store's reference to every entry and frees the store. Entries a
+ * caller still holds stay valid until released. NULL-safe. Must not race with
+ * other calls on the same store. */
+void mtd_store_destroy(mtd_store *store);
+
+/* Per-submission details for mtd_store_add; a zeroed struct is valid. */
+typedef struct mtd_mesh_meta {
+    const char *source; /* copied; NULL means "" */
+    int64_t utime;
+    uint64_t content_hash;
+    /* 0: the next version of the id (one more than the highest it ever had).
+     * Otherwise exactly this version, which must exceed every version the id
+     * has had: used when reloading an archive, so numbers stay what clients
+     * were told. */
+    uint32_t version;
+} mtd_mesh_meta;
+
+/* Adds a built mesh under id as a new version. On MT_OK the store owns mesh,
+ * *out_version (may be NULL) is its version and, when out_entry is not NULL,
+ * *out_entry is an extra reference for the caller to release. Versions beyond
+ * max_versions_per_id are dropped, oldest first.
+ * Errors leave the store unchanged and the caller owning mesh:
+ * MT_ERR_INVALID_ARG (bad id, see mtd_mesh_id_check; NULL mesh; a requested
+ * version not above the id's highest), MT_ERR_TOO_LARGE (max_bytes, or the
+ * id ran out of version numbers), MT_ERR_NOMEM. diag (NULL-safe) says which. */
+mt_status mtd_store_add(mtd_store *store, const char *id, mt_mesh *mesh, const mtd_mesh_meta *meta,
+                        uint32_t *out_version, mtd_mesh_entry **out_entry, mt_diag *diag);
+
+/* Acquires version `version` of id (0 = the latest held). On MT_OK the caller
+ * holds *out_entry and must release it. MT_ERR_NOT_FOUND when the id or that
+ * version is not held (*out_entry NULL), MT_ERR_INVALID_ARG for a bad id
+ * (diag says which rule). Never waits for a build. */
+mt_status mtd_store_acquire(mtd_store *store, const char *id, uint32_t version,
+                            mtd_mesh_entry **out_entry, mt_diag *diag);
+
+/* Removes version `version` (>= 1) of id from the store. A caller holding the
+ * entry keeps it until its release. MT_ERR_NOT_FOUND if not held,
+ * MT_ERR_INVALID_ARG for version 0 or a bad id. The id keeps counting: the
+ * next add still gets a higher version. */
+mt_status mtd_store_remove(mtd_store *store, const char *id, uint32_t version, mt_diag *diag);
+
+/* Another reference to an entry the caller holds (for handing it to a
+ * worker thread). Returns entry. */
+mtd_mesh_entry *mtd_entry_retain(mtd_mesh_entry *entry);
+
+/* Drops one reference; the last one frees the mesh. NULL-safe. */
+void mtd_entry_release(mtd_mesh_entry *entry);
+
+/* The entry's built mesh and its details; valid while the entry is held. */
+const mt_mesh *mtd_entry_mesh(const mtd_mesh_entry *entry);
+const mtd_mesh_info *mtd_entry_info(const mtd_mesh_entry *entry);
+
+/* What the store holds right now. */
+typedef struct mtd_store_totals {
+    size_t ids;          /* ids with at least one version held */
+    size_t versions;     /* versions held, all ids together */
+    size_t memory_bytes; /* sum of their memory_bytes */
+} mtd_store_totals;
+
+void mtd_store_get_totals(mtd_store *store, mtd_store_totals *out_totals);
+
+/* A snapshot of the store for `list`: ids in byte order, each with its
+ * versions ascending. Owns all its strings; free with mtd_store_listing_free. */
+typedef struct mtd_listed_id {
+    const char *id;
+    uint32_t num_versions;         /* versions held (>= 1) */
+    const mtd_mesh_info *versions; /* [num_versions], ascending version */
+} mtd_listed_id;
+
+typedef struct mtd_store_listing {
+    size_t num_ids;
+    mtd_listed_id *ids; /* [num_ids] */
+    mtd_store_totals totals;
+} mtd_store_listing;
+
+/* Takes a snapshot. MT_OK or MT_ERR_NOMEM (*out_listing NULL). */
+mt_status mtd_store_list(mtd_store *store, mtd_store_listing **out_listing);
+
+/* NULL-safe. */
+void mtd_store_listing_free(mtd_store_listing *listing);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
