@@ -3,7 +3,7 @@
 #   normal  RelWithDebInfo build with -Werror, every ctest, then the demo
 #   asan    clang ASan+UBSan build (shared libraries), every ctest
 #   tsan    clang ThreadSanitizer build, the core library's tests (builds run
-#           on two threads) and the daemon's (store, worker pool, request cache)
+#           on two threads), the daemon's parts and the client library
 #   fuzz    clang libFuzzer build, each fuzz target for FUZZ_SECONDS seconds
 #   format  clang-format check of the C sources
 # usage: scripts/test.sh [normal] [asan] [tsan] [fuzz] [format]   (default: all)
@@ -75,7 +75,7 @@ step_tsan() {
         -DCMAKE_C_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" \
         -DMESHTOPO_BUILD_BENCH=OFF -DMESHTOPO_WERROR=ON
     TSAN_OPTIONS=halt_on_error=1 ctest --test-dir "$dir" --output-on-failure -j 2 \
-        -R '^test_(core|daemon)\.'
+        -R '^test_(core|daemon|client)\.'
 }
 
 # Seeds for one fuzz target: its committed regressions, tests/fuzz/seeds/<target>/
@@ -183,7 +183,7 @@ done
 declare -A titles=(
     [normal]="normal build (RelWithDebInfo, -Werror) + ctest + demo"
     [asan]="clang ASan+UBSan build (shared libraries) + ctest"
-    [tsan]="clang ThreadSanitizer build + core and daemon ctests"
+    [tsan]="clang ThreadSanitizer build + core, daemon and client ctests"
     [fuzz]="libFuzzer build + ${fuzz_seconds}s per fuzz target"
     [format]="clang-format check"
 )

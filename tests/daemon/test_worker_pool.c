@@ -344,17 +344,26 @@ static void test_pool_bad_args(void)
 }
 
 /* A build job: builds a mesh on a worker and adds it to the store, while this
- * thread keeps acquiring another mesh from the same store. */
+ * thread keeps acquiring another mesh from the same store. The job holds its
+ * worker until this thread has answered BUILD_JOB_LOOKUPS lookups, so the
+ * lookups provably happen while a job is running (a fast build could
+ * otherwise finish before the first one). */
+#define BUILD_JOB_LOOKUPS 100
+
 typedef struct build_job {
     mtd_store *store;
     uint32_t level;
-    atomic_int status; /* -1 until done */
+    atomic_int status;    /* -1 until done */
+    atomic_long answered; /* lookups answered by the test thread */
 } build_job;
 
 static void run_build(void *arg, bool cancelled)
 {
     build_job *job = arg;
     if (cancelled) return;
+    for (int waited_ms = 0; atomic_load(&job->answered) < BUILD_JOB_LOOKUPS && waited_ms < 10000;
+         waited_ms++)
+        dt_sleep_ms(1);
     mt_face_list fl;
     mt_mesh *mesh = NULL;
     mt_status s = mt_gen_icosphere(job->level, &fl);
@@ -381,19 +390,18 @@ static void test_pool_build_into_store(void)
         mtd_store_destroy(store);
         return;
     }
-    build_job job = {store, 5, -1};
+    build_job job = {store, 5, -1, 0};
     CHECK_EQ(mtd_pool_submit(pool, run_build, &job), MTD_SUBMIT_OK);
-    long answered = 0;
     while (atomic_load(&job.status) == -1) {
         mtd_mesh_entry *e = NULL;
         if (mtd_store_acquire(store, "cube", 0, &e, NULL) == MT_OK) {
-            if (mt_mesh_num_verts(mtd_entry_mesh(e)) == 8) answered++;
+            if (mt_mesh_num_verts(mtd_entry_mesh(e)) == 8) atomic_fetch_add(&job.answered, 1);
             mtd_entry_release(e);
         }
     }
     mtd_pool_destroy(pool);
     CHECK_OK(atomic_load(&job.status));
-    CHECK(answered > 0);
+    CHECK(atomic_load(&job.answered) >= BUILD_JOB_LOOKUPS);
     mtd_mesh_entry *e = NULL;
     CHECK_OK(mtd_store_acquire(store, "sphere", 1, &e, NULL));
     if (e) {

@@ -1,0 +1,117 @@
+/* meshtopod's running state and the pieces that share it: the LCM handle, the
+ * mesh store, the worker pool, the request cache and the heartbeat counters.
+ * dispatch.c turns received bytes into calls of submit.c and query.c;
+ * heartbeat.c reports the counters; main.c owns the loop. Everything here may
+ * be used from the LCM thread and from build workers (LCM's publish is thread
+ * safe; the counters are atomics and one mutex guards the last error). */
+#ifndef MESHTOPOD_DAEMON_H
+#define MESHTOPOD_DAEMON_H
+
+#include <lcm/lcm.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "config.h"
+#include "mesh_store.h"
+#include "meshtopo/msgs.h"
+#include "request_cache.h"
+#include "worker_pool.h"
+
+/* Longest channel name LCM publishes (its own limit). */
+#define MTD_CHANNEL_MAX 63
+/* A reply whose arrays would exceed this many bytes is refused (TOO_LARGE). */
+#define MTD_REPLY_MAX_BYTES (64u << 20)
+/* Entries listed per array in a topology_t published with a build; the
+ * REPORT and DEFECTS queries give the complete lists. */
+#define MTD_TOPOLOGY_LIST_MAX 65536u
+/* Length of the error texts in replies (longer ones are cut). */
+#define MTD_ERROR_MAX 512
+
+typedef struct mtd_daemon {
+    mtd_config config;
+    lcm_t *lcm; /* not owned */
+    mtd_store *store;
+    mtd_pool *pool;
+    mtd_reqcache *cache;
+    lcm_subscription_t *submit_sub, *query_sub;
+    char submit_channel[MTD_CHANNEL_MAX + 1];
+    char query_channel[MTD_CHANNEL_MAX + 1];
+    char topology_channel[MTD_CHANNEL_MAX + 1];
+    char status_channel[MTD_CHANNEL_MAX + 1];
+    char instance[128];
+    int64_t start_utime;
+    atomic_bool stopping; /* no new work once set */
+
+    atomic_int_fast64_t submissions, builds, queries, errors, duplicates;
+    pthread_mutex_t error_lock;
+    char last_error[MTD_ERROR_MAX];
+    int64_t last_error_utime;
+} mtd_daemon;
+
+/* Creates the store, pool and cache from config and subscribes to
+ * PREFIX+"SUBMIT" and PREFIX+"QUERY" on lcm (raw handlers, queue capacity
+ * raised). MT_OK, MT_ERR_INVALID_ARG (prefix too long for LCM channel names),
+ * MT_ERR_NOMEM; diag says which. */
+mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **out_daemon,
+                            mt_diag *diag);
+
+/* Stops taking work: unsubscribes, cancels queued builds (each gets a BUSY
+ * ack), waits for running builds. Idempotent. */
+void mtd_daemon_stop(mtd_daemon *daemon);
+
+/* mtd_daemon_stop, then frees everything (not the LCM handle). NULL-safe. */
+void mtd_daemon_destroy(mtd_daemon *daemon);
+
+/* Microseconds since the epoch. */
+int64_t mtd_now_utime(void);
+
+/* ---- replies (dispatch.c) ---- */
+
+/* Encodes msg of `type`, stores it in the request cache under
+ * (channel, request_id) when `remember` (a retry then gets the same bytes),
+ * and publishes it on channel. Counts an error when status is not OK and
+ * keeps its text for the heartbeat. */
+void mtd_send_reply(mtd_daemon *daemon, const char *channel, int64_t request_id, bool remember,
+                    const mt_msgs_type *type, const void *msg, int32_t status, const char *error);
+
+/* Publishes an ack_t carrying only a status and an error. */
+void mtd_send_ack_error(mtd_daemon *daemon, const char *channel, int64_t request_id,
+                        const char *mesh_id, bool remember, int32_t status, const char *error);
+
+/* Publishes a reply_t carrying only a status and an error. */
+void mtd_send_reply_error(mtd_daemon *daemon, const char *channel, int64_t request_id,
+                          const char *mesh_id, int32_t kind, bool remember, int32_t status,
+                          const char *error);
+
+/* ---- submissions (submit.c) ---- */
+
+/* Handles one decoded mesh_t whose request was new in the request cache.
+ * `encoded` is the received message (for the content hash). Takes ownership
+ * of msg (heap-allocated, decoded by mt_msgs_decode). */
+void mtd_submit_handle(mtd_daemon *daemon, meshtopo_mesh_t *msg, const void *encoded,
+                       size_t encoded_size);
+
+/* ---- queries (query.c) ---- */
+
+/* Answers one decoded query_t whose request was new in the request cache. */
+void mtd_query_handle(mtd_daemon *daemon, const meshtopo_query_t *msg);
+
+/* ---- topology reports (topology.c) ---- */
+
+/* Fills out (zeroed first) from a built mesh's report; at most list_max
+ * entries per list (SIZE_MAX for all). Returns 0, or -1 when out of memory
+ * (out then owns nothing). Free with mtd_topology_free. */
+int mtd_topology_fill(const mt_mesh *mesh, const mtd_mesh_info *info, int64_t build_duration_us,
+                      size_t list_max, meshtopo_topology_t *out);
+
+/* Frees what mtd_topology_fill allocated. NULL-safe. */
+void mtd_topology_free(meshtopo_topology_t *topology);
+
+/* ---- heartbeat (heartbeat.c) ---- */
+
+/* Publishes one status_t on PREFIX+"STATUS". */
+void mtd_heartbeat_publish(mtd_daemon *daemon);
+
+#endif

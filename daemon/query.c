@@ -1,0 +1,604 @@
+/* meshtopod's queries: one query_t answered with one reply_t, every id of the
+ * batch in it as two-level CSR (items -> groups -> values, values2), exactly
+ * what the core library's query functions (meshtopo/query.h) answer; the
+ * table in msgs/reply_t.lcm says what each kind puts where. Every id is
+ * checked before anything is answered: one id out of range gives
+ * OUT_OF_RANGE and no items. Runs on the LCM thread; it only reads immutable
+ * store entries, so a build never holds it up. */
+#include <inttypes.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "daemon.h"
+#include "log.h"
+#include "meshtopo/query.h"
+#include "meshtopo/report.h"
+
+/* A growable array of int32_t (int8_t ones are stored widened, then narrowed). */
+typedef struct ivec {
+    int32_t *v;
+    size_t n, cap;
+} ivec;
+
+/* The answer being built, and the first error met while building it. */
+typedef struct answer {
+    ivec item_status, item_offsets, group_boundary, value_offsets, value2_offsets, values, values2;
+    size_t bytes;
+    int32_t status;
+    char error[MTD_ERROR_MAX];
+} answer;
+
+static void fail(answer *a, int32_t status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static void fail(answer *a, int32_t status, const char *fmt, ...)
+{
+    if (a->status != MESHTOPO_STATUS_CODE_T_OK) return;
+    a->status = status;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(a->error, sizeof a->error, fmt, ap);
+    va_end(ap);
+}
+
+static void push(answer *a, ivec *vec, int32_t value)
+{
+    if (a->status != MESHTOPO_STATUS_CODE_T_OK) return;
+    if (vec->n == vec->cap) {
+        a->bytes += vec->cap * sizeof(int32_t);
+        if (a->bytes > MTD_REPLY_MAX_BYTES) {
+            fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE,
+                 "the answer exceeds the daemon's reply limit of %u bytes; ask for fewer ids",
+                 (unsigned)MTD_REPLY_MAX_BYTES);
+            return;
+        }
+        size_t cap = vec->cap ? 2 * vec->cap : 64;
+        int32_t *v = realloc(vec->v, cap * sizeof *v);
+        if (!v) {
+            fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory building the answer");
+            return;
+        }
+        vec->v = v;
+        vec->cap = cap;
+    }
+    vec->v[vec->n++] = value;
+}
+
+static void answer_init(answer *a)
+{
+    memset(a, 0, sizeof *a);
+    a->status = MESHTOPO_STATUS_CODE_T_OK;
+    push(a, &a->item_offsets, 0);
+    push(a, &a->value_offsets, 0);
+    push(a, &a->value2_offsets, 0);
+}
+
+static void answer_free(answer *a)
+{
+    ivec *vecs[] = {&a->item_status,    &a->item_offsets, &a->group_boundary, &a->value_offsets,
+                    &a->value2_offsets, &a->values,       &a->values2};
+    for (size_t i = 0; i < sizeof vecs / sizeof vecs[0]; i++) free(vecs[i]->v);
+}
+
+/* Ends a group of the current item. */
+static void group_end(answer *a, bool boundary)
+{
+    push(a, &a->group_boundary, boundary);
+    push(a, &a->value_offsets, (int32_t)a->values.n);
+    push(a, &a->value2_offsets, (int32_t)a->values2.n);
+}
+
+/* Ends an item whose groups were just added. */
+static void item_end(answer *a, int32_t item_status)
+{
+    push(a, &a->item_status, item_status);
+    push(a, &a->item_offsets, (int32_t)a->group_boundary.n);
+}
+
+static void fail_core(answer *a, mt_status s, const char *what, int32_t id)
+{
+    fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "%s of %" PRId32 ": %s", what, id, mt_strerror(s));
+}
+
+/* Grows a uint32_t buffer to hold at least `need` elements. */
+static bool reserve_u32(answer *a, uint32_t **buf, size_t *cap, size_t need)
+{
+    if (need <= *cap) return true;
+    if (need > MTD_REPLY_MAX_BYTES / sizeof(uint32_t)) {
+        fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE, "the answer exceeds the daemon's reply limit");
+        return false;
+    }
+    uint32_t *p = realloc(*buf, need * sizeof *p);
+    if (!p) {
+        fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory building the answer");
+        return false;
+    }
+    *buf = p;
+    *cap = need;
+    return true;
+}
+
+static void answer_rings(answer *a, const mt_mesh *mesh, const int32_t *ids, int32_t n)
+{
+    mt_ring ring;
+    memset(&ring, 0, sizeof ring);
+    for (int32_t i = 0; i < n && a->status == MESHTOPO_STATUS_CODE_T_OK; i++) {
+        mt_status s = mt_vert_ring(mesh, (uint32_t)ids[i], &ring);
+        /* NULL buffers only learn the sizes, even when the call says MT_OK. */
+        if (s == MT_ERR_BUFFER_TOO_SMALL ||
+            (s == MT_OK &&
+             (ring.num_fans > ring.fans_capacity || ring.num_neighbors > ring.neighbors_capacity ||
+              ring.num_faces > ring.faces_capacity))) {
+            mt_fan *fans = realloc(ring.fans, ring.num_fans * sizeof *fans);
+            if (!fans && ring.num_fans) {
+                fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory building the answer");
+                break;
+            }
+            if (fans) ring.fans = fans, ring.fans_capacity = ring.num_fans;
+            if (!reserve_u32(a, &ring.neighbors, &ring.neighbors_capacity, ring.num_neighbors) ||
+                !reserve_u32(a, &ring.faces, &ring.faces_capacity, ring.num_faces))
+                break;
+            s = mt_vert_ring(mesh, (uint32_t)ids[i], &ring);
+        }
+        if (s != MT_OK) {
+            fail_core(a, s, "one-ring", ids[i]);
+            break;
+        }
+        for (size_t f = 0; f < ring.num_fans; f++) {
+            const mt_fan *fan = &ring.fans[f];
+            for (uint32_t k = 0; k < fan->neighbor_count; k++)
+                push(a, &a->values, (int32_t)ring.neighbors[fan->neighbor_begin + k]);
+            for (uint32_t k = 0; k < fan->face_count; k++)
+                push(a, &a->values2, (int32_t)ring.faces[fan->face_begin + k]);
+            group_end(a, fan->boundary);
+        }
+        item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+    }
+    free(ring.neighbors);
+    free(ring.faces);
+    free(ring.fans);
+}
+
+static void answer_valences(answer *a, const mt_mesh *mesh, const int32_t *ids, int32_t n)
+{
+    for (int32_t i = 0; i < n && a->status == MESHTOPO_STATUS_CODE_T_OK; i++) {
+        uint32_t valence = 0;
+        mt_status s = mt_vert_valence(mesh, (uint32_t)ids[i], &valence);
+        if (s != MT_OK) {
+            fail_core(a, s, "valence", ids[i]);
+            break;
+        }
+        push(a, &a->values, (int32_t)valence);
+        group_end(a, false);
+        item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+    }
+}
+
+static void answer_face_neighbors(answer *a, const mt_mesh *mesh, const int32_t *ids, int32_t n)
+{
+    uint32_t *faces = NULL, *offsets = NULL, *verts = NULL;
+    size_t faces_cap = 0, offsets_cap = 0, verts_cap = 0;
+    for (int32_t i = 0; i < n && a->status == MESHTOPO_STATUS_CODE_T_OK; i++) {
+        uint32_t face = (uint32_t)ids[i];
+        size_t num_faces = 0, num_sides = 0, num_verts = 0;
+        mt_status s = mt_face_neighbors(mesh, face, faces, faces_cap, offsets, offsets_cap,
+                                        &num_faces, &num_sides);
+        if (s == MT_ERR_BUFFER_TOO_SMALL ||
+            (s == MT_OK && (num_faces > faces_cap || num_sides + 1 > offsets_cap))) {
+            if (!reserve_u32(a, &faces, &faces_cap, num_faces) ||
+                !reserve_u32(a, &offsets, &offsets_cap, num_sides + 1))
+                break;
+            s = mt_face_neighbors(mesh, face, faces, faces_cap, offsets, offsets_cap, &num_faces,
+                                  &num_sides);
+        }
+        if (s == MT_ERR_NOT_FOUND) {
+            item_end(a, MESHTOPO_STATUS_CODE_T_NOT_FOUND);
+            continue;
+        }
+        if (s == MT_OK) {
+            s = mt_face_verts(mesh, face, verts, verts_cap, &num_verts);
+            if (s == MT_ERR_BUFFER_TOO_SMALL || (s == MT_OK && num_verts > verts_cap)) {
+                if (!reserve_u32(a, &verts, &verts_cap, num_verts)) break;
+                s = mt_face_verts(mesh, face, verts, verts_cap, &num_verts);
+            }
+        }
+        if (s != MT_OK || num_verts != num_sides) {
+            fail_core(a, s == MT_OK ? MT_ERR_CORRUPT : s, "face neighbours", ids[i]);
+            break;
+        }
+        for (size_t k = 0; k < num_sides; k++) {
+            for (uint32_t j = offsets[k]; j < offsets[k + 1]; j++)
+                push(a, &a->values, (int32_t)faces[j]);
+            push(a, &a->values2, (int32_t)verts[k]);
+            push(a, &a->values2, (int32_t)verts[(k + 1) % num_sides]);
+            group_end(a, offsets[k] == offsets[k + 1]);
+        }
+        item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+    }
+    free(faces);
+    free(offsets);
+    free(verts);
+}
+
+static void answer_edge_faces(answer *a, const mt_mesh *mesh, const int32_t *ids, int32_t n)
+{
+    uint32_t *faces = NULL;
+    size_t cap = 0;
+    for (int32_t i = 0; i + 1 < n && a->status == MESHTOPO_STATUS_CODE_T_OK; i += 2) {
+        size_t count = 0;
+        mt_status s =
+            mt_edge_faces(mesh, (uint32_t)ids[i], (uint32_t)ids[i + 1], faces, cap, &count);
+        if (s == MT_ERR_BUFFER_TOO_SMALL || (s == MT_OK && count > cap)) {
+            if (!reserve_u32(a, &faces, &cap, count)) break;
+            s = mt_edge_faces(mesh, (uint32_t)ids[i], (uint32_t)ids[i + 1], faces, cap, &count);
+        }
+        if (s == MT_ERR_NOT_FOUND) {
+            item_end(a, MESHTOPO_STATUS_CODE_T_NOT_FOUND);
+            continue;
+        }
+        if (s != MT_OK) {
+            fail_core(a, s, "edge faces at vertex", ids[i]);
+            break;
+        }
+        for (size_t k = 0; k < count; k++) push(a, &a->values, (int32_t)faces[k]);
+        group_end(a, false);
+        item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+    }
+    free(faces);
+}
+
+static void answer_boundary_loops(answer *a, const mt_mesh *mesh)
+{
+    size_t num_verts = 0, num_loops = 0;
+    mt_status s = mt_boundary_loops(mesh, NULL, 0, NULL, 0, &num_verts, &num_loops);
+    uint32_t *verts = NULL, *offsets = NULL;
+    size_t verts_cap = 0, offsets_cap = 0;
+    if (s == MT_ERR_BUFFER_TOO_SMALL || s == MT_OK) {
+        if (!reserve_u32(a, &verts, &verts_cap, num_verts ? num_verts : 1) ||
+            !reserve_u32(a, &offsets, &offsets_cap, num_loops + 1))
+            goto done;
+        s = mt_boundary_loops(mesh, verts, verts_cap, offsets, offsets_cap, &num_verts, &num_loops);
+    }
+    if (s != MT_OK) {
+        fail_core(a, s, "boundary loops", 0);
+        goto done;
+    }
+    for (size_t l = 0; l < num_loops; l++) {
+        for (uint32_t k = offsets[l]; k < offsets[l + 1]; k++)
+            push(a, &a->values, (int32_t)verts[k]);
+        group_end(a, true);
+        item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+    }
+done:
+    free(verts);
+    free(offsets);
+}
+
+static void answer_component(answer *a, const mt_mesh *mesh, uint32_t face)
+{
+    uint32_t component = 0;
+    mt_status s = mt_face_component(mesh, face, &component);
+    if (s == MT_ERR_NOT_FOUND) {
+        item_end(a, MESHTOPO_STATUS_CODE_T_NOT_FOUND);
+        return;
+    }
+    if (s != MT_OK) {
+        fail_core(a, s, "component", (int32_t)face);
+        return;
+    }
+    push(a, &a->values, (int32_t)component);
+    group_end(a, false);
+    item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+}
+
+static void answer_components(answer *a, const mt_mesh *mesh, const int32_t *ids, int32_t n)
+{
+    if (n == 0) {
+        uint32_t faces = mt_mesh_num_faces(mesh);
+        for (uint32_t f = 0; f < faces && a->status == MESHTOPO_STATUS_CODE_T_OK; f++)
+            answer_component(a, mesh, f);
+    }
+    for (int32_t i = 0; i < n && a->status == MESHTOPO_STATUS_CODE_T_OK; i++)
+        answer_component(a, mesh, (uint32_t)ids[i]);
+}
+
+static void answer_defect_kind(answer *a, const mt_report *report, uint32_t kind)
+{
+    for (size_t i = 0; i < report->num_defects; i++) {
+        const mt_defect *d = &report->defects[i];
+        if (d->kind != kind) continue;
+        push(a, &a->values, (int32_t)d->a);
+        push(a, &a->values, (int32_t)d->b);
+        push(a, &a->values, (int32_t)d->c);
+    }
+    group_end(a, false);
+    item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+}
+
+static void answer_defects(answer *a, const mt_mesh *mesh, const int32_t *ids, int32_t n)
+{
+    const mt_report *report = mt_mesh_report(mesh);
+    if (n == 0)
+        for (uint32_t k = 0; k < MT_DEFECT_KIND_COUNT; k++) answer_defect_kind(a, report, k);
+    for (int32_t i = 0; i < n; i++) answer_defect_kind(a, report, (uint32_t)ids[i]);
+}
+
+/* Checks the ids against what the kind takes and the mesh's counts. */
+static void check_ids(answer *a, const meshtopo_query_t *q, const mt_mesh *mesh)
+{
+    uint32_t verts = mt_mesh_num_verts(mesh), faces = mt_mesh_num_faces(mesh);
+    uint32_t limit = 0;
+    const char *what = "";
+    switch (q->kind) {
+        case MESHTOPO_QUERY_T_VERTEX_RING:
+        case MESHTOPO_QUERY_T_VALENCE:
+        case MESHTOPO_QUERY_T_EDGE_FACES:
+            limit = verts, what = "vertex";
+            break;
+        case MESHTOPO_QUERY_T_FACE_NEIGHBORS:
+        case MESHTOPO_QUERY_T_COMPONENTS:
+            limit = faces, what = "face";
+            break;
+        default:
+            return;
+    }
+    for (int32_t i = 0; i < q->num_ids; i++) {
+        if ((uint32_t)q->ids[i] >= limit) {
+            fail(a, MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE,
+                 "ids[%" PRId32 "] = %" PRId32 ": no such %s (mesh '%s' has %" PRIu32 " %ss)", i,
+                 q->ids[i], what, q->mesh_id, limit, what);
+            return;
+        }
+    }
+}
+
+/* Checks the kind and the shape of the ids (not their range). */
+static void check_request(answer *a, const meshtopo_query_t *q)
+{
+    switch (q->kind) {
+        case MESHTOPO_QUERY_T_VERTEX_RING:
+        case MESHTOPO_QUERY_T_VALENCE:
+        case MESHTOPO_QUERY_T_FACE_NEIGHBORS:
+        case MESHTOPO_QUERY_T_EDGE_FACES:
+            if (q->num_ids == 0)
+                fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "ids: kind %" PRId32 " needs ids",
+                     q->kind);
+            else if (q->kind == MESHTOPO_QUERY_T_EDGE_FACES && q->num_ids % 2)
+                fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST,
+                     "ids: EDGE_FACES takes vertex pairs, got an odd count (%" PRId32 ")",
+                     q->num_ids);
+            break;
+        case MESHTOPO_QUERY_T_BOUNDARY_LOOPS:
+        case MESHTOPO_QUERY_T_REPORT:
+        case MESHTOPO_QUERY_T_LIST_MESHES:
+            if (q->num_ids != 0)
+                fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST,
+                     "ids: kind %" PRId32 " takes no ids, got %" PRId32, q->kind, q->num_ids);
+            break;
+        case MESHTOPO_QUERY_T_COMPONENTS:
+            break;
+        case MESHTOPO_QUERY_T_DEFECTS:
+            for (int32_t i = 0; i < q->num_ids; i++)
+                if (q->ids[i] < 0 || q->ids[i] >= (int32_t)MT_DEFECT_KIND_COUNT) {
+                    fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST,
+                         "ids[%" PRId32 "] = %" PRId32 ": not a topology_t.DEFECT_* kind (0..%d)",
+                         i, q->ids[i], (int)MT_DEFECT_KIND_COUNT - 1);
+                    break;
+                }
+            break;
+        default:
+            fail(a, MESHTOPO_STATUS_CODE_T_UNKNOWN_KIND,
+                 "kind: %" PRId32 " is not a query_t kind (1..9)", q->kind);
+    }
+    if (a->status == MESHTOPO_STATUS_CODE_T_OK && q->version < 0)
+        fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "version: %" PRId32 " is negative", q->version);
+}
+
+/* Publishes the finished answer (or its error). */
+static void send_answer(mtd_daemon *d, const meshtopo_query_t *q, answer *a, int32_t version,
+                        meshtopo_topology_t *report, meshtopo_reply_t *list)
+{
+    if (a->status != MESHTOPO_STATUS_CODE_T_OK) {
+        bool remember = a->status != MESHTOPO_STATUS_CODE_T_INTERNAL;
+        if (!remember) mtd_reqcache_abandon(d->cache, q->reply_channel, q->request_id);
+        mtd_send_reply_error(d, q->reply_channel, q->request_id, q->mesh_id, q->kind, remember,
+                             a->status, a->error);
+        return;
+    }
+    meshtopo_reply_t reply;
+    if (list)
+        reply = *list;
+    else
+        memset(&reply, 0, sizeof reply);
+    int8_t *item_status = malloc(a->item_status.n + 1);
+    int8_t *boundary = malloc(a->group_boundary.n + 1);
+    if (!item_status || !boundary) {
+        free(item_status);
+        free(boundary);
+        mtd_reqcache_abandon(d->cache, q->reply_channel, q->request_id);
+        mtd_send_reply_error(d, q->reply_channel, q->request_id, q->mesh_id, q->kind, false,
+                             MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory sending the answer");
+        return;
+    }
+    for (size_t i = 0; i < a->item_status.n; i++) item_status[i] = (int8_t)a->item_status.v[i];
+    for (size_t i = 0; i < a->group_boundary.n; i++) boundary[i] = (int8_t)a->group_boundary.v[i];
+    reply.utime = mtd_now_utime();
+    reply.request_id = q->request_id;
+    reply.status = MESHTOPO_STATUS_CODE_T_OK;
+    reply.error = "";
+    reply.mesh_id = q->mesh_id;
+    reply.version = version;
+    reply.kind = q->kind;
+    reply.num_items = (int32_t)a->item_status.n;
+    reply.item_status = item_status;
+    reply.num_item_offsets = (int32_t)a->item_offsets.n;
+    reply.item_offsets = a->item_offsets.v;
+    reply.num_groups = (int32_t)a->group_boundary.n;
+    reply.group_boundary = boundary;
+    reply.num_value_offsets = (int32_t)a->value_offsets.n;
+    reply.value_offsets = a->value_offsets.v;
+    reply.value2_offsets = a->value2_offsets.v;
+    reply.num_values = (int32_t)a->values.n;
+    reply.values = a->values.v;
+    reply.num_values2 = (int32_t)a->values2.n;
+    reply.values2 = a->values2.v;
+    reply.num_reports = report ? 1 : 0;
+    reply.reports = report;
+    mtd_send_reply(d, q->reply_channel, q->request_id, true, &mt_msgs_type_reply, &reply,
+                   MESHTOPO_STATUS_CODE_T_OK, "");
+    free(item_status);
+    free(boundary);
+}
+
+/* LIST_MESHES: fills the list_* arrays of *out (freed by free_list). */
+static void list_meshes(mtd_daemon *d, answer *a, const char *mesh_id, meshtopo_reply_t *out)
+{
+    memset(out, 0, sizeof *out);
+    mtd_store_listing *listing = NULL;
+    if (mtd_store_list(d->store, &listing) != MT_OK) {
+        fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory listing the meshes");
+        return;
+    }
+    size_t n = 0;
+    for (size_t i = 0; i < listing->num_ids; i++)
+        if (!mesh_id[0] || strcmp(mesh_id, listing->ids[i].id) == 0)
+            n += listing->ids[i].num_versions;
+    out->list_mesh_ids = calloc(n + 1, sizeof(char *));
+    out->list_versions = calloc(n + 1, sizeof(int32_t));
+    out->list_sources = calloc(n + 1, sizeof(char *));
+    out->list_utimes = calloc(n + 1, sizeof(int64_t));
+    out->list_num_verts = calloc(n + 1, sizeof(int32_t));
+    out->list_num_faces = calloc(n + 1, sizeof(int32_t));
+    out->list_num_defects = calloc(n + 1, sizeof(int64_t));
+    out->list_content_hashes = calloc(n + 1, sizeof(int64_t));
+    if (!out->list_mesh_ids || !out->list_versions || !out->list_sources || !out->list_utimes ||
+        !out->list_num_verts || !out->list_num_faces || !out->list_num_defects ||
+        !out->list_content_hashes) {
+        fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory listing the meshes");
+        mtd_store_listing_free(listing);
+        return;
+    }
+    size_t k = 0;
+    for (size_t i = 0; i < listing->num_ids && k < n; i++) {
+        const mtd_listed_id *id = &listing->ids[i];
+        if (mesh_id[0] && strcmp(mesh_id, id->id) != 0) continue;
+        for (uint32_t v = 0; v < id->num_versions && k < n; v++) {
+            const mtd_mesh_info *info = &id->versions[v];
+            out->list_mesh_ids[k] = strdup(info->id);
+            out->list_sources[k] = strdup(info->source);
+            out->list_versions[k] = (int32_t)info->version;
+            out->list_utimes[k] = info->utime;
+            out->list_content_hashes[k] = (int64_t)info->content_hash;
+            mtd_mesh_entry *entry = NULL;
+            if (mtd_store_acquire(d->store, info->id, info->version, &entry, NULL) == MT_OK) {
+                const mt_mesh *mesh = mtd_entry_mesh(entry);
+                out->list_num_verts[k] = (int32_t)mt_mesh_num_verts(mesh);
+                out->list_num_faces[k] = (int32_t)mt_mesh_num_faces(mesh);
+                out->list_num_defects[k] = (int64_t)mt_mesh_report(mesh)->num_defects;
+                mtd_entry_release(entry);
+            }
+            if (!out->list_mesh_ids[k] || !out->list_sources[k])
+                fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory listing the meshes");
+            k++;
+        }
+    }
+    out->num_meshes = (int32_t)k;
+    mtd_store_listing_free(listing);
+}
+
+static void free_list(meshtopo_reply_t *list)
+{
+    for (int32_t i = 0; list->list_mesh_ids && i < list->num_meshes; i++) {
+        free(list->list_mesh_ids[i]);
+        free(list->list_sources[i]);
+    }
+    free(list->list_mesh_ids);
+    free(list->list_versions);
+    free(list->list_sources);
+    free(list->list_utimes);
+    free(list->list_num_verts);
+    free(list->list_num_faces);
+    free(list->list_num_defects);
+    free(list->list_content_hashes);
+}
+
+void mtd_query_handle(mtd_daemon *d, const meshtopo_query_t *q)
+{
+    answer a;
+    answer_init(&a);
+    check_request(&a, q);
+    mtd_log(MTD_LOG_DEBUG, "query",
+            "mesh_id=%.64s version=%" PRId32 " kind=%" PRId32 " ids=%" PRId32, q->mesh_id,
+            q->version, q->kind, q->num_ids);
+    if (a.status == MESHTOPO_STATUS_CODE_T_OK && q->kind == MESHTOPO_QUERY_T_LIST_MESHES) {
+        meshtopo_reply_t list;
+        list_meshes(d, &a, q->mesh_id, &list);
+        send_answer(d, q, &a, 0, NULL, &list);
+        free_list(&list);
+        answer_free(&a);
+        return;
+    }
+    mtd_mesh_entry *entry = NULL;
+    if (a.status == MESHTOPO_STATUS_CODE_T_OK) {
+        mt_diag diag;
+        mt_status s = mtd_store_acquire(d->store, q->mesh_id, (uint32_t)q->version, &entry, &diag);
+        if (s == MT_ERR_INVALID_ARG)
+            fail(&a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "mesh_id: %.400s", diag.message);
+        else if (s == MT_ERR_NOT_FOUND && q->version)
+            fail(&a, MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH,
+                 "mesh_id '%s' version %" PRId32 ": not held", q->mesh_id, q->version);
+        else if (s != MT_OK)
+            fail(&a, MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH, "mesh_id '%s': no such mesh", q->mesh_id);
+    }
+    int32_t version = 0;
+    meshtopo_topology_t report;
+    bool have_report = false;
+    if (entry) {
+        const mt_mesh *mesh = mtd_entry_mesh(entry);
+        version = (int32_t)mtd_entry_info(entry)->version;
+        check_ids(&a, q, mesh);
+        if (a.status == MESHTOPO_STATUS_CODE_T_OK) {
+            switch (q->kind) {
+                case MESHTOPO_QUERY_T_VERTEX_RING:
+                    answer_rings(&a, mesh, q->ids, q->num_ids);
+                    break;
+                case MESHTOPO_QUERY_T_VALENCE:
+                    answer_valences(&a, mesh, q->ids, q->num_ids);
+                    break;
+                case MESHTOPO_QUERY_T_FACE_NEIGHBORS:
+                    answer_face_neighbors(&a, mesh, q->ids, q->num_ids);
+                    break;
+                case MESHTOPO_QUERY_T_EDGE_FACES:
+                    answer_edge_faces(&a, mesh, q->ids, q->num_ids);
+                    break;
+                case MESHTOPO_QUERY_T_BOUNDARY_LOOPS:
+                    answer_boundary_loops(&a, mesh);
+                    break;
+                case MESHTOPO_QUERY_T_COMPONENTS:
+                    answer_components(&a, mesh, q->ids, q->num_ids);
+                    break;
+                case MESHTOPO_QUERY_T_DEFECTS:
+                    answer_defects(&a, mesh, q->ids, q->num_ids);
+                    break;
+                case MESHTOPO_QUERY_T_REPORT:
+                    if (mtd_topology_fill(mesh, mtd_entry_info(entry), 0, SIZE_MAX, &report) == 0)
+                        have_report = true;
+                    else
+                        fail(&a, MESHTOPO_STATUS_CODE_T_INTERNAL,
+                             "out of memory copying the report");
+                    break;
+                default:
+                    break;
+            }
+        }
+    }
+    send_answer(d, q, &a, version, have_report ? &report : NULL, NULL);
+    if (have_report) mtd_topology_free(&report);
+    mtd_entry_release(entry);
+    answer_free(&a);
+}

@@ -1,0 +1,185 @@
+/* meshtopo::client: the C API a perception node uses to talk to meshtopod over
+ * LCM: submit a mesh, query a built mesh, list held meshes. Calls are
+ * synchronous with a timeout per attempt and retries (a retry reuses the
+ * request id, so the daemon answers it again without executing it twice), or
+ * asynchronous with a callback. One client is safe to use from many threads.
+ * Replies are decoded only with mt_msgs_decode (meshtopo/msgs.h). */
+#ifndef MESHTOPO_CLIENT_H
+#define MESHTOPO_CLIENT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include <lcm/lcm.h>
+
+#include "meshtopo/face_list.h"
+#include "meshtopo/msgs.h"
+#include "meshtopo/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct mt_client mt_client;
+
+/* Defaults of the zeroed options. */
+#define MT_CLIENT_DEFAULT_PREFIX "MESHTOPO_"
+#define MT_CLIENT_DEFAULT_TIMEOUT_MS 1000
+#define MT_CLIENT_DEFAULT_RETRIES 3
+/* Longest channel prefix accepted (the reply channel must fit in LCM's 63). */
+#define MT_CLIENT_MAX_PREFIX 24
+
+/* Options of mt_client_create. A zeroed struct (or NULL) gives the defaults. */
+typedef struct mt_client_options {
+    /* LCM provider URL; NULL = LCM's default (LCM_DEFAULT_URL or udpm). Ignored with `lcm`. */
+    const char *lcm_url;
+    /* Use this lcm_t instead of creating one; the caller keeps ownership and
+     * destroys it after the client. Unless external_handle is set, the
+     * client's thread then calls lcm_handle on it, so every handler
+     * subscribed on it (the caller's too) runs on the client's thread, and
+     * nothing else may call lcm_handle on it. */
+    lcm_t *lcm;
+    /* With `lcm`: the caller's own loop calls lcm_handle, and the client's
+     * thread only runs timeouts and retries. Replies (and async callbacks
+     * with a reply) are then handled on the caller's loop thread, which must
+     * never make a synchronous client call itself (it would wait forever). */
+    int external_handle;
+    /* Channel prefix: 1..MT_CLIENT_MAX_PREFIX of [A-Za-z0-9_-]; NULL = "MESHTOPO_".
+     * Requests go to PREFIX "SUBMIT" and PREFIX "QUERY". */
+    const char *channel_prefix;
+    /* Time to wait for a reply to one attempt; 0 = MT_CLIENT_DEFAULT_TIMEOUT_MS. */
+    int timeout_ms;
+    /* Attempts after the first; 0 = MT_CLIENT_DEFAULT_RETRIES, negative = none. */
+    int retries;
+    /* Name of the node, sent as mesh_t.source; NULL = "meshtopo-client". */
+    const char *source;
+} mt_client_options;
+
+/* Counters of one client (mt_client_get_stats). */
+typedef struct mt_client_stats {
+    uint64_t requests;        /* calls sent (each with a fresh request id) */
+    uint64_t attempts;        /* messages published, retries included */
+    uint64_t replies;         /* replies matched to a waiting request */
+    uint64_t timeouts;        /* requests that ran out of attempts */
+    uint64_t unknown_replies; /* well-formed replies for no waiting request */
+    uint64_t undecodable;     /* bytes on the reply channel that did not decode */
+    uint64_t publish_errors;  /* lcm_publish failures (the attempt then times out) */
+} mt_client_stats;
+
+/* Creates a client: its own lcm_t (or opts->lcm), a private reply channel
+ * PREFIX "REPLY_" host_pid_random, and a thread handling LCM, timeouts and
+ * retries. Returns MT_OK and *out, or MT_ERR_INVALID_ARG (bad options, with
+ * the reason in diag), MT_ERR_IO (LCM or thread could not start),
+ * MT_ERR_NOMEM; *out is then NULL. */
+mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_diag *diag);
+
+/* Stops the thread, unsubscribes and frees the client. Asynchronous calls
+ * still waiting get their callback with MT_ERR_IO ("client destroyed").
+ * No call on this client may run or start meanwhile. NULL-safe. */
+void mt_client_destroy(mt_client *client);
+
+/* The client's private reply channel (valid until destroy). */
+const char *mt_client_reply_channel(const mt_client *client);
+
+/* A snapshot of the client's counters. */
+void mt_client_get_stats(mt_client *client, mt_client_stats *out_stats);
+
+/* ---- Results ----------------------------------------------------------- */
+
+/* Status of every call: MT_OK, a local error (MT_ERR_INVALID_ARG,
+ * MT_ERR_TOO_LARGE, MT_ERR_NOMEM), the daemon's status code mapped by
+ * mt_client_status_of_code, or MT_ERR_IO when no reply came after every
+ * attempt: diag->message then starts with "timeout:". With a reply whose
+ * status is not OK, diag->message is "CODE_NAME: the daemon's error text". */
+
+/* The mt_status of a status_code_t value: OK -> MT_OK, BAD_REQUEST ->
+ * INVALID_ARG, UNDECODABLE -> PARSE, UNKNOWN_MESH and NOT_FOUND -> NOT_FOUND,
+ * UNKNOWN_KIND -> UNSUPPORTED, OUT_OF_RANGE -> OUT_OF_RANGE, TOO_LARGE ->
+ * TOO_LARGE, BUILD_FAILED -> CORRUPT, DEFECT_REFUSED -> DEFECT, BUSY and
+ * INTERNAL and unknown codes -> IO. */
+mt_status mt_client_status_of_code(int32_t code);
+
+/* Name of a status_code_t value ("UNKNOWN_MESH"); "UNKNOWN_CODE" for a value
+ * status_code_t does not define. */
+const char *mt_client_code_name(int32_t code);
+
+/* The answer to a submission. The decoded ack_t is kept as received, with its
+ * topology_t report: it is the wire type lcm-spy shows and mirrors the core's
+ * mt_report field for field, so callers read one schema, and no copy or
+ * second conversion of the report is needed. */
+typedef struct mt_client_ack {
+    uint64_t sent_content_hash; /* computed by the client before sending */
+    meshtopo_ack_t msg;         /* version, content_hash, reports[0] if num_reports */
+} mt_client_ack;
+
+/* The report of an ack, or NULL when it carries none. */
+static inline const meshtopo_topology_t *mt_client_ack_report(const mt_client_ack *ack)
+{
+    return ack->msg.num_reports == 1 ? &ack->msg.reports[0] : (const meshtopo_topology_t *)0;
+}
+
+/* Releases what an ack owns and zeroes it. NULL-safe; fine on a zeroed ack. */
+void mt_client_ack_free(mt_client_ack *ack);
+
+/* Releases what a reply filled by mt_client_query / mt_client_list owns and
+ * zeroes it. NULL-safe; fine on a zeroed reply. */
+void mt_client_reply_free(meshtopo_reply_t *reply);
+
+/* ---- Content hash ------------------------------------------------------ */
+
+/* The content hash of msgs/mesh_t.lcm (64-bit FNV-1a over the encoded
+ * num_verts .. face_vertex_indices fields) of a face list, without encoding
+ * it. Returns MT_ERR_INVALID_ARG for an inconsistent list and
+ * MT_ERR_TOO_LARGE when a count does not fit mesh_t's int32 fields. */
+mt_status mt_client_content_hash(const mt_face_list *list, uint64_t *out_hash, mt_diag *diag);
+
+/* ---- Calls ------------------------------------------------------------- */
+
+/* Mesh ids: 1..255 bytes of printable ASCII, no '/' and no ".." (the
+ * daemon's rule); anything else gives MT_ERR_INVALID_ARG before sending. A synchronous call made
+ * from the client's own thread (an async callback) gives MT_ERR_INVALID_ARG. */
+
+/* Submits a face list as mesh `mesh_id` (a new version of it) and waits for
+ * the ack. strict: the daemon refuses a mesh with any defect
+ * (MT_ERR_DEFECT, with the report). out_ack is always initialised: filled
+ * whenever an ack arrived (even with an error status), zeroed otherwise;
+ * release it with mt_client_ack_free. */
+mt_status mt_client_submit(mt_client *client, const char *mesh_id, const mt_face_list *list,
+                           int strict, mt_client_ack *out_ack, mt_diag *diag);
+
+/* Sends one query (kind: MESHTOPO_QUERY_T_VERTEX_RING, ...; version 0 = the
+ * latest) with a batch of element ids and waits for the reply. ids may be
+ * NULL when num_ids is 0; ids are sent as the int32 of the same bits.
+ * out_reply is always initialised: filled whenever a reply arrived (even with
+ * an error status), zeroed otherwise; release it with mt_client_reply_free. */
+mt_status mt_client_query(mt_client *client, const char *mesh_id, int32_t version, int32_t kind,
+                          const uint32_t *ids, size_t num_ids, meshtopo_reply_t *out_reply,
+                          mt_diag *diag);
+
+/* Lists the held mesh versions (LIST_MESHES): every mesh when mesh_id is NULL
+ * or "", else the versions of that id. Like mt_client_query otherwise. */
+mt_status mt_client_list(mt_client *client, const char *mesh_id, meshtopo_reply_t *out_reply,
+                         mt_diag *diag);
+
+/* Called once per asynchronous query: with MT_OK or the daemon's mapped
+ * status and the reply, or with MT_ERR_IO and reply NULL after the last
+ * attempt timed out (or the client was destroyed). diag says why when status
+ * is not MT_OK. reply and diag are valid only during the call; the callback
+ * must not free the reply. It runs on the client's thread (see
+ * mt_client_options.external_handle) and must not make synchronous calls on
+ * the same client; asynchronous ones are fine. */
+typedef void (*mt_client_reply_fn)(mt_status status, const meshtopo_reply_t *reply,
+                                   const mt_diag *diag, void *user);
+
+/* mt_client_query without waiting. Returns MT_OK once the first attempt is
+ * sent (the callback then runs exactly once, later, on the client's thread);
+ * any other status means nothing was sent and the callback will not run. */
+mt_status mt_client_query_async(mt_client *client, const char *mesh_id, int32_t version,
+                                int32_t kind, const uint32_t *ids, size_t num_ids,
+                                mt_client_reply_fn callback, void *user, mt_diag *diag);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

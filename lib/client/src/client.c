@@ -1,0 +1,515 @@
+/* The client object: its LCM instance, private reply channel, table of
+ * pending requests and the thread that handles LCM (lcm_get_fileno + poll),
+ * resends a request whose attempt timed out (same request id) and completes
+ * it after the last attempt. Replies are decoded only with mt_msgs_decode;
+ * anything else on the reply channel is counted and dropped. */
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "client_internal.h"
+
+/* LCM keeps at most this many undelivered messages per subscription (30 by
+ * default); replies to many asynchronous queries may arrive together. */
+#define MT__REPLY_QUEUE_CAPACITY 10000
+/* Retries published per pass of the client thread (the rest go next pass). */
+#define MT__MAX_DUE_PER_PASS 64
+
+/* ---- Small helpers ------------------------------------------------------ */
+
+int64_t mt__client_now_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+int64_t mt__client_utime(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+mt_status mt__client_fail(mt_diag *diag, mt_status status, const char *fmt, ...)
+{
+    if (diag) {
+        mt_diag_clear(diag);
+        diag->status = status;
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(diag->message, sizeof diag->message, fmt, ap);
+        va_end(ap);
+    }
+    return status;
+}
+
+mt__msgbuf *mt__msgbuf_new(int size)
+{
+    if (size < 0) return NULL;
+    mt__msgbuf *buf = malloc(sizeof *buf + (size_t)size);
+    if (!buf) return NULL;
+    atomic_init(&buf->refs, 1);
+    buf->size = size;
+    return buf;
+}
+
+void mt__msgbuf_release(mt__msgbuf *buf)
+{
+    if (buf && atomic_fetch_sub(&buf->refs, 1) == 1) free(buf);
+}
+
+static uint64_t random_u64(void)
+{
+    uint64_t r = 0;
+    int fd = open("/dev/urandom", O_RDONLY | O_CLOEXEC);
+    if (fd >= 0) {
+        if (read(fd, &r, sizeof r) != (ssize_t)sizeof r) r = 0;
+        close(fd);
+    }
+    if (r == 0) { /* no /dev/urandom: mix the clocks, pid and an address */
+        r = (uint64_t)mt__client_utime() * 0x9e3779b97f4a7c15ull;
+        r ^= (uint64_t)mt__client_now_us() << 17;
+        r ^= (uint64_t)getpid() << 40;
+        r ^= (uint64_t)(uintptr_t)&r;
+    }
+    return r;
+}
+
+int64_t mt__client_next_id(mt_client *client)
+{
+    pthread_mutex_lock(&client->mutex);
+    int64_t id = client->next_request_id++;
+    pthread_mutex_unlock(&client->mutex);
+    return id;
+}
+
+static void wake_thread(mt_client *client)
+{
+    char byte = 1;
+    /* Non-blocking: a full pipe already wakes the thread. */
+    if (write(client->wake_pipe[1], &byte, 1) < 0) { /* nothing to do */
+    }
+}
+
+/* ---- The table of pending requests (caller holds the mutex) ------------- */
+
+static size_t bucket_of(int64_t request_id)
+{
+    uint64_t h = (uint64_t)request_id * 0x9e3779b97f4a7c15ull;
+    return (size_t)(h >> 56) % MT__BUCKETS;
+}
+
+static void table_insert(mt_client *client, mt__pending *p)
+{
+    size_t b = bucket_of(p->request_id);
+    p->next = client->buckets[b];
+    client->buckets[b] = p;
+    client->num_pending++;
+}
+
+/* Removes and returns the request with this id, or NULL. */
+static mt__pending *table_take(mt_client *client, int64_t request_id)
+{
+    mt__pending **link = &client->buckets[bucket_of(request_id)];
+    for (mt__pending *p = *link; p; link = &p->next, p = p->next) {
+        if (p->request_id == request_id) {
+            *link = p->next;
+            p->next = NULL;
+            client->num_pending--;
+            return p;
+        }
+    }
+    return NULL;
+}
+
+/* Frees an asynchronous request that is out of the table. */
+static void pending_free(mt__pending *p)
+{
+    if (p->has_answer) p->answer_type->decode_cleanup(&p->answer);
+    mt__msgbuf_release(p->buf);
+    free(p);
+}
+
+/* Marks a synchronous request done (mutex held) or, for an asynchronous one,
+ * returns it to be called back after the mutex is released. */
+static mt__pending *complete_locked(mt__pending *p)
+{
+    if (p->callback) return p;
+    p->done = 1;
+    pthread_cond_signal(&p->cond);
+    return NULL;
+}
+
+static void call_back(mt__pending *p)
+{
+    p->callback(p->status, p->has_answer ? &p->answer.reply : NULL, &p->diag, p->user);
+    pending_free(p);
+}
+
+static void publish(mt_client *client, const char *channel, mt__msgbuf *buf)
+{
+    if (lcm_publish(client->lcm, channel, buf->data, (unsigned int)buf->size) != 0) {
+        pthread_mutex_lock(&client->mutex);
+        client->stats.publish_errors++;
+        pthread_mutex_unlock(&client->mutex);
+    }
+}
+
+/* ---- Requests ----------------------------------------------------------- */
+
+mt_status mt__client_start(mt_client *client, mt__pending *p)
+{
+    if (!p->callback && client->thread_started && pthread_equal(pthread_self(), client->thread))
+        return mt__client_fail(&p->diag, MT_ERR_INVALID_ARG,
+                               "synchronous call from the client's own thread (an asynchronous "
+                               "callback) would wait forever; use mt_client_query_async there");
+    int wake = 0;
+    pthread_mutex_lock(&client->mutex);
+    p->deadline_us = mt__client_now_us() + (int64_t)client->timeout_ms * 1000;
+    p->attempts_left = client->attempts - 1;
+    table_insert(client, p);
+    client->stats.requests++;
+    client->stats.attempts++;
+    if (p->deadline_us < client->next_deadline_us) {
+        client->next_deadline_us = p->deadline_us;
+        wake = 1;
+    }
+    /* The reply may complete (and free) p before lcm_publish returns. */
+    mt__msgbuf *buf = p->buf;
+    const char *channel = p->channel;
+    atomic_fetch_add(&buf->refs, 1);
+    pthread_mutex_unlock(&client->mutex);
+    if (wake) wake_thread(client);
+    publish(client, channel, buf);
+    mt__msgbuf_release(buf);
+    return MT_OK;
+}
+
+void mt__client_wait(mt_client *client, mt__pending *p)
+{
+    pthread_mutex_lock(&client->mutex);
+    while (!p->done) pthread_cond_wait(&p->cond, &client->mutex);
+    pthread_mutex_unlock(&client->mutex);
+    mt__msgbuf_release(p->buf);
+    p->buf = NULL;
+}
+
+/* Resends every request whose attempt timed out and completes those out of
+ * attempts. Runs on the client thread. */
+static void run_deadlines(mt_client *client)
+{
+    struct {
+        const char *channel;
+        mt__msgbuf *buf;
+    } due[MT__MAX_DUE_PER_PASS];
+    size_t num_due = 0;
+    mt__pending *expired = NULL;
+
+    int64_t now = mt__client_now_us();
+    pthread_mutex_lock(&client->mutex);
+    if (now < client->next_deadline_us) {
+        pthread_mutex_unlock(&client->mutex);
+        return;
+    }
+    int64_t next = INT64_MAX;
+    for (size_t b = 0; b < MT__BUCKETS; b++) {
+        mt__pending **link = &client->buckets[b];
+        while (*link) {
+            mt__pending *p = *link;
+            if (p->deadline_us <= now && p->attempts_left > 0 && num_due < MT__MAX_DUE_PER_PASS) {
+                p->attempts_left--;
+                p->deadline_us = now + (int64_t)client->timeout_ms * 1000;
+                atomic_fetch_add(&p->buf->refs, 1);
+                due[num_due].channel = p->channel;
+                due[num_due].buf = p->buf;
+                num_due++;
+                client->stats.attempts++;
+            } else if (p->deadline_us <= now && p->attempts_left == 0) {
+                *link = p->next;
+                p->next = NULL;
+                client->num_pending--;
+                client->stats.timeouts++;
+                p->status = mt__client_fail(
+                    &p->diag, MT_ERR_IO,
+                    "timeout: no reply to request %lld on %s after %d attempt%s of %d ms",
+                    (long long)p->request_id, p->channel, client->attempts,
+                    client->attempts == 1 ? "" : "s", client->timeout_ms);
+                if (complete_locked(p)) {
+                    p->due_next = expired;
+                    expired = p;
+                }
+                continue;
+            }
+            if (p->deadline_us < next) next = p->deadline_us;
+            link = &p->next;
+        }
+    }
+    client->next_deadline_us = next;
+    pthread_mutex_unlock(&client->mutex);
+
+    for (size_t i = 0; i < num_due; i++) {
+        publish(client, due[i].channel, due[i].buf);
+        mt__msgbuf_release(due[i].buf);
+    }
+    while (expired) {
+        mt__pending *p = expired;
+        expired = p->due_next;
+        call_back(p);
+    }
+}
+
+/* The reply channel's handler: decode, match by request id, complete. */
+static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    mt_client *client = user;
+    size_t size = rbuf->data_size;
+    const mt_msgs_type *type = mt_msgs_type_of(rbuf->data, size);
+    mt__answer answer;
+    char error[MT_MSGS_ERROR_SIZE];
+    if ((type != &mt_msgs_type_reply && type != &mt_msgs_type_ack) ||
+        mt_msgs_decode(type, rbuf->data, size, &answer, error, sizeof error) != 0) {
+        pthread_mutex_lock(&client->mutex);
+        client->stats.undecodable++;
+        pthread_mutex_unlock(&client->mutex);
+        return;
+    }
+    int64_t request_id =
+        type == &mt_msgs_type_reply ? answer.reply.request_id : answer.ack.request_id;
+    int32_t code = type == &mt_msgs_type_reply ? answer.reply.status : answer.ack.status;
+    const char *text = type == &mt_msgs_type_reply ? answer.reply.error : answer.ack.error;
+
+    pthread_mutex_lock(&client->mutex);
+    mt__pending *p = table_take(client, request_id);
+    if (p && p->answer_type != type) { /* an ack for a query or the reverse */
+        table_insert(client, p);
+        p = NULL;
+    }
+    if (!p) {
+        client->stats.unknown_replies++;
+        pthread_mutex_unlock(&client->mutex);
+        type->decode_cleanup(&answer);
+        return;
+    }
+    client->stats.replies++;
+    p->answer = answer;
+    p->has_answer = 1;
+    p->status = mt_client_status_of_code(code);
+    if (p->status == MT_OK)
+        mt_diag_clear(&p->diag);
+    else
+        mt__client_fail(&p->diag, p->status, "%s: %s", mt_client_code_name(code),
+                        text && text[0] ? text : "(no error text)");
+    p = complete_locked(p);
+    pthread_mutex_unlock(&client->mutex);
+    if (p) call_back(p);
+}
+
+static void *client_thread(void *arg)
+{
+    mt_client *client = arg;
+    int lcm_fd = client->external_handle ? -1 : lcm_get_fileno(client->lcm);
+    for (;;) {
+        pthread_mutex_lock(&client->mutex);
+        int stop = client->stop;
+        int64_t next = client->next_deadline_us;
+        pthread_mutex_unlock(&client->mutex);
+        if (stop) break;
+
+        int timeout_ms = 1000;
+        if (next != INT64_MAX) {
+            int64_t wait_us = next - mt__client_now_us();
+            if (wait_us < 0) wait_us = 0;
+            if (wait_us < 1000000) timeout_ms = (int)((wait_us + 999) / 1000);
+        }
+        struct pollfd fds[2] = {{client->wake_pipe[0], POLLIN, 0}, {lcm_fd, POLLIN, 0}};
+        int n = poll(fds, lcm_fd >= 0 ? 2 : 1, timeout_ms);
+        if (n > 0 && (fds[0].revents & POLLIN)) {
+            char drain[64];
+            while (read(client->wake_pipe[0], drain, sizeof drain) > 0) {
+            }
+        }
+        if (n > 0 && lcm_fd >= 0 && (fds[1].revents & (POLLIN | POLLERR | POLLHUP)))
+            lcm_handle(client->lcm);
+        run_deadlines(client);
+    }
+    return NULL;
+}
+
+/* ---- Create and destroy ------------------------------------------------- */
+
+static int valid_prefix(const char *s)
+{
+    size_t n = strlen(s);
+    if (n == 0 || n > MT_CLIENT_MAX_PREFIX) return 0;
+    for (size_t i = 0; i < n; i++) {
+        char c = s[i];
+        if (!((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+              c == '_' || c == '-'))
+            return 0;
+    }
+    return 1;
+}
+
+/* PREFIX "REPLY_" host_pid_random: unique per client, no regex metacharacter
+ * (lcm_subscribe takes a regular expression), within LCM's 63 characters. */
+static void make_reply_channel(mt_client *client, const char *prefix)
+{
+    char host[17] = "host";
+    char raw[256];
+    if (gethostname(raw, sizeof raw) == 0) {
+        raw[sizeof raw - 1] = '\0';
+        size_t j = 0;
+        for (size_t i = 0; raw[i] && j < sizeof host - 1; i++) {
+            char c = raw[i];
+            int ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+            host[j++] = ok ? c : '-';
+        }
+        if (j > 0) host[j] = '\0';
+    }
+    snprintf(client->reply_channel, sizeof client->reply_channel, "%sREPLY_%s_%ld_%08x", prefix,
+             host, (long)getpid(), (unsigned)(random_u64() & 0xffffffffu));
+}
+
+mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    if (!out) return mt__client_fail(diag, MT_ERR_INVALID_ARG, "mt_client_create: out is NULL");
+    *out = NULL;
+    mt_client_options defaults;
+    memset(&defaults, 0, sizeof defaults);
+    if (!opts) opts = &defaults;
+
+    const char *prefix = opts->channel_prefix ? opts->channel_prefix : MT_CLIENT_DEFAULT_PREFIX;
+    if (!valid_prefix(prefix))
+        return mt__client_fail(diag, MT_ERR_INVALID_ARG,
+                               "channel prefix \"%.64s\" must be 1..%d characters of "
+                               "[A-Za-z0-9_-]",
+                               prefix, MT_CLIENT_MAX_PREFIX);
+    if (opts->timeout_ms < 0)
+        return mt__client_fail(diag, MT_ERR_INVALID_ARG, "timeout_ms %d is negative",
+                               opts->timeout_ms);
+    if (opts->external_handle && !opts->lcm)
+        return mt__client_fail(diag, MT_ERR_INVALID_ARG,
+                               "external_handle needs a caller-provided lcm");
+    const char *source = opts->source ? opts->source : "meshtopo-client";
+    if (strlen(source) >= 256)
+        return mt__client_fail(diag, MT_ERR_INVALID_ARG, "source name longer than 255 bytes");
+
+    /* lcm-gen's fingerprints are computed on first use without a lock: do it
+     * here, before any thread of ours uses a type. */
+    (void)mt_msgs_type_of(NULL, 0);
+
+    mt_client *client = calloc(1, sizeof *client);
+    if (!client) return mt__client_fail(diag, MT_ERR_NOMEM, "mt_client_create: out of memory");
+    client->wake_pipe[0] = client->wake_pipe[1] = -1;
+    client->timeout_ms = opts->timeout_ms ? opts->timeout_ms : MT_CLIENT_DEFAULT_TIMEOUT_MS;
+    int retries = opts->retries == 0 ? MT_CLIENT_DEFAULT_RETRIES : opts->retries;
+    client->attempts = retries < 0 ? 1 : (retries > 1000 ? 1001 : retries + 1);
+    client->external_handle = opts->external_handle;
+    client->next_deadline_us = INT64_MAX;
+    /* Ids start at a random point so a restarted node reusing a channel name
+     * does not repeat recent ones; they stay positive. */
+    client->next_request_id = (int64_t)(random_u64() >> 2) + 1;
+    snprintf(client->source, sizeof client->source, "%s", source);
+    snprintf(client->submit_channel, sizeof client->submit_channel, "%sSUBMIT", prefix);
+    snprintf(client->query_channel, sizeof client->query_channel, "%sQUERY", prefix);
+    make_reply_channel(client, prefix);
+    if (pthread_mutex_init(&client->mutex, NULL) != 0) {
+        free(client);
+        return mt__client_fail(diag, MT_ERR_NOMEM, "mt_client_create: no mutex");
+    }
+
+    mt_status status = MT_OK;
+    if (pipe(client->wake_pipe) != 0) {
+        client->wake_pipe[0] = client->wake_pipe[1] = -1;
+        status = mt__client_fail(diag, MT_ERR_IO, "pipe: %s", strerror(errno));
+        goto fail;
+    }
+    for (int i = 0; i < 2; i++) {
+        fcntl(client->wake_pipe[i], F_SETFL, fcntl(client->wake_pipe[i], F_GETFL) | O_NONBLOCK);
+        fcntl(client->wake_pipe[i], F_SETFD, FD_CLOEXEC);
+    }
+    if (opts->lcm) {
+        client->lcm = opts->lcm;
+    } else {
+        client->lcm = lcm_create(opts->lcm_url);
+        client->own_lcm = 1;
+        if (!client->lcm) {
+            status = mt__client_fail(diag, MT_ERR_IO, "lcm_create(\"%s\") failed",
+                                     opts->lcm_url ? opts->lcm_url : "(LCM default)");
+            goto fail;
+        }
+    }
+    client->subscription = lcm_subscribe(client->lcm, client->reply_channel, on_reply, client);
+    if (!client->subscription) {
+        status =
+            mt__client_fail(diag, MT_ERR_IO, "lcm_subscribe(%s) failed", client->reply_channel);
+        goto fail;
+    }
+    lcm_subscription_set_queue_capacity(client->subscription, MT__REPLY_QUEUE_CAPACITY);
+    if (pthread_create(&client->thread, NULL, client_thread, client) != 0) {
+        status = mt__client_fail(diag, MT_ERR_IO, "could not start the client thread");
+        goto fail;
+    }
+    client->thread_started = 1;
+    *out = client;
+    return MT_OK;
+
+fail:
+    mt_client_destroy(client);
+    return status;
+}
+
+void mt_client_destroy(mt_client *client)
+{
+    if (!client) return;
+    if (client->thread_started) {
+        pthread_mutex_lock(&client->mutex);
+        client->stop = 1;
+        pthread_mutex_unlock(&client->mutex);
+        wake_thread(client);
+        pthread_join(client->thread, NULL);
+    }
+    if (client->subscription) lcm_unsubscribe(client->lcm, client->subscription);
+
+    /* Asynchronous requests still waiting get their callback. */
+    for (size_t b = 0; b < MT__BUCKETS; b++) {
+        while (client->buckets[b]) {
+            mt__pending *p = client->buckets[b];
+            client->buckets[b] = p->next;
+            p->status = mt__client_fail(&p->diag, MT_ERR_IO,
+                                        "client destroyed before request %lld was answered",
+                                        (long long)p->request_id);
+            if (complete_locked(p)) call_back(p);
+        }
+    }
+    if (client->own_lcm && client->lcm) lcm_destroy(client->lcm);
+    for (int i = 0; i < 2; i++)
+        if (client->wake_pipe[i] >= 0) close(client->wake_pipe[i]);
+    pthread_mutex_destroy(&client->mutex);
+    free(client);
+}
+
+const char *mt_client_reply_channel(const mt_client *client)
+{
+    return client ? client->reply_channel : "";
+}
+
+void mt_client_get_stats(mt_client *client, mt_client_stats *out_stats)
+{
+    if (!out_stats) return;
+    if (!client) {
+        memset(out_stats, 0, sizeof *out_stats);
+        return;
+    }
+    pthread_mutex_lock(&client->mutex);
+    *out_stats = client->stats;
+    pthread_mutex_unlock(&client->mutex);
+}

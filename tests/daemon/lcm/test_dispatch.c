@@ -1,0 +1,968 @@
+/* meshtopod's dispatch over in-process LCM (memq://): submissions are built,
+ * stored and acknowledged; every query kind answers what the core library
+ * answers, computed here with the core API independently of daemon/query.c;
+ * every kind of bad message gets an error reply naming the problem while the
+ * daemon keeps serving; a retried request id is answered from the cache. */
+#include <inttypes.h>
+#include <lcm/lcm.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "daemon.h"
+#include "harness.h"
+#include "meshtopo/core.h"
+#include "meshtopo/io.h"
+#include "meshtopo/msgs.h"
+
+#define REPLY_CHANNEL "TEST_REPLY"
+#define MAX_RECEIVED 64
+
+typedef struct received {
+    void *data;
+    size_t size;
+} received;
+
+typedef struct fixture {
+    lcm_t *lcm;
+    mtd_daemon *daemon;
+    received inbox[MAX_RECEIVED];
+    size_t num_inbox;
+    int topology_messages;
+    int status_messages;
+    meshtopo_status_t last_status;
+    bool have_status;
+    int64_t next_request_id;
+} fixture;
+
+static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    fixture *fx = user;
+    if (fx->num_inbox == MAX_RECEIVED) return;
+    void *copy = malloc(rbuf->data_size);
+    memcpy(copy, rbuf->data, rbuf->data_size);
+    fx->inbox[fx->num_inbox++] = (received){copy, rbuf->data_size};
+}
+
+static void on_topology(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    fixture *fx = user;
+    meshtopo_topology_t t;
+    if (mt_msgs_decode(&mt_msgs_type_topology, rbuf->data, rbuf->data_size, &t, NULL, 0) == 0) {
+        fx->topology_messages++;
+        meshtopo_topology_t_decode_cleanup(&t);
+    }
+}
+
+static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    fixture *fx = user;
+    if (fx->have_status) meshtopo_status_t_decode_cleanup(&fx->last_status);
+    fx->have_status = mt_msgs_decode(&mt_msgs_type_status, rbuf->data, rbuf->data_size,
+                                     &fx->last_status, NULL, 0) == 0;
+    fx->status_messages++;
+}
+
+static void fixture_init(fixture *fx)
+{
+    memset(fx, 0, sizeof *fx);
+    fx->next_request_id = 1;
+    char *argv[] = {"meshtopod", "--max-verts", "100000",      "--max-faces", "200000",
+                    "--workers", "2",           "--log-level", "error"};
+    mtd_config config;
+    mtd_config_action action;
+    mt_diag diag;
+    CHECK_OK(mtd_config_parse(9, argv, &config, &action, &diag));
+    mtd_log_set_level(config.log_level);
+    fx->lcm = lcm_create("memq://");
+    CHECK(fx->lcm != NULL);
+    CHECK_OK(mtd_daemon_create(&config, fx->lcm, &fx->daemon, &diag));
+    lcm_subscribe(fx->lcm, REPLY_CHANNEL, on_reply, fx);
+    lcm_subscribe(fx->lcm, "MESHTOPO_TOPOLOGY", on_topology, fx);
+    lcm_subscribe(fx->lcm, "MESHTOPO_STATUS", on_status, fx);
+}
+
+static void fixture_free(fixture *fx)
+{
+    mtd_daemon_destroy(fx->daemon);
+    lcm_destroy(fx->lcm);
+    for (size_t i = 0; i < fx->num_inbox; i++) free(fx->inbox[i].data);
+    if (fx->have_status) meshtopo_status_t_decode_cleanup(&fx->last_status);
+}
+
+static void publish(fixture *fx, const char *channel, const mt_msgs_type *type, const void *msg)
+{
+    int size = type->encoded_size(msg);
+    void *buf = malloc((size_t)size);
+    CHECK_EQ(type->encode(buf, 0, size, msg), size);
+    CHECK_EQ(lcm_publish(fx->lcm, channel, buf, (unsigned)size), 0);
+    free(buf);
+}
+
+static void publish_bytes(fixture *fx, const char *channel, const void *data, size_t size)
+{
+    CHECK_EQ(lcm_publish(fx->lcm, channel, data, (unsigned)size), 0);
+}
+
+/* Handles LCM until a message of `type` with request_id arrives (decoded into
+ * out; release with type->decode_cleanup) or 20 s pass. Returns 0 when found. */
+static int wait_for(fixture *fx, const mt_msgs_type *type, int64_t request_id, void *out)
+{
+    for (int round = 0; round < 400; round++) {
+        for (size_t i = 0; i < fx->num_inbox; i++) {
+            received *r = &fx->inbox[i];
+            if (mt_msgs_type_of(r->data, r->size) != type) continue;
+            char error[MT_MSGS_ERROR_SIZE];
+            if (mt_msgs_decode(type, r->data, r->size, out, error, sizeof error) != 0) {
+                mt_test_fail(__FILE__, __LINE__, "reply does not decode: %s", error);
+                continue;
+            }
+            /* ack_t and reply_t both start with utime, request_id. */
+            int64_t id = type == &mt_msgs_type_ack ? ((meshtopo_ack_t *)out)->request_id
+                                                   : ((meshtopo_reply_t *)out)->request_id;
+            if (id == request_id) {
+                free(r->data);
+                fx->inbox[i] = fx->inbox[--fx->num_inbox];
+                return 0;
+            }
+            type->decode_cleanup(out);
+        }
+        lcm_handle_timeout(fx->lcm, 50);
+    }
+    mt_test_fail(__FILE__, __LINE__, "no %s for request %" PRId64 " within 20 s", type->name,
+                 request_id);
+    return -1;
+}
+
+/* ---- requests ---- */
+
+static meshtopo_mesh_t mesh_msg(fixture *fx, const char *id, const mt_face_list *list)
+{
+    meshtopo_mesh_t m;
+    memset(&m, 0, sizeof m);
+    m.utime = 1700000000000000;
+    m.request_id = fx->next_request_id++;
+    m.reply_channel = REPLY_CHANNEL;
+    m.mesh_id = (char *)id;
+    m.source = "test_dispatch";
+    m.num_verts = (int32_t)list->num_verts;
+    m.num_position_values = list->positions ? 3 * (int32_t)list->num_verts : 0;
+    m.positions = list->positions;
+    m.num_faces = (int32_t)list->num_faces;
+    m.face_vertex_counts = (int32_t *)list->face_sizes;
+    m.num_indices = (int32_t)list->num_indices;
+    m.face_vertex_indices = (int32_t *)list->face_indices;
+    return m;
+}
+
+/* Submits and waits for the ack (out; decode_cleanup it). */
+static int submit(fixture *fx, const meshtopo_mesh_t *m, meshtopo_ack_t *out)
+{
+    publish(fx, "MESHTOPO_SUBMIT", &mt_msgs_type_mesh, m);
+    return wait_for(fx, &mt_msgs_type_ack, m->request_id, out);
+}
+
+/* Submits a face list that must be accepted; returns its version. */
+static int32_t submit_ok(fixture *fx, const char *id, const mt_face_list *list)
+{
+    meshtopo_mesh_t m = mesh_msg(fx, id, list);
+    meshtopo_ack_t ack;
+    if (submit(fx, &m, &ack) != 0) return 0;
+    if (ack.status != 0) mt_test_fail(__FILE__, __LINE__, "submit %s: %s", id, ack.error);
+    CHECK_EQ(ack.num_reports, 1);
+    int32_t version = ack.version;
+    meshtopo_ack_t_decode_cleanup(&ack);
+    return version;
+}
+
+static int query(fixture *fx, const char *id, int32_t version, int32_t kind, const int32_t *ids,
+                 int32_t num_ids, meshtopo_reply_t *out)
+{
+    meshtopo_query_t q;
+    memset(&q, 0, sizeof q);
+    q.request_id = fx->next_request_id++;
+    q.reply_channel = REPLY_CHANNEL;
+    q.mesh_id = (char *)id;
+    q.version = version;
+    q.kind = kind;
+    q.num_ids = num_ids;
+    q.ids = (int32_t *)ids;
+    publish(fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    return wait_for(fx, &mt_msgs_type_reply, q.request_id, out);
+}
+
+/* Checks that an error reply has `status` and an error containing `needle`. */
+#define CHECK_ERROR(status_got, error_got, status_want, needle)                            \
+    do {                                                                                   \
+        CHECK_EQ(status_got, status_want);                                                 \
+        if (!strstr((error_got), (needle)))                                                \
+            mt_test_fail(__FILE__, __LINE__, "error '%s' does not name '%s'", (error_got), \
+                         (needle));                                                        \
+    } while (0)
+
+static void check_query_error(fixture *fx, const char *id, int32_t version, int32_t kind,
+                              const int32_t *ids, int32_t num_ids, int32_t status,
+                              const char *needle, int line)
+{
+    meshtopo_reply_t r;
+    if (query(fx, id, version, kind, ids, num_ids, &r) != 0) return;
+    if (r.status != status || !strstr(r.error, needle))
+        mt_test_fail(__FILE__, line, "query kind %d: status %d '%s', expected %d naming '%s'",
+                     (int)kind, (int)r.status, r.error, (int)status, needle);
+    CHECK_EQ(r.num_items, 0);
+    CHECK_EQ(r.num_item_offsets, 1);
+    meshtopo_reply_t_decode_cleanup(&r);
+}
+
+/* ---- the expected answers, from the core library ---- */
+
+/* A growable int32_t array. */
+typedef struct vec {
+    int32_t *v;
+    size_t n, cap;
+} vec;
+
+static void vec_push(vec *a, int32_t value)
+{
+    if (a->n == a->cap) {
+        a->cap = a->cap ? 2 * a->cap : 16;
+        a->v = realloc(a->v, a->cap * sizeof *a->v);
+    }
+    a->v[a->n++] = value;
+}
+
+typedef struct expected {
+    vec item_status, item_offsets, group_boundary, value_offsets, value2_offsets, values, values2;
+} expected;
+
+static void exp_value(expected *e, uint32_t v)
+{
+    vec_push(&e->values, (int32_t)v);
+}
+
+static void exp_value2(expected *e, uint32_t v)
+{
+    vec_push(&e->values2, (int32_t)v);
+}
+
+static void exp_group(expected *e, bool boundary)
+{
+    vec_push(&e->group_boundary, boundary);
+    vec_push(&e->value_offsets, (int32_t)e->values.n);
+    vec_push(&e->value2_offsets, (int32_t)e->values2.n);
+}
+
+static void exp_item(expected *e, int32_t status)
+{
+    vec_push(&e->item_status, status);
+    vec_push(&e->item_offsets, (int32_t)e->group_boundary.n);
+}
+
+static void exp_init(expected *e)
+{
+    memset(e, 0, sizeof *e);
+    vec_push(&e->item_offsets, 0);
+    vec_push(&e->value_offsets, 0);
+    vec_push(&e->value2_offsets, 0);
+}
+
+static void exp_free(expected *e)
+{
+    vec *vecs[] = {&e->item_status,    &e->item_offsets, &e->group_boundary, &e->value_offsets,
+                   &e->value2_offsets, &e->values,       &e->values2};
+    for (size_t i = 0; i < sizeof vecs / sizeof vecs[0]; i++) free(vecs[i]->v);
+}
+
+/* The core's answer to one query, in reply_t's layout. */
+static void expect_core(const mt_mesh *mesh, int32_t kind, const int32_t *ids, int32_t n,
+                        expected *e)
+{
+    exp_init(e);
+    static uint32_t buf[1 << 16], buf2[1 << 16], offsets[1 << 12];
+    static mt_fan fans[1 << 10];
+    size_t count = 0, count2 = 0;
+    if (kind == MESHTOPO_QUERY_T_COMPONENTS && n == 0) n = (int32_t)mt_mesh_num_faces(mesh);
+    if (kind == MESHTOPO_QUERY_T_DEFECTS && n == 0) n = MT_DEFECT_KIND_COUNT;
+    if (kind == MESHTOPO_QUERY_T_BOUNDARY_LOOPS) {
+        CHECK_OK(mt_boundary_loops(mesh, buf, 1 << 16, offsets, 1 << 12, &count, &count2));
+        for (size_t l = 0; l < count2; l++) {
+            for (uint32_t k = offsets[l]; k < offsets[l + 1]; k++) exp_value(e, buf[k]);
+            exp_group(e, true);
+            exp_item(e, 0);
+        }
+        return;
+    }
+    int32_t step = kind == MESHTOPO_QUERY_T_EDGE_FACES ? 2 : 1;
+    for (int32_t i = 0; i < n; i += step) {
+        uint32_t id = ids ? (uint32_t)ids[i] : (uint32_t)i;
+        if (kind == MESHTOPO_QUERY_T_VERTEX_RING) {
+            mt_ring ring = {buf, 1 << 16, buf2, 1 << 16, fans, 1 << 10, 0, 0, 0};
+            CHECK_OK(mt_vert_ring(mesh, id, &ring));
+            for (size_t f = 0; f < ring.num_fans; f++) {
+                for (uint32_t k = 0; k < fans[f].neighbor_count; k++)
+                    exp_value(e, buf[fans[f].neighbor_begin + k]);
+                for (uint32_t k = 0; k < fans[f].face_count; k++)
+                    exp_value2(e, buf2[fans[f].face_begin + k]);
+                exp_group(e, fans[f].boundary);
+            }
+            exp_item(e, 0);
+        } else if (kind == MESHTOPO_QUERY_T_VALENCE) {
+            uint32_t valence = 0;
+            CHECK_OK(mt_vert_valence(mesh, id, &valence));
+            exp_value(e, valence);
+            exp_group(e, false);
+            exp_item(e, 0);
+        } else if (kind == MESHTOPO_QUERY_T_FACE_NEIGHBORS) {
+            size_t sides = 0;
+            mt_status s =
+                mt_face_neighbors(mesh, id, buf, 1 << 16, offsets, 1 << 12, &count, &sides);
+            if (s == MT_ERR_NOT_FOUND) {
+                exp_item(e, MESHTOPO_STATUS_CODE_T_NOT_FOUND);
+                continue;
+            }
+            CHECK_OK(s);
+            CHECK_OK(mt_face_verts(mesh, id, buf2, 1 << 16, &count2));
+            for (size_t k = 0; k < sides; k++) {
+                for (uint32_t j = offsets[k]; j < offsets[k + 1]; j++) exp_value(e, buf[j]);
+                exp_value2(e, buf2[k]);
+                exp_value2(e, buf2[(k + 1) % sides]);
+                exp_group(e, offsets[k] == offsets[k + 1]);
+            }
+            exp_item(e, 0);
+        } else if (kind == MESHTOPO_QUERY_T_EDGE_FACES) {
+            mt_status s = mt_edge_faces(mesh, id, (uint32_t)ids[i + 1], buf, 1 << 16, &count);
+            if (s == MT_ERR_NOT_FOUND) {
+                exp_item(e, MESHTOPO_STATUS_CODE_T_NOT_FOUND);
+                continue;
+            }
+            CHECK_OK(s);
+            for (size_t k = 0; k < count; k++) exp_value(e, buf[k]);
+            exp_group(e, false);
+            exp_item(e, 0);
+        } else if (kind == MESHTOPO_QUERY_T_COMPONENTS) {
+            uint32_t component = 0;
+            mt_status s = mt_face_component(mesh, id, &component);
+            if (s == MT_ERR_NOT_FOUND) {
+                exp_item(e, MESHTOPO_STATUS_CODE_T_NOT_FOUND);
+                continue;
+            }
+            CHECK_OK(s);
+            exp_value(e, component);
+            exp_group(e, false);
+            exp_item(e, 0);
+        } else if (kind == MESHTOPO_QUERY_T_DEFECTS) {
+            const mt_report *r = mt_mesh_report(mesh);
+            for (size_t k = 0; k < r->num_defects; k++) {
+                if (r->defects[k].kind != id) continue;
+                exp_value(e, r->defects[k].a);
+                exp_value(e, r->defects[k].b);
+                exp_value(e, r->defects[k].c);
+            }
+            exp_group(e, false);
+            exp_item(e, 0);
+        }
+    }
+}
+
+static void check_array(const char *what, int kind, const int32_t *got, int32_t ngot,
+                        const int32_t *want, size_t nwant, int line)
+{
+    if ((size_t)ngot != nwant) {
+        mt_test_fail(__FILE__, line, "kind %d %s: %d entries, expected %zu", kind, what, (int)ngot,
+                     nwant);
+        return;
+    }
+    for (size_t i = 0; i < nwant; i++)
+        if (got[i] != want[i]) {
+            mt_test_fail(__FILE__, line, "kind %d %s[%zu]: %d, expected %d", kind, what, i,
+                         (int)got[i], (int)want[i]);
+            return;
+        }
+}
+
+static void check_array8(const char *what, int kind, const int8_t *got, int32_t ngot,
+                         const int32_t *want, size_t nwant, int line)
+{
+    int32_t *wide = malloc((size_t)(ngot > 0 ? ngot : 1) * sizeof *wide);
+    for (int32_t i = 0; i < ngot; i++) wide[i] = got[i];
+    check_array(what, kind, wide, ngot, want, nwant, line);
+    free(wide);
+}
+
+/* Queries the daemon and compares with the core's answer on `mesh`. */
+static void check_kind(fixture *fx, const char *id, const mt_mesh *mesh, int32_t kind,
+                       const int32_t *ids, int32_t n, int line)
+{
+    meshtopo_reply_t r;
+    if (query(fx, id, 0, kind, ids, n, &r) != 0) return;
+    if (r.status != 0) {
+        mt_test_fail(__FILE__, line, "kind %d: status %d: %s", (int)kind, (int)r.status, r.error);
+        meshtopo_reply_t_decode_cleanup(&r);
+        return;
+    }
+    expected e;
+    expect_core(mesh, kind, ids, n, &e);
+    check_array8("item_status", kind, r.item_status, r.num_items, e.item_status.v, e.item_status.n,
+                 line);
+    check_array("item_offsets", kind, r.item_offsets, r.num_item_offsets, e.item_offsets.v,
+                e.item_offsets.n, line);
+    check_array8("group_boundary", kind, r.group_boundary, r.num_groups, e.group_boundary.v,
+                 e.group_boundary.n, line);
+    check_array("value_offsets", kind, r.value_offsets, r.num_value_offsets, e.value_offsets.v,
+                e.value_offsets.n, line);
+    check_array("value2_offsets", kind, r.value2_offsets, r.num_value_offsets, e.value2_offsets.v,
+                e.value2_offsets.n, line);
+    check_array("values", kind, r.values, r.num_values, e.values.v, e.values.n, line);
+    check_array("values2", kind, r.values2, r.num_values2, e.values2.v, e.values2.n, line);
+    CHECK_EQ(r.num_reports, 0);
+    exp_free(&e);
+    meshtopo_reply_t_decode_cleanup(&r);
+}
+
+/* The REPORT reply against the core's report. */
+static void check_report(fixture *fx, const char *id, const mt_mesh *mesh)
+{
+    meshtopo_reply_t r;
+    if (query(fx, id, 0, MESHTOPO_QUERY_T_REPORT, NULL, 0, &r) != 0) return;
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.num_reports, 1);
+    if (r.num_reports == 1) {
+        const mt_report *want = mt_mesh_report(mesh);
+        const meshtopo_topology_t *t = &r.reports[0];
+        CHECK_EQ(t->num_verts, want->num_verts);
+        CHECK_EQ(t->num_faces, want->num_faces);
+        CHECK_EQ(t->num_faces_valid, want->num_faces_valid);
+        CHECK_EQ(t->num_edges, want->num_edges);
+        CHECK_EQ(t->boundary_edges, want->boundary_edges);
+        CHECK_EQ(t->boundary_loops, want->boundary_loops);
+        CHECK_EQ(t->nonmanifold_edges, want->nonmanifold_edges);
+        CHECK_EQ(t->nonmanifold_vertices, want->nonmanifold_vertices);
+        CHECK_EQ(t->connected_components, want->connected_components);
+        CHECK_EQ(t->euler_characteristic, want->euler_characteristic);
+        CHECK_EQ(t->closed, want->closed);
+        CHECK_EQ(t->manifold, want->manifold);
+        CHECK_EQ(t->orientable, want->orientable);
+        CHECK_EQ(t->genus, want->genus);
+        CHECK_EQ(t->num_components_listed, want->connected_components);
+        CHECK_EQ(t->num_defects, want->num_defects);
+        CHECK_EQ(t->num_defects_listed, want->num_defects);
+        for (size_t i = 0; i < want->num_defects && (int64_t)i < t->num_defects_listed; i++) {
+            CHECK_EQ(t->defect_kind[i], want->defects[i].kind);
+            CHECK_EQ(t->defect_a[i], (int32_t)want->defects[i].a);
+            CHECK_EQ(t->defect_b[i], (int32_t)want->defects[i].b);
+            CHECK_EQ(t->defect_c[i], (int32_t)want->defects[i].c);
+        }
+        CHECK_EQ(t->version, r.version);
+        CHECK(strcmp(t->mesh_id, id) == 0);
+    }
+    meshtopo_reply_t_decode_cleanup(&r);
+}
+
+/* Submits list as `id` and checks every query kind against the core. */
+static void check_every_kind(fixture *fx, const char *id, const mt_face_list *list)
+{
+    int32_t version = submit_ok(fx, id, list);
+    CHECK(version >= 1);
+    mt_mesh *mesh = NULL;
+    CHECK_OK(mt_mesh_build(list, NULL, &mesh, NULL));
+    if (!mesh) return;
+    CHECK_OK(mt_mesh_validate(mesh, NULL));
+    uint32_t nv = mt_mesh_num_verts(mesh), nf = mt_mesh_num_faces(mesh);
+    int32_t *verts = malloc(nv * sizeof *verts);
+    int32_t *faces = malloc(nf * sizeof *faces);
+    for (uint32_t v = 0; v < nv; v++) verts[v] = (int32_t)v;
+    for (uint32_t f = 0; f < nf; f++) faces[f] = (int32_t)f;
+    /* Edge pairs: every side of the first faces (both directions), plus a
+     * pair that is no edge. */
+    int32_t pairs[2 * 64 + 2];
+    int32_t npairs = 0;
+    uint64_t at = 0;
+    for (uint32_t f = 0; f < nf && npairs < 2 * 60; f++) {
+        uint32_t size = list->face_sizes[f];
+        for (uint32_t k = 0; k < size && npairs < 2 * 60; k++) {
+            uint32_t a = list->face_indices[at + k], b = list->face_indices[at + (k + 1) % size];
+            if (a >= nv || b >= nv) continue;
+            pairs[npairs++] = (int32_t)(k % 2 ? b : a);
+            pairs[npairs++] = (int32_t)(k % 2 ? a : b);
+        }
+        at += size;
+    }
+    pairs[npairs++] = 0;
+    pairs[npairs++] = 0;
+    check_kind(fx, id, mesh, MESHTOPO_QUERY_T_VERTEX_RING, verts, (int32_t)nv, __LINE__);
+    check_kind(fx, id, mesh, MESHTOPO_QUERY_T_VALENCE, verts, (int32_t)nv, __LINE__);
+    check_kind(fx, id, mesh, MESHTOPO_QUERY_T_FACE_NEIGHBORS, faces, (int32_t)nf, __LINE__);
+    check_kind(fx, id, mesh, MESHTOPO_QUERY_T_EDGE_FACES, pairs, npairs, __LINE__);
+    check_kind(fx, id, mesh, MESHTOPO_QUERY_T_BOUNDARY_LOOPS, NULL, 0, __LINE__);
+    check_kind(fx, id, mesh, MESHTOPO_QUERY_T_COMPONENTS, NULL, 0, __LINE__);
+    check_kind(fx, id, mesh, MESHTOPO_QUERY_T_COMPONENTS, faces, (int32_t)nf, __LINE__);
+    check_kind(fx, id, mesh, MESHTOPO_QUERY_T_DEFECTS, NULL, 0, __LINE__);
+    int32_t kinds[] = {MT_DEFECT_NONMANIFOLD_EDGE, MT_DEFECT_DEGENERATE_FACE};
+    check_kind(fx, id, mesh, MESHTOPO_QUERY_T_DEFECTS, kinds, 2, __LINE__);
+    check_report(fx, id, mesh);
+    free(verts);
+    free(faces);
+    mt_mesh_destroy(mesh);
+}
+
+static void load_corpus(const char *name, mt_face_list *out)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", mt_test_corpus_dir(), name);
+    mt_diag diag;
+    mt_status s = mt_read_file(path, MT_FORMAT_AUTO, out, &diag);
+    if (s != MT_OK) mt_test_fail(__FILE__, __LINE__, "reading %s: %s", path, diag.message);
+}
+
+/* The daemon still answers: a valence query on a held mesh succeeds. */
+static void check_still_serving(fixture *fx, const char *id)
+{
+    int32_t v = 0;
+    meshtopo_reply_t r;
+    if (query(fx, id, 0, MESHTOPO_QUERY_T_VALENCE, &v, 1, &r) != 0) return;
+    if (r.status != 0) mt_test_fail(__FILE__, __LINE__, "no longer serving %s: %s", id, r.error);
+    CHECK_EQ(r.num_items, 1);
+    meshtopo_reply_t_decode_cleanup(&r);
+}
+
+/* A fixture holding a cube as "cube". */
+static void fixture_with_cube(fixture *fx)
+{
+    fixture_init(fx);
+    mt_face_list cube;
+    CHECK_OK(mt_gen_platonic(MT_CUBE, &cube));
+    CHECK_EQ(submit_ok(fx, "cube", &cube), 1);
+    mt_face_list_free(&cube);
+}
+
+/* ---- tests ---- */
+
+static void test_generated_every_kind(void)
+{
+    fixture fx;
+    fixture_init(&fx);
+    mt_face_list grid, fin;
+    CHECK_OK(mt_gen_grid(4, 3, true, &grid));
+    check_every_kind(&fx, "grid", &grid);
+    CHECK_OK(mt_gen_fin(&fin));
+    check_every_kind(&fx, "fin", &fin);
+    CHECK_EQ(fx.topology_messages, 2);
+    mt_face_list_free(&grid);
+    mt_face_list_free(&fin);
+    fixture_free(&fx);
+}
+
+static void test_corpus_every_kind(void)
+{
+    fixture fx;
+    fixture_init(&fx);
+    const char *names[] = {"npm_teapot.off", "cgal_many_umbrellas.off", "vcg_nonmanifold.off",
+                           "assimp_malformed.off"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        mt_face_list list;
+        memset(&list, 0, sizeof list);
+        load_corpus(names[i], &list);
+        if (list.num_verts) check_every_kind(&fx, names[i], &list);
+        mt_face_list_free(&list);
+    }
+    fixture_free(&fx);
+}
+
+static void test_versions_and_list(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    mt_face_list tet;
+    CHECK_OK(mt_gen_platonic(MT_TETRAHEDRON, &tet));
+    CHECK_EQ(submit_ok(&fx, "cube", &tet), 2);
+    int32_t v7 = 7;
+    meshtopo_reply_t r;
+    /* version 1 is still the cube: vertex 7 exists there only. */
+    if (query(&fx, "cube", 1, MESHTOPO_QUERY_T_VALENCE, &v7, 1, &r) == 0) {
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.version, 1);
+        CHECK_EQ(r.num_values, 1);
+        if (r.num_values == 1) CHECK_EQ(r.values[0], 3);
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    check_query_error(&fx, "cube", 0, MESHTOPO_QUERY_T_VALENCE, &v7, 1,
+                      MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "ids[0] = 7", __LINE__);
+    if (query(&fx, "", 0, MESHTOPO_QUERY_T_LIST_MESHES, NULL, 0, &r) == 0) {
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.num_meshes, 2);
+        if (r.num_meshes == 2) {
+            CHECK_EQ(r.list_versions[0], 1);
+            CHECK_EQ(r.list_num_verts[0], 8);
+            CHECK_EQ(r.list_versions[1], 2);
+            CHECK_EQ(r.list_num_verts[1], 4);
+            CHECK(strcmp(r.list_sources[1], "test_dispatch") == 0);
+        }
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    mt_face_list_free(&tet);
+    fixture_free(&fx);
+}
+
+static void test_content_hash(void)
+{
+    fixture fx;
+    fixture_init(&fx);
+    mt_face_list cube;
+    CHECK_OK(mt_gen_platonic(MT_CUBE, &cube));
+    meshtopo_mesh_t m = mesh_msg(&fx, "cube", &cube);
+    int size = meshtopo_mesh_t_encoded_size(&m);
+    unsigned char *buf = malloc((size_t)size);
+    meshtopo_mesh_t_encode(buf, 0, size, &m);
+    /* The content starts at num_verts: after fingerprint, utime, request_id,
+     * three strings and the strict flag. */
+    size_t start = 8 + 8 + 8 + (4 + strlen(m.reply_channel) + 1) + (4 + strlen(m.mesh_id) + 1) +
+                   (4 + strlen(m.source) + 1) + 1;
+    uint64_t want = 0xcbf29ce484222325ull;
+    for (size_t i = start; i < (size_t)size; i++) want = (want ^ buf[i]) * 0x100000001b3ull;
+    meshtopo_ack_t ack;
+    if (submit(&fx, &m, &ack) == 0) {
+        CHECK_EQ(ack.status, 0);
+        CHECK(ack.content_hash == (int64_t)want);
+        CHECK(ack.num_reports == 1 && ack.reports[0].content_hash == (int64_t)want);
+        meshtopo_ack_t_decode_cleanup(&ack);
+    }
+    free(buf);
+    mt_face_list_free(&cube);
+    fixture_free(&fx);
+}
+
+static void test_bad_undecodable(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    mt_face_list cube;
+    CHECK_OK(mt_gen_platonic(MT_CUBE, &cube));
+    meshtopo_mesh_t m = mesh_msg(&fx, "cut", &cube);
+    int size = meshtopo_mesh_t_encoded_size(&m);
+    unsigned char *buf = malloc((size_t)size);
+    meshtopo_mesh_t_encode(buf, 0, size, &m);
+    publish_bytes(&fx, "MESHTOPO_SUBMIT", buf, (size_t)size - 5); /* cut short */
+    meshtopo_ack_t ack;
+    if (wait_for(&fx, &mt_msgs_type_ack, m.request_id, &ack) == 0) {
+        CHECK_ERROR(ack.status, ack.error, MESHTOPO_STATUS_CODE_T_UNDECODABLE, "undecodable");
+        CHECK_EQ(ack.version, 0);
+        meshtopo_ack_t_decode_cleanup(&ack);
+    }
+    /* A negative array length on the wire: num_indices, the last int32
+     * before the (empty) index array of a mesh without faces. */
+    meshtopo_mesh_t empty = m;
+    empty.request_id = fx.next_request_id++;
+    empty.num_faces = 0;
+    empty.num_indices = 0;
+    size = meshtopo_mesh_t_encoded_size(&empty);
+    meshtopo_mesh_t_encode(buf, 0, size, &empty);
+    memset(buf + size - 4, 0xff, 4);
+    publish_bytes(&fx, "MESHTOPO_SUBMIT", buf, (size_t)size);
+    if (wait_for(&fx, &mt_msgs_type_ack, empty.request_id, &ack) == 0) {
+        CHECK_ERROR(ack.status, ack.error, MESHTOPO_STATUS_CODE_T_UNDECODABLE, "negative");
+        meshtopo_ack_t_decode_cleanup(&ack);
+    }
+    /* Garbage without a readable header gets no reply but is counted. */
+    publish_bytes(&fx, "MESHTOPO_QUERY", "abc", 3);
+    check_still_serving(&fx, "cube");
+    free(buf);
+    mt_face_list_free(&cube);
+    fixture_free(&fx);
+}
+
+static void test_bad_fingerprint(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    meshtopo_query_t q;
+    memset(&q, 0, sizeof q);
+    q.request_id = 4242;
+    q.reply_channel = REPLY_CHANNEL;
+    q.mesh_id = "cube";
+    q.kind = MESHTOPO_QUERY_T_REPORT;
+    int size = meshtopo_query_t_encoded_size(&q);
+    unsigned char *buf = malloc((size_t)size);
+    meshtopo_query_t_encode(buf, 0, size, &q);
+    buf[3] ^= 0x5a;
+    publish_bytes(&fx, "MESHTOPO_QUERY", buf, (size_t)size);
+    meshtopo_reply_t r;
+    if (wait_for(&fx, &mt_msgs_type_reply, 4242, &r) == 0) {
+        CHECK_ERROR(r.status, r.error, MESHTOPO_STATUS_CODE_T_UNDECODABLE, "fingerprint");
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    /* A query_t sent to the submission channel. */
+    buf[3] ^= 0x5a;
+    q.request_id = 4243;
+    meshtopo_query_t_encode(buf, 0, size, &q);
+    publish_bytes(&fx, "MESHTOPO_SUBMIT", buf, (size_t)size);
+    meshtopo_ack_t ack;
+    if (wait_for(&fx, &mt_msgs_type_ack, 4243, &ack) == 0) {
+        CHECK_ERROR(ack.status, ack.error, MESHTOPO_STATUS_CODE_T_UNDECODABLE, "mesh_t");
+        meshtopo_ack_t_decode_cleanup(&ack);
+    }
+    check_still_serving(&fx, "cube");
+    free(buf);
+    fixture_free(&fx);
+}
+
+/* Submits m (changed by the caller) and checks the error ack. */
+static void check_submit_error(fixture *fx, meshtopo_mesh_t *m, int32_t status, const char *needle,
+                               int line)
+{
+    m->request_id = fx->next_request_id++;
+    meshtopo_ack_t ack;
+    if (submit(fx, m, &ack) != 0) return;
+    if (ack.status != status || !strstr(ack.error, needle))
+        mt_test_fail(__FILE__, line, "submit: status %d '%s', expected %d naming '%s'",
+                     (int)ack.status, ack.error, (int)status, needle);
+    CHECK_EQ(ack.version, 0);
+    meshtopo_ack_t_decode_cleanup(&ack);
+}
+
+static void test_bad_counts(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    mt_face_list cube;
+    CHECK_OK(mt_gen_platonic(MT_CUBE, &cube));
+    meshtopo_mesh_t m = mesh_msg(&fx, "bad", &cube);
+    m.num_verts = -8;
+    m.num_position_values = 0;
+    check_submit_error(&fx, &m, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "num_verts", __LINE__);
+    m = mesh_msg(&fx, "bad", &cube);
+    m.num_verts = 9; /* positions hold 8 */
+    check_submit_error(&fx, &m, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "num_position_values",
+                       __LINE__);
+    int32_t counts[6] = {4, 4, 4, 4, 8, -4};
+    m = mesh_msg(&fx, "bad", &cube);
+    m.face_vertex_counts = counts;
+    check_submit_error(&fx, &m, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "face_vertex_counts[5]",
+                       __LINE__);
+    int32_t counts2[6] = {4, 4, 4, 4, 4, 3};
+    m.face_vertex_counts = counts2;
+    check_submit_error(&fx, &m, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "num_indices", __LINE__);
+    check_still_serving(&fx, "cube");
+    mt_face_list_free(&cube);
+    fixture_free(&fx);
+}
+
+static void test_bad_too_large(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    mt_face_list empty;
+    memset(&empty, 0, sizeof empty);
+    meshtopo_mesh_t m = mesh_msg(&fx, "huge", &empty);
+    m.num_verts = 100001; /* the fixture's --max-verts is 100000 */
+    check_submit_error(&fx, &m, MESHTOPO_STATUS_CODE_T_TOO_LARGE, "--max-verts", __LINE__);
+    m.num_verts = 2000000000;
+    check_submit_error(&fx, &m, MESHTOPO_STATUS_CODE_T_TOO_LARGE, "num_verts", __LINE__);
+    /* 200,001 triangles on 3 vertices: over the fixture's --max-faces 200000. */
+    mt_face_list many;
+    CHECK_OK(mt_face_list_alloc(&many, 3, 200001, 3 * 200001, NULL));
+    for (uint32_t f = 0; f < many.num_faces; f++) {
+        many.face_sizes[f] = 3;
+        for (uint32_t k = 0; k < 3; k++) many.face_indices[3 * f + k] = k;
+    }
+    m = mesh_msg(&fx, "huge", &many);
+    check_submit_error(&fx, &m, MESHTOPO_STATUS_CODE_T_TOO_LARGE, "--max-faces", __LINE__);
+    check_still_serving(&fx, "cube");
+    mt_face_list_free(&many);
+    fixture_free(&fx);
+}
+
+static void test_bad_mesh_ids(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    mt_face_list tet;
+    CHECK_OK(mt_gen_platonic(MT_TETRAHEDRON, &tet));
+    char *long_id = malloc(10 * 1024 + 1);
+    memset(long_id, 'a', 10 * 1024);
+    long_id[10 * 1024] = 0;
+    const char *ids[] = {"../x", "a/b", "", long_id, "tab\there"};
+    for (size_t i = 0; i < sizeof ids / sizeof ids[0]; i++) {
+        meshtopo_mesh_t m = mesh_msg(&fx, ids[i], &tet);
+        check_submit_error(&fx, &m, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "mesh_id", __LINE__);
+        int32_t v = 0;
+        check_query_error(&fx, ids[i], 0, MESHTOPO_QUERY_T_VALENCE, &v, 1,
+                          MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "mesh_id", __LINE__);
+    }
+    meshtopo_reply_t r;
+    if (query(&fx, "", 0, MESHTOPO_QUERY_T_LIST_MESHES, NULL, 0, &r) == 0) {
+        CHECK_EQ(r.num_meshes, 1); /* only the cube was stored */
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    check_still_serving(&fx, "cube");
+    free(long_id);
+    mt_face_list_free(&tet);
+    fixture_free(&fx);
+}
+
+static void test_bad_queries(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    int32_t ids[] = {0, 1, 2};
+    check_query_error(&fx, "nosuch", 0, MESHTOPO_QUERY_T_VALENCE, ids, 1,
+                      MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH, "nosuch", __LINE__);
+    check_query_error(&fx, "cube", 9, MESHTOPO_QUERY_T_VALENCE, ids, 1,
+                      MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH, "version 9", __LINE__);
+    check_query_error(&fx, "cube", 0, 42, ids, 1, MESHTOPO_STATUS_CODE_T_UNKNOWN_KIND, "kind: 42",
+                      __LINE__);
+    check_query_error(&fx, "cube", 0, 0, ids, 1, MESHTOPO_STATUS_CODE_T_UNKNOWN_KIND, "kind: 0",
+                      __LINE__);
+    int32_t out_of_range[] = {0, 8};
+    check_query_error(&fx, "cube", 0, MESHTOPO_QUERY_T_VERTEX_RING, out_of_range, 2,
+                      MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "ids[1] = 8", __LINE__);
+    int32_t negative[] = {-1};
+    check_query_error(&fx, "cube", 0, MESHTOPO_QUERY_T_FACE_NEIGHBORS, negative, 1,
+                      MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "ids[0] = -1", __LINE__);
+    int32_t faces[] = {6};
+    check_query_error(&fx, "cube", 0, MESHTOPO_QUERY_T_COMPONENTS, faces, 1,
+                      MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "face", __LINE__);
+    check_query_error(&fx, "cube", 0, MESHTOPO_QUERY_T_EDGE_FACES, ids, 3,
+                      MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "odd", __LINE__);
+    check_query_error(&fx, "cube", 0, MESHTOPO_QUERY_T_VERTEX_RING, NULL, 0,
+                      MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "needs ids", __LINE__);
+    check_query_error(&fx, "cube", 0, MESHTOPO_QUERY_T_REPORT, ids, 1,
+                      MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "takes no ids", __LINE__);
+    int32_t bad_kind[] = {8};
+    check_query_error(&fx, "cube", 0, MESHTOPO_QUERY_T_DEFECTS, bad_kind, 1,
+                      MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "DEFECT_", __LINE__);
+    check_query_error(&fx, "cube", -1, MESHTOPO_QUERY_T_VALENCE, ids, 1,
+                      MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "version", __LINE__);
+    check_still_serving(&fx, "cube");
+    fixture_free(&fx);
+}
+
+static void test_nan_positions(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    mt_face_list tet;
+    CHECK_OK(mt_gen_platonic(MT_TETRAHEDRON, &tet));
+    tet.positions[3 * 2 + 1] = NAN;
+    /* Not strict: stored, and the report lists the non-finite coordinate. */
+    meshtopo_mesh_t m = mesh_msg(&fx, "nan", &tet);
+    meshtopo_ack_t ack;
+    if (submit(&fx, &m, &ack) == 0) {
+        CHECK_EQ(ack.status, 0);
+        CHECK_EQ(ack.num_reports, 1);
+        if (ack.num_reports == 1) {
+            const meshtopo_topology_t *t = &ack.reports[0];
+            CHECK_EQ(t->nonfinite_vertices, 1);
+            CHECK_EQ(t->num_defects_listed, 1);
+            if (t->num_defects_listed == 1) {
+                CHECK_EQ(t->defect_kind[0], MESHTOPO_TOPOLOGY_T_DEFECT_NONFINITE_COORD);
+                CHECK_EQ(t->defect_a[0], 2);
+                CHECK_EQ(t->defect_b[0], 1);
+            }
+        }
+        meshtopo_ack_t_decode_cleanup(&ack);
+    }
+    /* Strict: refused, with the report and an error naming the defect. */
+    m = mesh_msg(&fx, "nan_strict", &tet);
+    m.strict = 1;
+    if (submit(&fx, &m, &ack) == 0) {
+        CHECK_ERROR(ack.status, ack.error, MESHTOPO_STATUS_CODE_T_DEFECT_REFUSED, "vertex 2");
+        CHECK_EQ(ack.version, 0);
+        CHECK_EQ(ack.num_reports, 1);
+        meshtopo_ack_t_decode_cleanup(&ack);
+    }
+    check_query_error(&fx, "nan_strict", 0, MESHTOPO_QUERY_T_REPORT, NULL, 0,
+                      MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH, "nan_strict", __LINE__);
+    check_still_serving(&fx, "cube");
+    mt_face_list_free(&tet);
+    fixture_free(&fx);
+}
+
+static void test_duplicate_request(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    mt_face_list tet;
+    CHECK_OK(mt_gen_platonic(MT_TETRAHEDRON, &tet));
+    meshtopo_mesh_t m = mesh_msg(&fx, "tet", &tet);
+    meshtopo_ack_t first, again;
+    if (submit(&fx, &m, &first) == 0) {
+        if (submit(&fx, &m, &again) == 0) {
+            CHECK_EQ(again.status, 0);
+            CHECK_EQ(again.version, first.version);
+            CHECK_EQ(again.utime, first.utime); /* the same bytes, not a new ack */
+            meshtopo_ack_t_decode_cleanup(&again);
+        }
+        meshtopo_ack_t_decode_cleanup(&first);
+    }
+    int64_t builds = atomic_load(&fx.daemon->builds);
+    CHECK_EQ(builds, 2); /* cube and tet, not tet twice */
+    meshtopo_query_t q;
+    memset(&q, 0, sizeof q);
+    q.request_id = 777;
+    q.reply_channel = REPLY_CHANNEL;
+    q.mesh_id = "tet";
+    q.kind = MESHTOPO_QUERY_T_REPORT;
+    meshtopo_reply_t r1, r2;
+    publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    if (wait_for(&fx, &mt_msgs_type_reply, 777, &r1) == 0) {
+        publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+        if (wait_for(&fx, &mt_msgs_type_reply, 777, &r2) == 0) {
+            CHECK_EQ(r2.status, 0);
+            CHECK_EQ(r2.utime, r1.utime);
+            meshtopo_reply_t_decode_cleanup(&r2);
+        }
+        meshtopo_reply_t_decode_cleanup(&r1);
+    }
+    CHECK_EQ(atomic_load(&fx.daemon->duplicates), 2);
+    mt_face_list_free(&tet);
+    fixture_free(&fx);
+}
+
+static void test_heartbeat(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    int32_t v = 100;
+    check_query_error(&fx, "cube", 0, MESHTOPO_QUERY_T_VALENCE, &v, 1,
+                      MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "ids[0]", __LINE__);
+    mtd_heartbeat_publish(fx.daemon);
+    for (int i = 0; i < 100 && !fx.have_status; i++) lcm_handle_timeout(fx.lcm, 50);
+    CHECK(fx.have_status);
+    if (fx.have_status) {
+        const meshtopo_status_t *s = &fx.last_status;
+        CHECK(strcmp(s->name, "meshtopod") == 0);
+        CHECK(strcmp(s->channel_prefix, "MESHTOPO_") == 0);
+        CHECK_EQ(s->meshes_held, 1);
+        CHECK_EQ(s->versions_held, 1);
+        CHECK(s->memory_bytes > 0);
+        CHECK_EQ(s->submissions, 1);
+        CHECK_EQ(s->builds, 1);
+        CHECK_EQ(s->queries, 1);
+        CHECK_EQ(s->errors, 1);
+        CHECK_EQ(s->worker_threads, 2);
+        CHECK(strstr(s->last_error, "ids[0] = 100") != NULL);
+        CHECK(s->last_error_utime > 0);
+    }
+    fixture_free(&fx);
+}
+
+static const mt_test_case cases[] = {
+    {"generated_every_kind", test_generated_every_kind},
+    {"corpus_every_kind", test_corpus_every_kind},
+    {"versions_and_list", test_versions_and_list},
+    {"content_hash", test_content_hash},
+    {"bad_undecodable", test_bad_undecodable},
+    {"bad_fingerprint", test_bad_fingerprint},
+    {"bad_counts", test_bad_counts},
+    {"bad_too_large", test_bad_too_large},
+    {"bad_mesh_ids", test_bad_mesh_ids},
+    {"bad_queries", test_bad_queries},
+    {"nan_positions", test_nan_positions},
+    {"duplicate_request", test_duplicate_request},
+    {"heartbeat", test_heartbeat},
+};
+const mt_test_table mt_tests_dispatch = {cases, sizeof cases / sizeof cases[0]};
