@@ -20,7 +20,10 @@ enum {
     MT_CLI_EXIT_DEFECT = 1, /* --fail-on-defect and the report lists a defect */
     MT_CLI_EXIT_USAGE = 2,  /* bad command line */
     MT_CLI_EXIT_READ = 3,   /* a file could not be read or parsed */
-    MT_CLI_EXIT_BUILD = 4 /* the mesh could not be built (strict mode refused it, too large, ...) */
+    MT_CLI_EXIT_BUILD =
+        4, /* the mesh could not be built (strict mode refused it, too large, ...) */
+    MT_CLI_EXIT_REFUSED = 5,  /* meshtopod answered with an error (unknown mesh, refused defect) */
+    MT_CLI_EXIT_NO_ANSWER = 6 /* no answer from meshtopod (timeout) or LCM could not be used */
 };
 
 /* One option of a command: `--name` (a flag) or `--name VALUE` / `--name=VALUE`. */
@@ -54,6 +57,10 @@ typedef struct mt_cli_command {
 
 /* The commands, each defined in its cmd_*.c. */
 extern const mt_cli_command mt_cli_cmd_inspect;
+extern const mt_cli_command mt_cli_cmd_send;
+extern const mt_cli_command mt_cli_cmd_query;
+extern const mt_cli_command mt_cli_cmd_list;
+extern const mt_cli_command mt_cli_cmd_watch;
 
 /* Parses argv[0..argc) (the arguments after the command name) against the
  * command's options into *out (arrays malloc'ed; free with mt_cli_args_free).
@@ -98,6 +105,13 @@ typedef struct mt_cli_mesh {
     mt_mesh *mesh;
     double read_ms, build_ms;
 } mt_cli_mesh;
+
+/* Reads `path` (format auto-detected unless `format_name` names one) into
+ * *out_list without building it. Returns MT_CLI_EXIT_OK, MT_CLI_EXIT_USAGE
+ * (unknown format name) or MT_CLI_EXIT_READ after printing the reason, naming
+ * the file, to stderr; *out_list is then empty. */
+int mt_cli_face_list_read(const char *command, const char *path, const char *format_name,
+                          mt_face_list *out_list);
 
 /* Reads `path` (format auto-detected unless `format_name` names one) and
  * builds it. Returns MT_CLI_EXIT_OK, MT_CLI_EXIT_USAGE (unknown format

@@ -14,6 +14,7 @@ void mt_json_init(mt_json *j, FILE *out)
 
 static void newline_indent(mt_json *j, int depth)
 {
+    if (j->compact) return;
     fputc('\n', j->out);
     for (int i = 0; i < depth; i++) fputc(' ', j->out);
 }

@@ -19,6 +19,7 @@ typedef struct mt_json {
     bool has_items[MT_JSON_MAX_DEPTH]; /* something written in it yet */
     bool key_pending;                  /* a key was written, its value is due */
     bool error;                        /* misuse detected; output is incomplete */
+    bool compact; /* set after init: no newlines or indentation (one line per document) */
 } mt_json;
 
 void mt_json_init(mt_json *j, FILE *out);

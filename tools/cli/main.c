@@ -11,7 +11,7 @@
 #endif
 
 static const mt_cli_command *const commands[] = {
-    &mt_cli_cmd_inspect,
+    &mt_cli_cmd_inspect, &mt_cli_cmd_send, &mt_cli_cmd_query, &mt_cli_cmd_list, &mt_cli_cmd_watch,
 };
 static const size_t num_commands = sizeof commands / sizeof commands[0];
 
@@ -47,7 +47,12 @@ static void print_help(FILE *out)
             "  1  --fail-on-defect was given and the report lists a defect\n"
             "  2  usage error (unknown command or option, bad argument)\n"
             "  3  a file could not be read or parsed\n"
-            "  4  the mesh could not be built (e.g. --strict refused a defect)\n");
+            "  4  the mesh could not be built (e.g. --strict refused a defect)\n"
+            "  5  meshtopod answered with an error (unknown mesh, refused defect, ...)\n"
+            "  6  no answer from meshtopod (timeout), or LCM could not be used\n"
+            "\n"
+            "send, query, list and watch talk to meshtopod over LCM; --lcm-url and --prefix\n"
+            "default to $MESHTOPO_LCM_URL and $MESHTOPO_PREFIX.\n");
 }
 
 static int run_command(const mt_cli_command *cmd, int argc, char **argv)

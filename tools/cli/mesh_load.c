@@ -40,22 +40,19 @@ static const char *diag_text(const mt_diag *diag, mt_status status)
     return diag->message[0] ? diag->message : mt_strerror(status);
 }
 
-int mt_cli_mesh_load(const char *command, const char *path, const char *format_name,
-                     const mt_build_options *options, mt_cli_mesh *out)
+int mt_cli_face_list_read(const char *command, const char *path, const char *format_name,
+                          mt_face_list *out_list)
 {
-    memset(out, 0, sizeof *out);
+    memset(out_list, 0, sizeof *out_list);
     mt_format format = MT_FORMAT_AUTO;
     if (format_name && !format_parse(format_name, &format)) {
         mt_cli_error(command, "unknown format '%s' (auto, off, obj, ply-ascii, ply-le, ply-be)",
                      format_name);
         return MT_CLI_EXIT_USAGE;
     }
-
     mt_diag diag;
     mt_diag_clear(&diag);
-    double t0 = mt_cli_now_ms();
-    mt_status st = mt_read_file(path, format, &out->list, &diag);
-    out->read_ms = mt_cli_now_ms() - t0;
+    mt_status st = mt_read_file(path, format, out_list, &diag);
     if (st != MT_OK) {
         const char *text = diag_text(&diag, st);
         if (strstr(text, path))
@@ -64,10 +61,22 @@ int mt_cli_mesh_load(const char *command, const char *path, const char *format_n
             mt_cli_error(command, "cannot read %s: %s", path, text);
         return MT_CLI_EXIT_READ;
     }
+    return MT_CLI_EXIT_OK;
+}
 
+int mt_cli_mesh_load(const char *command, const char *path, const char *format_name,
+                     const mt_build_options *options, mt_cli_mesh *out)
+{
+    memset(out, 0, sizeof *out);
+    double t0 = mt_cli_now_ms();
+    int code = mt_cli_face_list_read(command, path, format_name, &out->list);
+    out->read_ms = mt_cli_now_ms() - t0;
+    if (code != MT_CLI_EXIT_OK) return code;
+
+    mt_diag diag;
     mt_diag_clear(&diag);
     t0 = mt_cli_now_ms();
-    st = mt_mesh_build(&out->list, options, &out->mesh, &diag);
+    mt_status st = mt_mesh_build(&out->list, options, &out->mesh, &diag);
     out->build_ms = mt_cli_now_ms() - t0;
     if (st != MT_OK) {
         mt_cli_error(command, "cannot build a mesh from %s: %s", path, diag_text(&diag, st));

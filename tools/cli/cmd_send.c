@@ -1,0 +1,120 @@
+/* `meshtopo send FILE --id ID`: read a mesh file (OFF, OBJ, PLY, gzip too)
+ * with meshtopo::io, submit it to meshtopod as a new version of mesh ID and
+ * print the acknowledgement: version, content hash and the daemon's topology
+ * report, readable or as JSON. Exit codes as in `meshtopo --help`. */
+#include <string.h>
+
+#include "remote.h"
+
+static const mt_cli_option options[] = {
+    {"id", "ID", "mesh id to store it under (required; 1-255 printable bytes, no '/' or '..')"},
+    {"strict", NULL, "the daemon refuses the mesh if it has any defect (exit 5, report printed)"},
+    {"json", NULL, "print the acknowledgement as one JSON object"},
+    {"format", "NAME", "file format: auto (default), off, obj, ply-ascii, ply-le, ply-be"},
+    MT_CLI_REMOTE_OPTIONS,
+};
+
+static void print_json(const char *path, const mt_client_ack *ack)
+{
+    char hash[24];
+    mt_json j;
+    mt_json_init(&j, stdout);
+    mt_json_object_begin(&j);
+    mt_json_key(&j, "file");
+    mt_json_string(&j, path);
+    mt_json_key(&j, "mesh_id");
+    mt_json_string(&j, ack->msg.mesh_id);
+    mt_json_key(&j, "status");
+    mt_json_string(&j, mt_client_code_name(ack->msg.status));
+    mt_json_key(&j, "error");
+    mt_json_string(&j, ack->msg.error);
+    mt_json_key(&j, "version");
+    mt_json_int(&j, ack->msg.version);
+    mt_json_key(&j, "content_hash");
+    mt_json_string(&j, mt_cli_hash_text(ack->msg.content_hash, hash, sizeof hash));
+    mt_json_key(&j, "report");
+    const meshtopo_topology_t *t = mt_client_ack_report(ack);
+    if (t)
+        mt_cli_topology_write_json(&j, t);
+    else
+        mt_json_null(&j);
+    mt_json_object_end(&j);
+    mt_json_finish(&j);
+}
+
+static void print_text(const char *path, const mt_client_ack *ack)
+{
+    char hash[24];
+    if (ack->msg.status == MESHTOPO_STATUS_CODE_T_OK)
+        printf("sent %s as mesh %s version %d (content hash %s)\n", path, ack->msg.mesh_id,
+               (int)ack->msg.version, mt_cli_hash_text(ack->msg.content_hash, hash, sizeof hash));
+    else
+        printf("meshtopod refused %s as mesh %s: %s: %s\n", path, ack->msg.mesh_id,
+               mt_client_code_name(ack->msg.status), ack->msg.error);
+    const meshtopo_topology_t *t = mt_client_ack_report(ack);
+    if (t) mt_cli_topology_print_text(t, stdout);
+}
+
+static int run_send(const mt_cli_args *args)
+{
+    const char *path = args->positionals[0];
+    const char *id = mt_cli_arg(args, "id");
+    if (!id) {
+        mt_cli_error("send", "--id ID is required");
+        return MT_CLI_EXIT_USAGE;
+    }
+    mt_cli_remote remote;
+    int code = mt_cli_remote_parse(args, &remote);
+    if (code != MT_CLI_EXIT_OK) return code;
+
+    mt_face_list list;
+    code = mt_cli_face_list_read("send", path, mt_cli_arg(args, "format"), &list);
+    if (code != MT_CLI_EXIT_OK) return code;
+
+    mt_client *client = NULL;
+    code = mt_cli_client_create("send", &remote, &client);
+    if (code != MT_CLI_EXIT_OK) {
+        mt_face_list_free(&list);
+        return code;
+    }
+    mt_client_ack ack;
+    mt_diag diag;
+    mt_diag_clear(&diag);
+    mt_status st = mt_client_submit(client, id, &list, mt_cli_flag(args, "strict"), &ack, &diag);
+    bool answered = ack.msg.mesh_id != NULL;
+    if (answered) {
+        if (mt_cli_flag(args, "json"))
+            print_json(path, &ack);
+        else
+            print_text(path, &ack);
+    }
+    if (st != MT_OK) code = mt_cli_call_failed("send", id, &remote, st, answered, &diag);
+    if (fflush(stdout) != 0 && code == MT_CLI_EXIT_OK) {
+        mt_cli_error("send", "cannot write the output");
+        code = MT_CLI_EXIT_USAGE;
+    }
+    mt_client_ack_free(&ack);
+    mt_client_destroy(client);
+    mt_face_list_free(&list);
+    return code;
+}
+
+const mt_cli_command mt_cli_cmd_send = {
+    .name = "send",
+    .summary = "submit a mesh file to meshtopod and print its acknowledgement",
+    .synopsis = "FILE --id ID [--strict] [--json] [--lcm-url URL] [--prefix PREFIX]",
+    .description =
+        "Reads FILE (OFF, OBJ or PLY, gzip-compressed too) and submits it to meshtopod over\n"
+        "LCM as a new version of mesh ID (resubmitting an id makes a new version). Prints the\n"
+        "version, the content hash and the topology report the daemon built; with --json one\n"
+        "object {file, mesh_id, status, error, version, content_hash, report}.\n"
+        "\n"
+        "exit codes: 0 stored, 2 usage error (also a mesh id the client refuses), 3 FILE could\n"
+        "not be read or parsed, 4 the mesh is too large for a message, 5 meshtopod refused it\n"
+        "(e.g. --strict and a defect: the report is printed too), 6 no answer from meshtopod.\n",
+    .options = options,
+    .num_options = sizeof options / sizeof options[0],
+    .min_positionals = 1,
+    .max_positionals = 1,
+    .run = run_send,
+};

@@ -1,0 +1,103 @@
+/* Connection options, client creation and error reporting shared by the
+ * commands that talk to meshtopod (see remote.h). A failed call always ends
+ * in one stderr line naming the mesh and one of the documented exit codes:
+ * 5 when meshtopod answered with an error, 6 when it did not answer. */
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "remote.h"
+
+bool mt_cli_parse_int(const char *text, int *out)
+{
+    if (!text[0] || text[0] == '-' || text[0] == '+') return false;
+    char *end = NULL;
+    unsigned long long v = strtoull(text, &end, 10);
+    if (*end != '\0' || v > INT_MAX) return false;
+    *out = (int)v;
+    return true;
+}
+
+int mt_cli_remote_parse(const mt_cli_args *args, mt_cli_remote *out)
+{
+    memset(out, 0, sizeof *out);
+    out->lcm_url = mt_cli_arg(args, "lcm-url");
+    if (!out->lcm_url) out->lcm_url = getenv(MT_CLI_ENV_LCM_URL);
+    if (out->lcm_url && !out->lcm_url[0]) out->lcm_url = NULL;
+    out->prefix = mt_cli_arg(args, "prefix");
+    if (!out->prefix) out->prefix = getenv(MT_CLI_ENV_PREFIX);
+    if (!out->prefix || !out->prefix[0]) out->prefix = MT_CLIENT_DEFAULT_PREFIX;
+    if (strlen(out->prefix) > MT_CLIENT_MAX_PREFIX) {
+        mt_cli_error(args->command, "--prefix: at most %d characters, got '%s'",
+                     MT_CLIENT_MAX_PREFIX, out->prefix);
+        return MT_CLI_EXIT_USAGE;
+    }
+    out->timeout_ms = MT_CLIENT_DEFAULT_TIMEOUT_MS;
+    out->retries = MT_CLIENT_DEFAULT_RETRIES;
+    const char *text = mt_cli_arg(args, "timeout-ms");
+    if (text) {
+        if (!mt_cli_parse_int(text, &out->timeout_ms) || out->timeout_ms == 0) {
+            mt_cli_error(args->command, "--timeout-ms: expected a positive count, got '%s'", text);
+            return MT_CLI_EXIT_USAGE;
+        }
+        out->timeout_given = true;
+    }
+    text = mt_cli_arg(args, "retries");
+    if (text && !mt_cli_parse_int(text, &out->retries)) {
+        mt_cli_error(args->command, "--retries: expected a count, got '%s'", text);
+        return MT_CLI_EXIT_USAGE;
+    }
+    return MT_CLI_EXIT_OK;
+}
+
+int mt_cli_client_create(const char *command, const mt_cli_remote *remote, mt_client **out)
+{
+    mt_client_options opts;
+    memset(&opts, 0, sizeof opts);
+    opts.lcm_url = remote->lcm_url;
+    opts.channel_prefix = remote->prefix;
+    opts.timeout_ms = remote->timeout_ms;
+    opts.retries = remote->retries > 0 ? remote->retries : -1; /* the client's 0 = default */
+    opts.source = "meshtopo-cli";
+    mt_diag diag;
+    mt_diag_clear(&diag);
+    mt_status st = mt_client_create(&opts, out, &diag);
+    if (st == MT_OK) return MT_CLI_EXIT_OK;
+    const char *why = diag.message[0] ? diag.message : mt_strerror(st);
+    if (st == MT_ERR_INVALID_ARG) {
+        mt_cli_error(command, "%s", why);
+        return MT_CLI_EXIT_USAGE;
+    }
+    mt_cli_error(command, "cannot talk LCM (%s): %s",
+                 remote->lcm_url ? remote->lcm_url : "default URL", why);
+    return MT_CLI_EXIT_NO_ANSWER;
+}
+
+int mt_cli_call_failed(const char *command, const char *mesh_id, const mt_cli_remote *remote,
+                       mt_status status, bool answered, const mt_diag *diag)
+{
+    const char *why = diag->message[0] ? diag->message : mt_strerror(status);
+    char subject[300] = "";
+    if (mesh_id) snprintf(subject, sizeof subject, "mesh '%s': ", mesh_id);
+    if (answered) {
+        mt_cli_error(command, "%smeshtopod refused: %s", subject, why);
+        return MT_CLI_EXIT_REFUSED;
+    }
+    if (strncmp(diag->message, "timeout:", 8) == 0) {
+        mt_cli_error(command,
+                     "%sno answer from meshtopod on %s* after %d attempt(s) of %d ms "
+                     "(is it running with this --prefix and --lcm-url?)",
+                     subject, remote->prefix, remote->retries + 1, remote->timeout_ms);
+        return MT_CLI_EXIT_NO_ANSWER;
+    }
+    mt_cli_error(command, "%s%s", subject, why);
+    if (status == MT_ERR_INVALID_ARG) return MT_CLI_EXIT_USAGE;
+    if (status == MT_ERR_TOO_LARGE) return MT_CLI_EXIT_BUILD;
+    return MT_CLI_EXIT_NO_ANSWER;
+}
+
+const char *mt_cli_hash_text(int64_t hash, char *buf, size_t size)
+{
+    snprintf(buf, size, "%016llx", (unsigned long long)(uint64_t)hash);
+    return buf;
+}

@@ -1,0 +1,70 @@
+/* The pieces shared by the commands that talk to meshtopod over LCM (send,
+ * query, list, watch): the common connection options and their environment
+ * defaults, creating the client, turning a call's outcome into an exit code
+ * and a message, and printing a topology_t report as text or JSON. */
+#ifndef MESHTOPO_CLI_REMOTE_H
+#define MESHTOPO_CLI_REMOTE_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "cli.h"
+#include "json_writer.h"
+#include "meshtopo/client.h"
+#include "meshtopo/msgs.h"
+
+/* Environment variables giving the defaults of --lcm-url and --prefix. */
+#define MT_CLI_ENV_LCM_URL "MESHTOPO_LCM_URL"
+#define MT_CLI_ENV_PREFIX "MESHTOPO_PREFIX"
+
+/* The option rows every remote command lists (look them up with
+ * mt_cli_remote_parse). */
+#define MT_CLI_REMOTE_OPTIONS                                                                     \
+    {"lcm-url", "URL", "LCM provider URL (default: $" MT_CLI_ENV_LCM_URL ", else LCM's own)"},    \
+        {"prefix", "PREFIX", "channel prefix (default: $" MT_CLI_ENV_PREFIX ", else MESHTOPO_)"}, \
+        {"timeout-ms", "MS", "wait this long for a reply to each attempt (default 1000)"},        \
+    {                                                                                             \
+        "retries", "N", "attempts after the first one (default 3)"                                \
+    }
+
+/* The connection settings after parsing (strings point into argv/environ). */
+typedef struct mt_cli_remote {
+    const char *lcm_url; /* NULL = LCM's default */
+    const char *prefix;  /* never NULL */
+    int timeout_ms;      /* > 0 */
+    int retries;         /* >= 0 */
+    bool timeout_given;  /* --timeout-ms was on the command line */
+} mt_cli_remote;
+
+/* Reads --lcm-url, --prefix, --timeout-ms and --retries (with the
+ * environment defaults). Returns MT_CLI_EXIT_OK or MT_CLI_EXIT_USAGE after
+ * printing the problem. */
+int mt_cli_remote_parse(const mt_cli_args *args, mt_cli_remote *out);
+
+/* Creates a client with these settings. Returns MT_CLI_EXIT_OK and *out, or
+ * MT_CLI_EXIT_USAGE (bad prefix) / MT_CLI_EXIT_NO_ANSWER (LCM could not
+ * start) after printing the reason. */
+int mt_cli_client_create(const char *command, const mt_cli_remote *remote, mt_client **out);
+
+/* The exit code of a failed client call, after printing one line naming the
+ * mesh (unless mesh_id is NULL): MT_CLI_EXIT_REFUSED when the daemon answered with an error
+ * (`answered`), MT_CLI_EXIT_NO_ANSWER after a timeout, MT_CLI_EXIT_USAGE for
+ * arguments the client refused before sending, MT_CLI_EXIT_BUILD for a mesh
+ * too large for the message. */
+int mt_cli_call_failed(const char *command, const char *mesh_id, const mt_cli_remote *remote,
+                       mt_status status, bool answered, const mt_diag *diag);
+
+/* Parses a non-negative decimal that fits an int; false otherwise. */
+bool mt_cli_parse_int(const char *text, int *out);
+
+/* Readable report: counts, boundary, components, flags, defect counts. */
+void mt_cli_topology_print_text(const meshtopo_topology_t *t, FILE *out);
+
+/* The report as one JSON object (keys named as in the corpus answers where
+ * they mean the same). */
+void mt_cli_topology_write_json(mt_json *j, const meshtopo_topology_t *t);
+
+/* A 64-bit content hash as 16 hex digits (buf of at least 17 bytes). */
+const char *mt_cli_hash_text(int64_t hash, char *buf, size_t size);
+
+#endif
