@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# meshtopo demo: builds the CLI (Release, in build/release) if needed, then
-# inspects three corpus meshes, a clean one, one with holes and a
-# non-manifold one, and prints one report as JSON.
+# meshtopo demo: builds the CLI and the daemon (Release, in build/release) if
+# needed, inspects three corpus meshes, a clean one, one with holes and a
+# non-manifold one, prints one report as JSON, then runs the LCM service in a
+# private network namespace (scripts/demo-network.sh): meshtopod started,
+# the three meshes submitted and queried over LCM, meshtopod stopped.
 #   scripts/demo.sh
-# MESHTOPO_BUILD_DIR=DIR uses an existing build instead (DIR/tools/meshtopo);
+# MESHTOPO_BUILD_DIR=DIR uses an existing build instead (DIR/tools/meshtopo,
+# DIR/daemon/meshtopod);
 # MESHTOPO_CORPUS=DIR reads the meshes from DIR (default ../shared/corpus
 # relative to the repository root).
 set -euo pipefail
@@ -20,8 +23,8 @@ else
         cmake -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
             -DMESHTOPO_BUILD_TESTS=OFF -DMESHTOPO_BUILD_BENCH=OFF
     fi
-    echo "== Building meshtopo"
-    cmake --build "$build" --target meshtopo
+    echo "== Building meshtopo and meshtopod"
+    cmake --build "$build" --target meshtopo meshtopod
 fi
 meshtopo=$build/tools/meshtopo
 [ -x "$meshtopo" ] || { echo "demo: $meshtopo was not built" >&2; exit 1; }
@@ -50,6 +53,17 @@ run inspect vcg_nonmanifold.off --vertices 7 --faces 2
 echo
 echo "== 4. A report as JSON, with the keys of the corpus reference answers, for scripts and tests."
 run inspect cgal_tetrahedron.off --json
+
+echo
+status=0
+"$repo/tests/netns/netns-run" bash "$repo/scripts/demo-network.sh" "$build" "$corpus" || status=$?
+if [ "$status" -eq 77 ]; then
+    echo "== (The network part needs a private network namespace, which this machine"
+    echo "==  cannot make; run the demo as root, or where unprivileged user namespaces work.)"
+elif [ "$status" -ne 0 ]; then
+    echo "demo: the network part failed (status $status)" >&2
+    exit "$status"
+fi
 
 echo
 echo "== Demo done."
