@@ -11,10 +11,13 @@ packages=(
     clang libclang-rt-14-dev clang-format          # fuzzers (libFuzzer), format check
     libopenmesh-dev libcgal-dev                    # benchmark peers (optional)
     # LCM: library, lcm-gen, lcm.jar; a JDK builds meshtopo-msgs.jar for lcm-spy
-    # (jchart2d draws its charts); lcm.pc names glib-2.0, which liblcm-dev
-    # does not pull in
-    liblcm-dev liblcm-bin liblcm-java default-jdk-headless libjchart2d-java libglib2.0-dev
+    # (jchart2d draws its charts, default-jre has the window toolkit the
+    # headless JDK lacks); lcm.pc names glib-2.0, which liblcm-dev does not
+    # pull in
+    liblcm-dev liblcm-bin liblcm-java default-jdk-headless default-jre libjchart2d-java
+    libglib2.0-dev
     nftables iproute2                              # tests/netns: private network, packet loss
+    xvfb xauth                                     # tests/cli: meshtopo spy under a virtual X display
 )
 
 if [ "$(id -u)" -ne 0 ]; then

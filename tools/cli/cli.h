@@ -61,6 +61,7 @@ extern const mt_cli_command mt_cli_cmd_send;
 extern const mt_cli_command mt_cli_cmd_query;
 extern const mt_cli_command mt_cli_cmd_list;
 extern const mt_cli_command mt_cli_cmd_watch;
+extern const mt_cli_command mt_cli_cmd_spy;
 
 /* Parses argv[0..argc) (the arguments after the command name) against the
  * command's options into *out (arrays malloc'ed; free with mt_cli_args_free).

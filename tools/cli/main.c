@@ -11,7 +11,8 @@
 #endif
 
 static const mt_cli_command *const commands[] = {
-    &mt_cli_cmd_inspect, &mt_cli_cmd_send, &mt_cli_cmd_query, &mt_cli_cmd_list, &mt_cli_cmd_watch,
+    &mt_cli_cmd_inspect, &mt_cli_cmd_send,  &mt_cli_cmd_query,
+    &mt_cli_cmd_list,    &mt_cli_cmd_watch, &mt_cli_cmd_spy,
 };
 static const size_t num_commands = sizeof commands / sizeof commands[0];
 
