@@ -82,8 +82,7 @@ static uint64_t read_be(const uint8_t *p, size_t width)
     return v;
 }
 
-/* Encoded width of a primitive field type; 0 for strings and user types. */
-static size_t primitive_width(lcm_field_type_t type)
+size_t mt_msgs_field_width(lcm_field_type_t type)
 {
     switch (type) {
         case LCM_FIELD_INT8_T:
@@ -109,7 +108,7 @@ static size_t primitive_width(lcm_field_type_t type)
  * lengths read later through get_field see it. */
 static void store_scalar(lcm_field_type_t type, const uint8_t *p, void *dst)
 {
-    uint64_t v = read_be(p, primitive_width(type));
+    uint64_t v = read_be(p, mt_msgs_field_width(type));
     switch (type) {
         case LCM_FIELD_INT8_T:
         case LCM_FIELD_BOOLEAN: {
@@ -227,7 +226,7 @@ static int check_field(walk *w, const mt_msgs_type *type, void *scratch, int ind
             return fail(w, frame, f.name, "array of more than %d values", (int)INT32_MAX);
     }
 
-    size_t width = primitive_width(f.type);
+    size_t width = mt_msgs_field_width(f.type);
     if (width > 0) {
         if ((uint64_t)count > bytes_left(w) / width)
             return fail(w, frame, f.name, "%lld values need %llu bytes, %zu left", (long long)count,

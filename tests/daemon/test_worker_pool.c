@@ -85,6 +85,18 @@ static owned *owned_new(counters *c)
     return o;
 }
 
+/* Queues count owned jobs; each must be accepted (a refused one is freed). */
+static void submit_owned_jobs(mtd_pool *pool, counters *c, int count)
+{
+    for (int i = 0; i < count; i++) {
+        owned *o = owned_new(c);
+        if (o && mtd_pool_submit(pool, owned_job, o) != MTD_SUBMIT_OK) {
+            mt_test_fail(__FILE__, __LINE__, "submit %d refused", i);
+            owned_job(o, true);
+        }
+    }
+}
+
 static void test_pool_runs_all_jobs(void)
 {
     counters c;
@@ -178,13 +190,7 @@ static void test_pool_shutdown_drain(void)
     CHECK_EQ(mtd_pool_submit(pool, blocker_job, &b), MTD_SUBMIT_OK);
     CHECK_EQ(mtd_pool_submit(pool, blocker_job, &b), MTD_SUBMIT_OK);
     WAIT_FOR(atomic_load(&b.started) == 2);
-    for (int i = 0; i < 20; i++) {
-        owned *o = owned_new(&c);
-        if (o && mtd_pool_submit(pool, owned_job, o) != MTD_SUBMIT_OK) {
-            mt_test_fail(__FILE__, __LINE__, "submit %d refused", i);
-            owned_job(o, true);
-        }
-    }
+    submit_owned_jobs(pool, &c, 20);
 
     shutdown_call call = {pool, MTD_SHUTDOWN_DRAIN, 0};
     pthread_t t;
@@ -233,13 +239,7 @@ static void test_pool_shutdown_cancel(void)
     if (!pool) return;
     CHECK_EQ(mtd_pool_submit(pool, blocker_job, &b), MTD_SUBMIT_OK);
     WAIT_FOR(atomic_load(&b.started) == 1);
-    for (int i = 0; i < 10; i++) {
-        owned *o = owned_new(&c);
-        if (o && mtd_pool_submit(pool, owned_job, o) != MTD_SUBMIT_OK) {
-            mt_test_fail(__FILE__, __LINE__, "submit %d refused", i);
-            owned_job(o, true);
-        }
-    }
+    submit_owned_jobs(pool, &c, 10);
 
     shutdown_call call = {pool, MTD_SHUTDOWN_CANCEL, 0};
     pthread_t t;

@@ -497,30 +497,6 @@ uint8_t *mt_msgs_encode_alloc(const mt_msgs_type *type, const void *msg, size_t 
 
 /* ---- Generic field walks -------------------------------------------------- */
 
-/* Size in memory of one element of a primitive field; 0 for strings and
- * user types. */
-static size_t c_width(lcm_field_type_t type)
-{
-    switch (type) {
-        case LCM_FIELD_INT8_T:
-        case LCM_FIELD_BYTE:
-        case LCM_FIELD_BOOLEAN:
-            return 1;
-        case LCM_FIELD_INT16_T:
-            return 2;
-        case LCM_FIELD_INT32_T:
-        case LCM_FIELD_FLOAT:
-            return 4;
-        case LCM_FIELD_INT64_T:
-        case LCM_FIELD_DOUBLE:
-            return 8;
-        case LCM_FIELD_STRING:
-        case LCM_FIELD_USER_TYPE:
-            return 0;
-    }
-    return 0;
-}
-
 static const mt_msgs_type *nested_type(const char *typestr)
 {
     for (size_t i = 0; i < mt_msgs_num_types; i++)
@@ -550,7 +526,7 @@ static int equal_struct(const mt_msgs_type *type, const void *a, const void *b, 
 static int equal_elements(const lcm_field_t *f, const void *a, const void *b, int64_t i,
                           char *where, size_t where_size, const char *path)
 {
-    size_t width = c_width(f->type);
+    size_t width = mt_msgs_field_width(f->type);
     if (width > 0)
         return memcmp((const uint8_t *)a + (size_t)i * width,
                       (const uint8_t *)b + (size_t)i * width, width) == 0;
@@ -619,5 +595,5 @@ int mt_msgs_field_is_set(const mt_msgs_type *type, const void *msg, int field,
     if (f.type == LCM_FIELD_STRING) return *(char *const *)data && **(char *const *)data;
     if (f.type == LCM_FIELD_USER_TYPE) return 1;
     static const uint8_t zeros[8];
-    return memcmp(data, zeros, c_width(f.type)) != 0;
+    return memcmp(data, zeros, mt_msgs_field_width(f.type)) != 0;
 }

@@ -85,6 +85,11 @@ void mt_cli_error(const char *command, const char *fmt, ...)
 #endif
     ;
 
+/* Flushes stdout at the end of a command. When that fails and the command
+ * had succeeded so far, reports it and returns failure_code; otherwise
+ * returns code unchanged. */
+int mt_cli_finish_output(const char *command, int code, int failure_code);
+
 /* An ordered list of element ids as given on the command line. */
 typedef struct mt_id_list {
     uint32_t *ids;

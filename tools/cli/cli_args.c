@@ -18,6 +18,13 @@ void mt_cli_error(const char *command, const char *fmt, ...)
     fputc('\n', stderr);
 }
 
+int mt_cli_finish_output(const char *command, int code, int failure_code)
+{
+    if (fflush(stdout) == 0 || code != MT_CLI_EXIT_OK) return code;
+    mt_cli_error(command, "cannot write the output");
+    return failure_code;
+}
+
 static const mt_cli_option *option_find(const mt_cli_command *cmd, const char *name,
                                         size_t name_len, size_t *out_index)
 {

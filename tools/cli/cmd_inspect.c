@@ -86,10 +86,7 @@ static int run_inspect(const mt_cli_args *args)
     if (code == MT_CLI_EXIT_OK && mt_cli_flag(args, "fail-on-defect") &&
         mt_mesh_report(mesh.mesh)->num_defects > 0)
         code = MT_CLI_EXIT_DEFECT;
-    if (fflush(stdout) != 0 && code == MT_CLI_EXIT_OK) {
-        mt_cli_error("inspect", "cannot write the output");
-        code = MT_CLI_EXIT_BUILD;
-    }
+    code = mt_cli_finish_output("inspect", code, MT_CLI_EXIT_BUILD);
     mt_id_list_free(&req.vertices);
     mt_id_list_free(&req.faces);
     mt_cli_mesh_free(&mesh);

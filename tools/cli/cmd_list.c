@@ -77,10 +77,7 @@ static int run_list(const mt_cli_args *args)
         print_json(&reply);
     else
         print_text(&reply);
-    if (fflush(stdout) != 0 && code == MT_CLI_EXIT_OK) {
-        mt_cli_error("list", "cannot write the output");
-        code = MT_CLI_EXIT_USAGE;
-    }
+    code = mt_cli_finish_output("list", code, MT_CLI_EXIT_USAGE);
     mt_client_reply_free(&reply);
     mt_client_destroy(client);
     return code;

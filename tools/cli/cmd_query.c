@@ -415,10 +415,7 @@ static int run_query(const mt_cli_args *args)
     } else {
         for (int32_t i = 0; i < reply.num_items; i++) print_item_text(&reply, qk, &ids, i);
     }
-    if (fflush(stdout) != 0 && code == MT_CLI_EXIT_OK) {
-        mt_cli_error("query", "cannot write the output");
-        code = MT_CLI_EXIT_USAGE;
-    }
+    code = mt_cli_finish_output("query", code, MT_CLI_EXIT_USAGE);
     mt_client_reply_free(&reply);
     mt_client_destroy(client);
     mt_id_list_free(&ids);

@@ -89,10 +89,7 @@ static int run_send(const mt_cli_args *args)
             print_text(path, &ack);
     }
     if (st != MT_OK) code = mt_cli_call_failed("send", id, &remote, st, answered, &diag);
-    if (fflush(stdout) != 0 && code == MT_CLI_EXIT_OK) {
-        mt_cli_error("send", "cannot write the output");
-        code = MT_CLI_EXIT_USAGE;
-    }
+    code = mt_cli_finish_output("send", code, MT_CLI_EXIT_USAGE);
     mt_client_ack_free(&ack);
     mt_client_destroy(client);
     mt_face_list_free(&list);

@@ -81,6 +81,11 @@ int mt_msgs_check(const mt_msgs_type *type, const void *buf, size_t size, char *
 int mt_msgs_decode(const mt_msgs_type *type, const void *buf, size_t size, void *out_msg,
                    char *error, size_t error_size);
 
+/* Bytes of one element of a primitive field type, the same encoded and in the
+ * generated C struct (lcm-gen maps boolean and byte to one-byte types); 0 for
+ * strings and nested types. */
+size_t mt_msgs_field_width(lcm_field_type_t type);
+
 #ifdef __cplusplus
 }
 #endif
