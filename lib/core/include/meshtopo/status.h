@@ -25,7 +25,9 @@ extern "C" {
     X(MT_ERR_IO, "input/output error")                             \
     X(MT_ERR_PARSE, "malformed mesh file")                         \
     X(MT_ERR_UNSUPPORTED, "unsupported format or feature")         \
-    X(MT_ERR_CORRUPT, "mesh structure is inconsistent")
+    X(MT_ERR_CORRUPT, "mesh structure is inconsistent")            \
+    X(MT_ERR_REFUSED, "edit refused: it would break the mesh")     \
+    X(MT_ERR_NO_GEOMETRY, "mesh has no vertex positions")
 
 typedef enum mt_status {
 #define MT__STATUS_ENUM(name, text) name,
