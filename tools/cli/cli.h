@@ -53,6 +53,9 @@ typedef struct mt_cli_command {
     size_t num_options;
     size_t min_positionals, max_positionals;
     int (*run)(const mt_cli_args *args); /* returns an exit code */
+    /* Set instead of `run` by a command that parses its own arguments (bench
+     * hands them to another program): gets those after the command name. */
+    int (*run_raw)(int argc, char **argv);
 } mt_cli_command;
 
 /* The commands, each defined in its cmd_*.c. */
@@ -62,6 +65,7 @@ extern const mt_cli_command mt_cli_cmd_query;
 extern const mt_cli_command mt_cli_cmd_list;
 extern const mt_cli_command mt_cli_cmd_watch;
 extern const mt_cli_command mt_cli_cmd_spy;
+extern const mt_cli_command mt_cli_cmd_bench;
 
 /* Parses argv[0..argc) (the arguments after the command name) against the
  * command's options into *out (arrays malloc'ed; free with mt_cli_args_free).

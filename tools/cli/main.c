@@ -11,8 +11,8 @@
 #endif
 
 static const mt_cli_command *const commands[] = {
-    &mt_cli_cmd_inspect, &mt_cli_cmd_send,  &mt_cli_cmd_query,
-    &mt_cli_cmd_list,    &mt_cli_cmd_watch, &mt_cli_cmd_spy,
+    &mt_cli_cmd_inspect, &mt_cli_cmd_send, &mt_cli_cmd_query, &mt_cli_cmd_list,
+    &mt_cli_cmd_watch,   &mt_cli_cmd_spy,  &mt_cli_cmd_bench,
 };
 static const size_t num_commands = sizeof commands / sizeof commands[0];
 
@@ -58,6 +58,7 @@ static void print_help(FILE *out)
 
 static int run_command(const mt_cli_command *cmd, int argc, char **argv)
 {
+    if (cmd->run_raw) return cmd->run_raw(argc, argv);
     mt_cli_args args;
     bool help = false;
     int code = mt_cli_args_parse(cmd, argc, argv, &args, &help);

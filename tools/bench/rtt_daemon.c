@@ -1,0 +1,126 @@
+/* The meshtopod of a `meshtopo-bench rtt` run: started as a child process on
+ * the run's LCM URL, awaited by its first heartbeat on MESHTOPO_STATUS, and
+ * stopped by its PID (SIGTERM, then SIGKILL after 10 s). Also the clients the
+ * run talks to it with. */
+#include <errno.h>
+#include <fcntl.h>
+#include <lcm/lcm.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "meshtopo/msgs.h"
+#include "rtt.h"
+
+#define HEARTBEAT_WAIT_MS 10000
+#define STOP_WAIT_MS 10000
+
+static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    meshtopo_status_t st;
+    if (mt_msgs_decode(&mt_msgs_type_status, rbuf->data, rbuf->data_size, &st, NULL, 0) != 0)
+        return;
+    *(int32_t *)user = st.pid;
+    meshtopo_status_t_decode_cleanup(&st);
+}
+
+/* Waits for a heartbeat from `pid`; false after HEARTBEAT_WAIT_MS. */
+static bool await_heartbeat(pid_t pid)
+{
+    lcm_t *lcm = lcm_create(MT__RTT_LCM_URL);
+    if (!lcm) return false;
+    int32_t heard = 0;
+    lcm_subscription_t *sub = lcm_subscribe(lcm, "MESHTOPO_STATUS", on_status, &heard);
+    for (int waited = 0; sub && heard != (int32_t)pid && waited < HEARTBEAT_WAIT_MS; waited += 50)
+        lcm_handle_timeout(lcm, 50);
+    if (sub) lcm_unsubscribe(lcm, sub);
+    lcm_destroy(lcm);
+    return heard == (int32_t)pid;
+}
+
+bool mt__rtt_daemon_start(const char *path, mt__rtt_daemon *out, char *err, size_t err_size)
+{
+    memset(out, 0, sizeof *out);
+    const char *tmp = getenv("TMPDIR");
+    snprintf(out->log_path, sizeof out->log_path, "%s/meshtopo-rtt-daemon-XXXXXX",
+             tmp && *tmp ? tmp : "/tmp");
+    int log_fd = mkstemp(out->log_path);
+    if (log_fd < 0) {
+        snprintf(err, err_size, "cannot make the daemon's log file: %s", strerror(errno));
+        out->log_path[0] = '\0';
+        return false;
+    }
+    pid_t pid = fork();
+    if (pid < 0) {
+        snprintf(err, err_size, "fork: %s", strerror(errno));
+        close(log_fd);
+        return false;
+    }
+    if (pid == 0) {
+        dup2(log_fd, STDERR_FILENO);
+        int null_fd = open("/dev/null", O_WRONLY);
+        if (null_fd >= 0) dup2(null_fd, STDOUT_FILENO);
+        execl(path, path, "--lcm-url", MT__RTT_LCM_URL, "--heartbeat-ms", "100", "--log-level",
+              "warn", (char *)NULL);
+        fprintf(stderr, "meshtopo-bench rtt: cannot start %s: %s\n", path, strerror(errno));
+        _exit(127);
+    }
+    close(log_fd);
+    out->pid = pid;
+    if (!await_heartbeat(pid)) {
+        snprintf(err, err_size, "no heartbeat from %s (pid %d) within %d ms; its log: %s", path,
+                 (int)pid, HEARTBEAT_WAIT_MS, out->log_path);
+        char ignored[8];
+        mt__rtt_daemon_stop(out, ignored, sizeof ignored);
+        return false;
+    }
+    return true;
+}
+
+bool mt__rtt_daemon_stop(mt__rtt_daemon *daemon, char *err, size_t err_size)
+{
+    if (daemon->pid <= 0) return true;
+    kill(daemon->pid, SIGTERM);
+    int status = 0;
+    pid_t done = 0;
+    for (int waited = 0; waited < STOP_WAIT_MS; waited += 10) {
+        done = waitpid(daemon->pid, &status, WNOHANG);
+        if (done != 0) break;
+        struct timespec pause = {0, 10 * 1000 * 1000};
+        nanosleep(&pause, NULL);
+    }
+    bool clean = done == daemon->pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (done == 0) {
+        kill(daemon->pid, SIGKILL);
+        waitpid(daemon->pid, &status, 0);
+        snprintf(err, err_size, "meshtopod (pid %d) still ran 10 s after SIGTERM: killed",
+                 (int)daemon->pid);
+    } else if (!clean) {
+        snprintf(err, err_size, "meshtopod (pid %d) did not exit cleanly (status 0x%x); log: %s",
+                 (int)daemon->pid, (unsigned)status, daemon->log_path);
+    }
+    daemon->pid = 0;
+    if (clean && daemon->log_path[0]) unlink(daemon->log_path);
+    return clean;
+}
+
+mt_client *mt__rtt_client_new(const char *source)
+{
+    mt_client_options opts;
+    memset(&opts, 0, sizeof opts);
+    opts.lcm_url = MT__RTT_LCM_URL;
+    opts.source = source;
+    mt_client *client = NULL;
+    mt_diag diag;
+    mt_diag_clear(&diag);
+    mt_status st = mt_client_create(&opts, &client, &diag);
+    if (st != MT_OK)
+        fprintf(stderr, "meshtopo-bench rtt: %s: cannot create a client: %s (%s)\n", source,
+                mt_strerror(st), diag.message);
+    return client;
+}
