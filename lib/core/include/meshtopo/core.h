@@ -4,6 +4,7 @@
 
 #include "meshtopo/face_list.h"
 #include "meshtopo/generate.h"
+#include "meshtopo/geometry.h"
 #include "meshtopo/mesh.h"
 #include "meshtopo/query.h"
 #include "meshtopo/report.h"

@@ -1,0 +1,83 @@
+/* Steps shared by the geometry files (geometry_*.c): positions of internal
+ * vertices, the vector area of a face ring and corner angles. Every walk is
+ * bounded and every index range-checked as in the queries (query_internal.h),
+ * so a corrupted mesh gives MT_ERR_CORRUPT, never a bad read. Conventions are
+ * stated once, in meshtopo/geometry.h. */
+#ifndef MESHTOPO_GEOMETRY_INTERNAL_H
+#define MESHTOPO_GEOMETRY_INTERNAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "meshtopo/geometry.h"
+#include "query_internal.h"
+
+#define MT__PI 3.14159265358979323846
+
+/* MT_OK when mesh is non-NULL and has positions, else the status (with diag
+ * naming `what`, the calling function). */
+mt_status mt__geom_ready(const mt_mesh *m, const char *what, mt_diag *diag);
+
+/* Position of internal vertex v (its caller vertex's), NULL when v is out of range. */
+static inline const double *mt__geom_pos(const mt_mesh *m, uint32_t v)
+{
+    uint32_t o = mt__original_checked(m, v);
+    return o == MT_NONE ? NULL : m->positions + 3 * (size_t)o;
+}
+
+static inline void mt__v3_sub(const double *a, const double *b, double *out)
+{
+    out[0] = a[0] - b[0];
+    out[1] = a[1] - b[1];
+    out[2] = a[2] - b[2];
+}
+
+static inline void mt__v3_cross(const double *a, const double *b, double *out)
+{
+    double x = a[1] * b[2] - a[2] * b[1];
+    double y = a[2] * b[0] - a[0] * b[2];
+    double z = a[0] * b[1] - a[1] * b[0];
+    out[0] = x;
+    out[1] = y;
+    out[2] = z;
+}
+
+static inline double mt__v3_dot(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Twice the vector area of the face ring through half-edge h (Newell's
+ * normal, summed over the fan from the ring's first vertex) into out, and the
+ * ring's length into *out_size. MT_ERR_CORRUPT on a broken ring. */
+mt_status mt__face_ring_area2(const mt_mesh *m, uint32_t h, double out[3], uint32_t *out_size);
+
+/* Unit normal from twice the vector area: false (and the zero vector) when
+ * the vector area is zero or not finite. */
+bool mt__unit(const double area2[3], double out[3]);
+
+/* Corner angle at the head of half-edge h_in in its face, whose unit normal
+ * is unit_normal (the zero vector for a degenerate face) and size face_size.
+ * h_in's next must be valid (checked by the caller's ring walk). */
+double mt__corner_angle(const mt_mesh *m, uint32_t h_in, const double unit_normal[3],
+                        uint32_t face_size);
+
+/* Unit normal of face f (zero vector when degenerate) and its size; false
+ * in *out_ok when degenerate. MT_ERR_CORRUPT on a broken ring. The face must
+ * be valid (face_he[f] != MT_NONE). */
+mt_status mt__face_unit_normal(const mt_mesh *m, uint32_t f, double out[3], uint32_t *out_size,
+                               bool *out_ok);
+
+/* Called by mt__edge_sweep once per undirected caller edge {a, b} (a < b)
+ * with its shape and interior angle (0 when it has none). */
+typedef void (*mt__edge_visit)(void *user, uint32_t a, uint32_t b, mt_edge_shape shape,
+                               double angle);
+
+/* Visits every edge of the mesh (deleted ones skipped, a split edge once) in
+ * internal edge order, shapes judged under tol. Allocates one normal per face
+ * (MT_ERR_NOMEM); MT_ERR_CORRUPT on a broken structure. `what` names the
+ * public call in diag. The mesh must have positions. */
+mt_status mt__edge_sweep(const mt_mesh *m, double tol, const char *what, mt__edge_visit visit,
+                         void *user, mt_diag *diag);
+
+#endif
