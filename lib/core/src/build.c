@@ -33,6 +33,7 @@ void mt_mesh_destroy(mt_mesh *m)
     mt__free(m->bundled_bundle);
     mt__free(m->vert_component);
     report_free(&m->report);
+    mt__edit_state_free(m->edit);
     mt__free(m);
 }
 

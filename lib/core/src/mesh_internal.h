@@ -50,7 +50,19 @@ struct mt_mesh {
     uint32_t *vert_component;
 
     mt_report report;
+
+    /* Edit bookkeeping (edit_*.c), all zero after a build. Capacities of the
+     * arrays once an edit has grown them (0 = sized exactly by the build):
+     * the half-edge block (he_head, he_next, he_face), face_he, and the
+     * per-vertex arrays (vert_he, positions, vert_component). */
+    uint32_t cap_half_edges;
+    uint32_t cap_faces;
+    uint32_t cap_verts;
+    struct mt__edit_state *edit; /* NULL until the first edit */
 };
+
+/* Frees the edit bookkeeping (edit_state.c). NULL-safe. */
+void mt__edit_state_free(struct mt__edit_state *state);
 
 /* Caller id of an internal vertex. */
 static inline uint32_t mt__original(const mt_mesh *m, uint32_t v)

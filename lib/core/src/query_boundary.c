@@ -65,6 +65,7 @@ static mt_status walk_all(const mt_mesh *m, uint64_t *bits, size_t bitmap_words,
     if (out->offsets) out->offsets[0] = 0;
     for (uint32_t h = 0; h < nhe; h++) {
         if (m->he_face[h] != MT_NONE || marked(bits, h)) continue;
+        if (m->he_head[h] == MT_NONE && m->he_head[h ^ 1u] == MT_NONE) continue; /* deleted */
         mt_status s = walk_loop(m, h, bits, out);
         if (s != MT_OK) return s;
     }

@@ -166,7 +166,11 @@ mt_status mt__build_report(mt__build *b)
     r->num_defects = b->defects.len;
     r->defects = defects ? defects : mt__calloc(1, sizeof(mt_defect));
     b->defects = (mt__vec){NULL, 0, 0, sizeof(mt_defect)};
-    if (!r->defects) return MT_ERR_NOMEM;
+    if (!r->defects) {
+        mt__free(b->vert_comp);
+        b->vert_comp = NULL;
+        return MT_ERR_NOMEM;
+    }
 
     if (b->num_components > 1) {
         m->vert_component = b->vert_comp;

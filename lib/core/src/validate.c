@@ -82,11 +82,24 @@ static mt_status check_sizes(const mt_mesh *m, mt_diag *diag)
     return MT_OK;
 }
 
-/* Every stored index is in range for the array it points into. */
+/* An edge deleted by an edit (edit.h): both heads MT_NONE. */
+static bool edge_deleted(const mt_mesh *m, uint32_t h)
+{
+    return m->he_head[h & ~1u] == MT_NONE && m->he_head[h | 1u] == MT_NONE;
+}
+
+/* Every stored index is in range for the array it points into; a deleted
+ * edge's half-edges have no face and are their own next. */
 static mt_status check_ranges(const mt_mesh *m, mt_diag *diag)
 {
     const uint32_t nhe = m->num_half_edges, nvi = m->num_verts_internal;
     for (uint32_t h = 0; h < nhe; h++) {
+        if (edge_deleted(m, h)) {
+            if (m->he_next[h] == h && m->he_face[h] == MT_NONE) continue;
+            return mt__fail(diag, MT_ERR_CORRUPT, h,
+                            "half-edge %u of deleted edge %u still has a next (%u) or face", h,
+                            h >> 1, m->he_next[h]);
+        }
         if (m->he_head[h] >= nvi)
             return mt__fail(diag, MT_ERR_CORRUPT, h,
                             "half-edge %u: head %u is not a vertex (%u internal vertices)", h,
@@ -185,6 +198,7 @@ static mt_status check_next_permutation(const mt_mesh *m, scratch *s, mt_diag *d
 static mt_status check_half_edges(const mt_mesh *m, mt_diag *diag)
 {
     for (uint32_t h = 0; h < m->num_half_edges; h++) {
+        if (edge_deleted(m, h)) continue;
         const uint32_t n = m->he_next[h];
         const uint32_t head = m->he_head[h], next_tail = m->he_head[n ^ 1u];
         if (next_tail != head)
@@ -414,7 +428,8 @@ static mt_status check_vertices(const mt_mesh *m, scratch *s, mt_diag *diag)
     uint32_t *out_degree = s->counter;
     memset(out_degree, 0, (size_t)m->num_verts_internal * sizeof *out_degree);
     memset(s->stamp, 0, (size_t)m->num_verts * sizeof *s->stamp);
-    for (uint32_t h = 0; h < m->num_half_edges; h++) out_degree[m->he_head[h ^ 1u]]++;
+    for (uint32_t h = 0; h < m->num_half_edges; h++)
+        if (!edge_deleted(m, h)) out_degree[m->he_head[h ^ 1u]]++;
     for (uint32_t v = 0; v < m->num_verts; v++) {
         const uint32_t *copies;
         const uint32_t num_copies = mt__vert_copies(m, v, &copies);
