@@ -12,7 +12,7 @@
 
 static const mt_cli_command *const commands[] = {
     &mt_cli_cmd_inspect, &mt_cli_cmd_send, &mt_cli_cmd_query, &mt_cli_cmd_list,
-    &mt_cli_cmd_watch,   &mt_cli_cmd_spy,  &mt_cli_cmd_bench,
+    &mt_cli_cmd_watch,   &mt_cli_cmd_spy,  &mt_cli_cmd_bench, &mt_cli_cmd_archive,
 };
 static const size_t num_commands = sizeof commands / sizeof commands[0];
 

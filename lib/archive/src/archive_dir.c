@@ -1,0 +1,268 @@
+/* The archive directory: opening it (and removing leftovers of interrupted
+ * writes whose writer is gone), listing its files, finding a mesh's
+ * versions by file name, and removing versions durably. Only names this
+ * library makes are touched: "*.vtkhdf" files and ".mt-tmp-*" leftovers. */
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "archive_internal.h"
+
+/* Whether a temporary file's writer (the pid in its name) is gone. */
+static bool leftover_is_stale(const char *name)
+{
+    const char *p = name + strlen(MT__ARCHIVE_TMP_PREFIX);
+    char *end = NULL;
+    long pid = strtol(p, &end, 10);
+    if (end == p || *end != '-' || pid <= 0) return true; /* not one of ours in progress */
+    if (pid == (long)getpid()) return false;              /* another handle of this process */
+    return kill((pid_t)pid, 0) != 0 && errno == ESRCH;
+}
+
+static mt_status remove_leftovers(mt_archive *archive, mt_diag *diag)
+{
+    DIR *d = opendir(archive->dir);
+    if (!d)
+        return mt__archive_fail(diag, MT_ERR_IO, "%s: cannot read the directory: %s", archive->dir,
+                                strerror(errno));
+    size_t removed = 0;
+    struct dirent *ent;
+    while ((ent = readdir(d)) != NULL) {
+        if (strncmp(ent->d_name, MT__ARCHIVE_TMP_PREFIX, strlen(MT__ARCHIVE_TMP_PREFIX)) != 0)
+            continue;
+        if (!leftover_is_stale(ent->d_name)) continue;
+        if (unlinkat(dirfd(d), ent->d_name, 0) == 0) removed++;
+    }
+    closedir(d);
+    if (removed > 0) {
+        int fd = open(archive->dir, O_RDONLY | O_DIRECTORY);
+        if (fd >= 0) {
+            fsync(fd);
+            close(fd);
+        }
+    }
+    archive->leftovers_removed = removed;
+    return MT_OK;
+}
+
+mt_status mt_archive_open(const char *dir, const mt_archive_options *options,
+                          mt_archive **out_archive, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    if (!out_archive) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_open: NULL");
+    *out_archive = NULL;
+    if (!dir || !dir[0])
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "no archive directory given");
+    static const mt_archive_options defaults;
+    if (!options) options = &defaults;
+    struct stat sb;
+    if (stat(dir, &sb) != 0 && errno == ENOENT && options->create && !options->read_only)
+        mkdir(dir, 0777);
+    if (stat(dir, &sb) != 0)
+        return mt__archive_fail(diag, MT_ERR_IO, "%s: %s", dir, strerror(errno));
+    if (!S_ISDIR(sb.st_mode)) return mt__archive_fail(diag, MT_ERR_IO, "%s: not a directory", dir);
+    mt_archive *a = calloc(1, sizeof *a);
+    if (!a || !(a->dir = mt__archive_strdup(dir))) {
+        free(a);
+        return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
+    }
+    size_t n = strlen(a->dir);
+    while (n > 1 && a->dir[n - 1] == '/') a->dir[--n] = '\0';
+    a->read_only = options->read_only;
+    mt_status st = a->read_only ? MT_OK : remove_leftovers(a, diag);
+    if (st == MT_OK && access(a->dir, a->read_only ? R_OK | X_OK : R_OK | W_OK | X_OK) != 0)
+        st = mt__archive_fail(diag, MT_ERR_IO, "%s: %s", a->dir, strerror(errno));
+    if (st != MT_OK) {
+        mt_archive_close(a);
+        return st;
+    }
+    *out_archive = a;
+    return MT_OK;
+}
+
+void mt_archive_close(mt_archive *archive)
+{
+    if (!archive) return;
+    free(archive->dir);
+    free(archive);
+}
+
+const char *mt_archive_dir(const mt_archive *archive)
+{
+    return archive ? archive->dir : NULL;
+}
+
+size_t mt_archive_leftovers_removed(const mt_archive *archive)
+{
+    return archive ? archive->leftovers_removed : 0;
+}
+
+bool mt_archive_contains(const mt_archive *archive, const char *mesh_id, uint32_t version)
+{
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    if (!archive || mt_archive_file_name(mesh_id, version, name, sizeof name) == 0) return false;
+    char *path = mt__archive_path(archive, name);
+    struct stat sb;
+    bool found = path && lstat(path, &sb) == 0;
+    free(path);
+    return found;
+}
+
+static int entry_compare(const void *pa, const void *pb)
+{
+    const mt_archive_entry *a = pa, *b = pb;
+    bool ga = a->status == MT_OK, gb = b->status == MT_OK;
+    if (ga != gb) return ga ? -1 : 1;
+    if (ga) {
+        int c = strcmp(a->mesh_id, b->mesh_id);
+        if (c != 0) return c;
+        if (a->version != b->version) return a->version < b->version ? -1 : 1;
+    }
+    return strcmp(a->file_name, b->file_name);
+}
+
+/* Whether a directory entry is an archive file (not hidden, ".vtkhdf"). */
+static bool is_archive_name(const char *name)
+{
+    size_t len = strlen(name), suffix = strlen(MT_ARCHIVE_SUFFIX);
+    return name[0] != '.' && len > suffix && strcmp(name + len - suffix, MT_ARCHIVE_SUFFIX) == 0;
+}
+
+mt_status mt_archive_list(const mt_archive *archive, mt_archive_listing *out, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    if (!out) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_list: NULL");
+    memset(out, 0, sizeof *out);
+    if (!archive) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_list: NULL");
+    DIR *d = opendir(archive->dir);
+    if (!d)
+        return mt__archive_fail(diag, MT_ERR_IO, "%s: cannot read the directory: %s", archive->dir,
+                                strerror(errno));
+    mt_archive_listing l = {NULL, 0};
+    size_t capacity = 0;
+    mt_status st = MT_OK;
+    struct dirent *ent;
+    while (st == MT_OK && (ent = readdir(d)) != NULL) {
+        if (!is_archive_name(ent->d_name)) continue;
+        if (l.count == capacity) {
+            size_t grown = capacity ? 2 * capacity : 16;
+            mt_archive_entry *bigger = realloc(l.entries, grown * sizeof *bigger);
+            if (!bigger) {
+                st = mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory listing %s", archive->dir);
+                break;
+            }
+            l.entries = bigger;
+            capacity = grown;
+        }
+        mt_archive_entry *e = &l.entries[l.count];
+        memset(e, 0, sizeof *e);
+        if (!(e->file_name = mt__archive_strdup(ent->d_name))) {
+            st = mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory listing %s", archive->dir);
+            break;
+        }
+        l.count++;
+        mt_diag_clear(&e->diag);
+        e->status = mt__archive_read_entry(archive, e->file_name, e, &e->diag);
+    }
+    closedir(d);
+    if (st != MT_OK) {
+        mt_archive_listing_free(&l);
+        return st;
+    }
+    if (l.count > 1) qsort(l.entries, l.count, sizeof *l.entries, entry_compare);
+    *out = l;
+    return MT_OK;
+}
+
+void mt_archive_listing_free(mt_archive_listing *listing)
+{
+    if (!listing) return;
+    for (size_t i = 0; i < listing->count; i++) {
+        free(listing->entries[i].file_name);
+        free(listing->entries[i].mesh_id);
+        free(listing->entries[i].source);
+    }
+    free(listing->entries);
+    memset(listing, 0, sizeof *listing);
+}
+
+/* Highest version of mesh_id present, by file name (0 when none). */
+static uint32_t latest_version(const mt_archive *archive, const char *mesh_id)
+{
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    mt_archive_file_name(mesh_id, 1, name, sizeof name);
+    size_t stem_len = 0;
+    uint32_t v = 0, best = 0;
+    if (!mt__archive_name_parse(name, &stem_len, &v)) return 0;
+    DIR *d = opendir(archive->dir);
+    if (!d) return 0;
+    struct dirent *ent;
+    while ((ent = readdir(d)) != NULL) {
+        size_t len = 0;
+        if (is_archive_name(ent->d_name) && mt__archive_name_parse(ent->d_name, &len, &v) &&
+            len == stem_len && memcmp(ent->d_name, name, len) == 0 && v > best)
+            best = v;
+    }
+    closedir(d);
+    return best;
+}
+
+mt_status mt_archive_load(const mt_archive *archive, const char *mesh_id, uint32_t version,
+                          mt_archive_record *out, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    if (out) memset(out, 0, sizeof *out);
+    if (!archive || !out)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_load: NULL argument");
+    mt_status st = mt_archive_id_check(mesh_id, diag);
+    if (st != MT_OK) return st;
+    if (version == 0) version = latest_version(archive, mesh_id);
+    if (version == 0)
+        return mt__archive_fail(diag, MT_ERR_NOT_FOUND, "%s: mesh '%s' is not archived",
+                                archive->dir, mesh_id);
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    mt_archive_file_name(mesh_id, version, name, sizeof name);
+    if (!mt_archive_contains(archive, mesh_id, version))
+        return mt__archive_fail(diag, MT_ERR_NOT_FOUND,
+                                "%s: version %u of mesh '%s' is not archived (no file %s)",
+                                archive->dir, version, mesh_id, name);
+    return mt_archive_load_file(archive, name, out, diag);
+}
+
+mt_status mt_archive_remove(mt_archive *archive, const char *mesh_id, uint32_t version,
+                            mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    if (!archive) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_remove: NULL");
+    if (archive->read_only)
+        return mt__archive_fail(diag, MT_ERR_UNSUPPORTED, "%s: archive opened read-only",
+                                archive->dir);
+    mt_status st = mt_archive_id_check(mesh_id, diag);
+    if (st != MT_OK) return st;
+    if (version == 0)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh '%s': version 0 is not a version",
+                                mesh_id);
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    mt_archive_file_name(mesh_id, version, name, sizeof name);
+    char *path = mt__archive_path(archive, name);
+    if (!path) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
+    if (unlink(path) != 0) {
+        st = mt__archive_fail(diag, errno == ENOENT ? MT_ERR_NOT_FOUND : MT_ERR_IO,
+                              "%s: cannot remove version %u of mesh '%s': %s", path, version,
+                              mesh_id, strerror(errno));
+        free(path);
+        return st;
+    }
+    free(path);
+    int fd = open(archive->dir, O_RDONLY | O_DIRECTORY);
+    if (fd < 0 || fsync(fd) != 0)
+        st = mt__archive_fail(diag, MT_ERR_IO, "%s: fsync of the directory failed: %s",
+                              archive->dir, strerror(errno));
+    if (fd >= 0) close(fd);
+    return st;
+}

@@ -1,0 +1,288 @@
+/* The HDF5 calls of meshtopo::archive, each wrapped so a failure becomes a
+ * status and a message naming the file and the object, never a print or an
+ * abort. Reads check rank, shape, type class, element size and the storage
+ * actually present before allocating: a file may claim any size. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "archive_internal.h"
+
+void mt__h5_quiet(void)
+{
+    /* HDF5 prints its error stack by default; we report through mt_diag.
+     * The setting is per thread in a thread-safe HDF5 build, so it is set on
+     * every entry point rather than once. */
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+}
+
+static mt_status write_attr(hid_t obj, const char *name, hid_t type, hid_t space, const void *value,
+                            const char *file, mt_diag *diag)
+{
+    mt_status st = MT_OK;
+    hid_t attr = space < 0 ? -1 : H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+    if (attr < 0 || H5Awrite(attr, type, value) < 0)
+        st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot write attribute %s", file, name);
+    if (attr >= 0) H5Aclose(attr);
+    if (space >= 0) H5Sclose(space);
+    return st;
+}
+
+mt_status mt__h5_write_attr_int(hid_t obj, const char *name, hid_t type, const void *value,
+                                const char *file, mt_diag *diag)
+{
+    return write_attr(obj, name, type, H5Screate(H5S_SCALAR), value, file, diag);
+}
+
+mt_status mt__h5_write_attr_ints(hid_t obj, const char *name, hid_t type, const void *values,
+                                 hsize_t count, const char *file, mt_diag *diag)
+{
+    return write_attr(obj, name, type, H5Screate_simple(1, &count, NULL), values, file, diag);
+}
+
+mt_status mt__h5_write_attr_string(hid_t obj, const char *name, const char *value, const char *file,
+                                   mt_diag *diag)
+{
+    /* Fixed-length ASCII: VTK 9.1 reads /VTKHDF's Type only in this form. */
+    size_t len = strlen(value);
+    hid_t type = H5Tcopy(H5T_C_S1);
+    if (type < 0 || H5Tset_size(type, len > 0 ? len : 1) < 0 ||
+        H5Tset_strpad(type, H5T_STR_NULLPAD) < 0 || H5Tset_cset(type, H5T_CSET_ASCII) < 0) {
+        if (type >= 0) H5Tclose(type);
+        return mt__archive_fail(diag, MT_ERR_IO, "%s: cannot make the type of attribute %s", file,
+                                name);
+    }
+    char empty[1] = {0};
+    mt_status st =
+        write_attr(obj, name, type, H5Screate(H5S_SCALAR), len > 0 ? value : empty, file, diag);
+    H5Tclose(type);
+    return st;
+}
+
+mt_status mt__h5_write_dataset(hid_t loc, const char *name, hid_t ftype, hid_t mtype, int rank,
+                               const hsize_t *dims, const void *data, const char *file,
+                               mt_diag *diag)
+{
+    mt_status st = MT_OK;
+    hsize_t elements = 1;
+    for (int i = 0; i < rank; i++) elements *= dims[i];
+    hid_t space = H5Screate_simple(rank, dims, NULL);
+    hid_t dset =
+        space < 0 ? -1 : H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (dset < 0 ||
+        (elements > 0 && H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
+        st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot write dataset %s", file, name);
+    if (dset >= 0) H5Dclose(dset);
+    if (space >= 0) H5Sclose(space);
+    return st;
+}
+
+/* Opens attribute `name` of obj holding exactly one element; *out_type is
+ * its type. */
+static mt_status open_attr(hid_t obj, const char *name, const char *file, hid_t *out_attr,
+                           hid_t *out_type, mt_diag *diag)
+{
+    *out_attr = *out_type = -1;
+    if (H5Aexists(obj, name) <= 0)
+        return mt__archive_fail(diag, MT_ERR_PARSE, "%s: attribute %s is missing", file, name);
+    hid_t attr = H5Aopen(obj, name, H5P_DEFAULT);
+    hid_t space = attr < 0 ? -1 : H5Aget_space(attr);
+    hssize_t n = space < 0 ? -1 : H5Sget_simple_extent_npoints(space);
+    if (space >= 0) H5Sclose(space);
+    if (attr < 0 || n != 1) {
+        if (attr >= 0) H5Aclose(attr);
+        return mt__archive_fail(diag, MT_ERR_PARSE,
+                                "%s: attribute %s is not a single value (%lld elements)", file,
+                                name, (long long)n);
+    }
+    *out_attr = attr;
+    *out_type = H5Aget_type(attr);
+    return MT_OK;
+}
+
+static mt_status read_attr_int(hid_t obj, const char *name, const char *file, hid_t mtype,
+                               void *out, mt_diag *diag)
+{
+    hid_t attr, type;
+    mt_status st = open_attr(obj, name, file, &attr, &type, diag);
+    if (st != MT_OK) return st;
+    if (type < 0 || H5Tget_class(type) != H5T_INTEGER || H5Tget_size(type) > 8)
+        st = mt__archive_fail(diag, MT_ERR_PARSE, "%s: attribute %s is not an integer", file, name);
+    else if (H5Aread(attr, mtype, out) < 0)
+        st = mt__archive_fail(diag, MT_ERR_PARSE, "%s: attribute %s cannot be read", file, name);
+    if (type >= 0) H5Tclose(type);
+    H5Aclose(attr);
+    return st;
+}
+
+mt_status mt__h5_read_attr_i64(hid_t obj, const char *name, const char *file, int64_t *out,
+                               mt_diag *diag)
+{
+    return read_attr_int(obj, name, file, H5T_NATIVE_INT64, out, diag);
+}
+
+mt_status mt__h5_read_attr_u64(hid_t obj, const char *name, const char *file, uint64_t *out,
+                               mt_diag *diag)
+{
+    return read_attr_int(obj, name, file, H5T_NATIVE_UINT64, out, diag);
+}
+
+mt_status mt__h5_read_attr_string(hid_t obj, const char *name, const char *file, size_t max_len,
+                                  char **out, mt_diag *diag)
+{
+    *out = NULL;
+    hid_t attr, type;
+    mt_status st = open_attr(obj, name, file, &attr, &type, diag);
+    if (st != MT_OK) return st;
+    hid_t mtype = -1;
+    if (type < 0 || H5Tget_class(type) != H5T_STRING) {
+        st = mt__archive_fail(diag, MT_ERR_PARSE, "%s: attribute %s is not a string", file, name);
+    } else if (H5Tis_variable_str(type) > 0) {
+        char *value = NULL;
+        mtype = H5Tcopy(H5T_C_S1);
+        if (mtype < 0 || H5Tset_size(mtype, H5T_VARIABLE) < 0 || H5Aread(attr, mtype, &value) < 0 ||
+            !value) {
+            st =
+                mt__archive_fail(diag, MT_ERR_PARSE, "%s: attribute %s cannot be read", file, name);
+        } else if (strlen(value) > max_len) {
+            st = mt__archive_fail(diag, MT_ERR_PARSE,
+                                  "%s: attribute %s is %zu bytes long (at most %zu)", file, name,
+                                  strlen(value), max_len);
+        } else if (!(*out = mt__archive_strdup(value))) {
+            st = mt__archive_fail(diag, MT_ERR_NOMEM, "%s: out of memory", file);
+        }
+        if (value) H5free_memory(value);
+    } else {
+        size_t size = H5Tget_size(type);
+        char *value = NULL;
+        mtype = H5Tcopy(H5T_C_S1);
+        if (size == 0 || size > max_len + 1) {
+            st = mt__archive_fail(diag, MT_ERR_PARSE,
+                                  "%s: attribute %s is %zu bytes long (at most %zu)", file, name,
+                                  size, max_len);
+        } else if (!(value = calloc(size + 1, 1))) {
+            st = mt__archive_fail(diag, MT_ERR_NOMEM, "%s: out of memory", file);
+        } else if (mtype < 0 || H5Tset_size(mtype, size) < 0 ||
+                   H5Tset_strpad(mtype, H5T_STR_NULLPAD) < 0 || H5Aread(attr, mtype, value) < 0) {
+            st =
+                mt__archive_fail(diag, MT_ERR_PARSE, "%s: attribute %s cannot be read", file, name);
+        }
+        if (st == MT_OK && strlen(value) > max_len)
+            st = mt__archive_fail(diag, MT_ERR_PARSE, "%s: attribute %s is too long", file, name);
+        if (st == MT_OK)
+            *out = value;
+        else
+            free(value);
+    }
+    if (mtype >= 0) H5Tclose(mtype);
+    if (type >= 0) H5Tclose(type);
+    H5Aclose(attr);
+    return st;
+}
+
+/* Whether the dataset's element type is what the reader expects. */
+static bool type_matches(hid_t type, mt__h5_kind kind, size_t elem_size)
+{
+    H5T_class_t cls = H5Tget_class(type);
+    switch (kind) {
+        case MT__H5_INT:
+        case MT__H5_UINT:
+            return cls == H5T_INTEGER && H5Tget_size(type) == elem_size &&
+                   H5Tget_sign(type) == (kind == MT__H5_INT ? H5T_SGN_2 : H5T_SGN_NONE);
+        case MT__H5_FLOAT:
+            return cls == H5T_FLOAT && H5Tget_size(type) == elem_size;
+        case MT__H5_COMPOUND:
+            return cls == H5T_COMPOUND;
+    }
+    return false;
+}
+
+static const char *kind_name(mt__h5_kind kind, size_t elem_size)
+{
+    switch (kind) {
+        case MT__H5_INT:
+            return elem_size == 8 ? "int64" : elem_size == 4 ? "int32" : "signed integer";
+        case MT__H5_UINT:
+            return elem_size == 1 ? "uint8" : elem_size == 4 ? "uint32" : "unsigned";
+        case MT__H5_FLOAT:
+            return "float64";
+        case MT__H5_COMPOUND:
+            return "compound";
+    }
+    return "?";
+}
+
+mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
+                              mt__h5_kind kind, size_t elem_size, hid_t mtype, void **out_data,
+                              uint64_t *out_rows, mt_diag *diag)
+{
+    *out_data = NULL;
+    *out_rows = 0;
+    if (H5Lexists(loc, name, H5P_DEFAULT) <= 0)
+        return mt__archive_fail(diag, MT_ERR_PARSE, "%s: dataset %s is missing", file, name);
+    mt_status st = MT_OK;
+    hid_t dset = H5Dopen2(loc, name, H5P_DEFAULT);
+    hid_t space = dset < 0 ? -1 : H5Dget_space(dset);
+    hid_t type = dset < 0 ? -1 : H5Dget_type(dset);
+    hid_t dcpl = dset < 0 ? -1 : H5Dget_create_plist(dset);
+    hsize_t dims[2] = {0, 0};
+    int ndims = space < 0 ? -1 : H5Sget_simple_extent_ndims(space);
+    if (dset < 0 || space < 0 || type < 0 || dcpl < 0) {
+        st = mt__archive_fail(diag, MT_ERR_PARSE, "%s: dataset %s cannot be opened", file, name);
+    } else if (ndims != rank || H5Sget_simple_extent_dims(space, dims, NULL) != rank ||
+               (rank == 2 && dims[1] != cols)) {
+        if (rank == 2)
+            st = mt__archive_fail(diag, MT_ERR_PARSE,
+                                  "%s: dataset %s must have shape (n, %llu), not rank %d", file,
+                                  name, (unsigned long long)cols, ndims);
+        else
+            st = mt__archive_fail(diag, MT_ERR_PARSE, "%s: dataset %s must be 1-D, not rank %d",
+                                  file, name, ndims);
+        if (rank == 2 && ndims == 2)
+            mt__archive_fail(diag, MT_ERR_PARSE,
+                             "%s: dataset %s must have shape (n, %llu), not (%llu, %llu)", file,
+                             name, (unsigned long long)cols, (unsigned long long)dims[0],
+                             (unsigned long long)dims[1]);
+    } else if (!type_matches(type, kind, elem_size)) {
+        st = mt__archive_fail(diag, MT_ERR_PARSE, "%s: dataset %s must hold %s values", file, name,
+                              kind_name(kind, elem_size));
+    } else if (dims[0] > MT__ARCHIVE_MAX_ELEMENTS) {
+        st = mt__archive_fail(diag, MT_ERR_TOO_LARGE,
+                              "%s: dataset %s claims %llu rows (at most %llu)", file, name,
+                              (unsigned long long)dims[0], MT__ARCHIVE_MAX_ELEMENTS);
+    }
+    uint64_t elements = (uint64_t)dims[0] * (rank == 2 ? cols : 1);
+    if (st == MT_OK && elements > 0) {
+        /* The bytes present must back the claimed size: without filters the
+         * stored size is the data's; deflate compresses at most ~1032:1. */
+        uint64_t needed = elements * H5Tget_size(type);
+        uint64_t stored = H5Dget_storage_size(dset);
+        int filters = H5Pget_nfilters(dcpl);
+        uint64_t backed = filters > 0 ? stored * 1100 + 4096 : stored;
+        size_t msize = H5Tget_size(mtype);
+        if (needed > backed) {
+            st = mt__archive_fail(diag, MT_ERR_TOO_LARGE,
+                                  "%s: dataset %s claims %llu elements but stores only %llu bytes",
+                                  file, name, (unsigned long long)elements,
+                                  (unsigned long long)stored);
+        } else if (msize == 0 || elements > SIZE_MAX / msize) {
+            st =
+                mt__archive_fail(diag, MT_ERR_TOO_LARGE, "%s: dataset %s is too large", file, name);
+        } else if (!(*out_data = malloc((size_t)elements * msize))) {
+            st = mt__archive_fail(diag, MT_ERR_NOMEM, "%s: out of memory reading dataset %s", file,
+                                  name);
+        } else if (H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, *out_data) < 0) {
+            st = mt__archive_fail(diag, MT_ERR_IO, "%s: dataset %s cannot be read", file, name);
+        }
+    }
+    if (st == MT_OK) {
+        *out_rows = dims[0];
+    } else {
+        free(*out_data);
+        *out_data = NULL;
+    }
+    if (dcpl >= 0) H5Pclose(dcpl);
+    if (type >= 0) H5Tclose(type);
+    if (space >= 0) H5Sclose(space);
+    if (dset >= 0) H5Dclose(dset);
+    return st;
+}

@@ -1,0 +1,139 @@
+/* Archive file names: a mesh id is user input and never becomes a path as
+ * it is. Every byte outside [A-Za-z0-9_-] is percent-encoded (so '.', '/',
+ * '%', '~' and ' ' never appear raw) and long ids are shortened with a hash
+ * so every name fits NAME_MAX. Also the small helpers every file uses. */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "archive_internal.h"
+
+/* Escaped ids longer than this are shortened to a prefix plus a hash. */
+#define ESCAPED_MAX 160
+#define ESCAPED_PREFIX 140
+
+mt_status mt__archive_fail(mt_diag *diag, mt_status status, const char *fmt, ...)
+{
+    if (!diag) return status;
+    diag->status = status;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(diag->message, sizeof diag->message, fmt, ap);
+    va_end(ap);
+    return status;
+}
+
+char *mt__archive_strdup(const char *text)
+{
+    size_t n = strlen(text) + 1;
+    char *copy = malloc(n);
+    if (copy) memcpy(copy, text, n);
+    return copy;
+}
+
+char *mt__archive_path(const mt_archive *archive, const char *name)
+{
+    size_t a = strlen(archive->dir), b = strlen(name);
+    char *path = malloc(a + b + 2);
+    if (!path) return NULL;
+    memcpy(path, archive->dir, a);
+    path[a] = '/';
+    memcpy(path + a + 1, name, b + 1);
+    return path;
+}
+
+double mt__archive_now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+mt_status mt_archive_id_check(const char *id, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    if (!id) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh id is missing (NULL)");
+    size_t len = strlen(id);
+    if (len == 0) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh id is empty");
+    if (len > MT_ARCHIVE_ID_MAX)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
+                                "mesh id is %zu bytes long; the limit is %d bytes", len,
+                                MT_ARCHIVE_ID_MAX);
+    for (size_t i = 0; i < len; i++) {
+        unsigned char c = (unsigned char)id[i];
+        const char *rule = NULL;
+        if (c < 0x20 || c > 0x7e)
+            rule = "only printable ASCII (0x20 to 0x7e) is allowed";
+        else if (c == '/')
+            rule = "'/' is not allowed";
+        else if (c == '.' && id[i + 1] == '.')
+            rule = "\"..\" is not allowed";
+        if (rule) {
+            if (diag) diag->byte_offset = i;
+            return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh id byte %zu (0x%02x): %s", i, c,
+                                    rule);
+        }
+    }
+    return MT_OK;
+}
+
+static bool byte_is_plain(unsigned char c)
+{
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-';
+}
+
+size_t mt_archive_file_name(const char *mesh_id, uint32_t version, char *buf, size_t size)
+{
+    if (size > 0) buf[0] = '\0';
+    if (version == 0 || mt_archive_id_check(mesh_id, NULL) != MT_OK) return 0;
+    static const char hex[] = "0123456789ABCDEF";
+    char escaped[3 * MT_ARCHIVE_ID_MAX + 1];
+    size_t n = 0, cut = 0;
+    for (const unsigned char *p = (const unsigned char *)mesh_id; *p; p++) {
+        if (byte_is_plain(*p)) {
+            escaped[n++] = (char)*p;
+        } else {
+            escaped[n++] = '%';
+            escaped[n++] = hex[*p >> 4];
+            escaped[n++] = hex[*p & 15];
+        }
+        if (n <= ESCAPED_PREFIX) cut = n; /* whole escapes only */
+    }
+    escaped[n] = '\0';
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    int len;
+    if (n <= ESCAPED_MAX) {
+        len = snprintf(name, sizeof name, "%s.v%u" MT_ARCHIVE_SUFFIX, escaped, version);
+    } else {
+        uint64_t h = 0xcbf29ce484222325ull; /* FNV-1a of the id itself */
+        for (const unsigned char *p = (const unsigned char *)mesh_id; *p; p++) {
+            h ^= *p;
+            h *= 0x100000001b3ull;
+        }
+        len = snprintf(name, sizeof name, "%.*s~%016llx.v%u" MT_ARCHIVE_SUFFIX, (int)cut, escaped,
+                       (unsigned long long)h, version);
+    }
+    if (len < 0) return 0;
+    if (size > 0) snprintf(buf, size, "%s", name);
+    return (size_t)len;
+}
+
+bool mt__archive_name_parse(const char *name, size_t *out_stem_len, uint32_t *out_version)
+{
+    size_t len = strlen(name), suffix = strlen(MT_ARCHIVE_SUFFIX);
+    if (len <= suffix || strcmp(name + len - suffix, MT_ARCHIVE_SUFFIX) != 0) return false;
+    size_t end = len - suffix; /* one past the version's last digit */
+    size_t start = end;
+    while (start > 0 && name[start - 1] >= '0' && name[start - 1] <= '9') start--;
+    if (start == end || end - start > 10 || name[start] == '0') return false;
+    if (start < 3 || name[start - 1] != 'v' || name[start - 2] != '.') return false;
+    uint64_t v = 0;
+    for (size_t i = start; i < end; i++) v = v * 10 + (uint64_t)(name[i] - '0');
+    if (v > UINT32_MAX) return false;
+    *out_stem_len = start - 2;
+    *out_version = (uint32_t)v;
+    return true;
+}

@@ -1,0 +1,304 @@
+/* Writing one mesh version: the VTKHDF 1.0 UnstructuredGrid a viewer reads
+ * (/VTKHDF), the face list exactly as submitted with provenance and the
+ * topology report (/meshtopo), all into a temporary file that is flushed,
+ * closed, fsynced and then linked into place (see write_durably for why
+ * each step is needed). Layout: contiguous datasets, no compression. */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "archive_internal.h"
+
+/* Distinguishes the temporary files of one process. */
+static atomic_uint tmp_counter;
+
+/* The VTKHDF view of the faces the build kept (rejected faces would make a
+ * viewer read out of bounds): arrays in VTKHDF's types. */
+typedef struct vtk_cells {
+    double *points; /* num_verts x 3 */
+    int64_t *connectivity;
+    int64_t *offsets; /* cells + 1 */
+    uint8_t *types;
+    int64_t *face_ids; /* original face id of each cell */
+    uint64_t cells, ids;
+} vtk_cells;
+
+static void vtk_cells_free(vtk_cells *v)
+{
+    free(v->points);
+    free(v->connectivity);
+    free(v->offsets);
+    free(v->types);
+    free(v->face_ids);
+}
+
+static mt_status vtk_cells_make(const mt_face_list *list, const mt_mesh *mesh, vtk_cells *out,
+                                mt_diag *diag)
+{
+    memset(out, 0, sizeof *out);
+    mt_mesh_view view;
+    mt_mesh_get_view(mesh, &view);
+    for (uint32_t f = 0; f < list->num_faces; f++)
+        if (view.face_he[f] != MT_NONE) {
+            out->cells++;
+            out->ids += list->face_sizes[f];
+        }
+    out->points = calloc(3 * (size_t)list->num_verts + 1, sizeof(double));
+    out->connectivity = malloc((size_t)(out->ids + 1) * sizeof(int64_t));
+    out->offsets = malloc((size_t)(out->cells + 1) * sizeof(int64_t));
+    out->types = malloc((size_t)out->cells + 1);
+    out->face_ids = malloc((size_t)(out->cells + 1) * sizeof(int64_t));
+    if (!out->points || !out->connectivity || !out->offsets || !out->types || !out->face_ids) {
+        vtk_cells_free(out);
+        return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory making the VTKHDF cells");
+    }
+    if (list->positions)
+        memcpy(out->points, list->positions, 3 * (size_t)list->num_verts * sizeof(double));
+    uint64_t cell = 0, pos = 0, start = 0;
+    out->offsets[0] = 0;
+    for (uint32_t f = 0; f < list->num_faces; start += list->face_sizes[f], f++) {
+        if (view.face_he[f] == MT_NONE) continue;
+        uint32_t n = list->face_sizes[f];
+        for (uint32_t k = 0; k < n; k++) out->connectivity[pos + k] = list->face_indices[start + k];
+        pos += n;
+        out->types[cell] = n == 3 ? 5 : n == 4 ? 9 : 7; /* VTK_TRIANGLE, VTK_QUAD, VTK_POLYGON */
+        out->face_ids[cell] = f;
+        out->offsets[++cell] = (int64_t)pos;
+    }
+    return MT_OK;
+}
+
+static hid_t group_create(hid_t loc, const char *name, const char *file, mt_diag *diag)
+{
+    hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g < 0) mt__archive_fail(diag, MT_ERR_IO, "%s: cannot create group %s", file, name);
+    return g;
+}
+
+static mt_status write_vtkhdf(hid_t file, const vtk_cells *v, uint32_t num_verts, const char *name,
+                              mt_diag *diag)
+{
+    hid_t g = group_create(file, "VTKHDF", name, diag);
+    if (g < 0) return MT_ERR_IO;
+    static const int64_t version[2] = {1, 0};
+    int64_t counts[3] = {num_verts, (int64_t)v->cells, (int64_t)v->ids};
+    hsize_t one[1] = {1}, pts[2] = {num_verts, 3}, conn[1] = {v->ids}, offs[1] = {v->cells + 1},
+            cells[1] = {v->cells};
+    mt_status st = mt__h5_write_attr_ints(g, "Version", H5T_STD_I64LE, version, 2, name, diag);
+    if (st == MT_OK) st = mt__h5_write_attr_string(g, "Type", "UnstructuredGrid", name, diag);
+    const char *count_names[3] = {"NumberOfPoints", "NumberOfCells", "NumberOfConnectivityIds"};
+    for (int i = 0; st == MT_OK && i < 3; i++)
+        st = mt__h5_write_dataset(g, count_names[i], H5T_STD_I64LE, H5T_NATIVE_INT64, 1, one,
+                                  &counts[i], name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_dataset(g, "Points", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, pts, v->points,
+                                  name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_dataset(g, "Connectivity", H5T_STD_I64LE, H5T_NATIVE_INT64, 1, conn,
+                                  v->connectivity, name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_dataset(g, "Offsets", H5T_STD_I64LE, H5T_NATIVE_INT64, 1, offs,
+                                  v->offsets, name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_dataset(g, "Types", H5T_STD_U8LE, H5T_NATIVE_UINT8, 1, cells, v->types,
+                                  name, diag);
+    hid_t cd = st == MT_OK ? group_create(g, "CellData", name, diag) : -1;
+    if (st == MT_OK && cd < 0) st = MT_ERR_IO;
+    if (st == MT_OK)
+        st = mt__h5_write_dataset(cd, "original_face_id", H5T_STD_I64LE, H5T_NATIVE_INT64, 1, cells,
+                                  v->face_ids, name, diag);
+    hid_t pd = st == MT_OK ? group_create(g, "PointData", name, diag) : -1;
+    if (st == MT_OK && pd < 0) st = MT_ERR_IO;
+    if (pd >= 0) H5Gclose(pd);
+    if (cd >= 0) H5Gclose(cd);
+    H5Gclose(g);
+    return st;
+}
+
+static mt_status write_meshtopo(hid_t file, const mt_archive_meta *meta, const mt_face_list *list,
+                                const mt_mesh *mesh, const char *name, mt_diag *diag)
+{
+    hid_t g = group_create(file, "meshtopo", name, diag);
+    if (g < 0) return MT_ERR_IO;
+    uint32_t format_version = MT_ARCHIVE_FORMAT_VERSION;
+    int64_t num_verts = list->num_verts, num_faces = list->num_faces,
+            num_indices = (int64_t)list->num_indices;
+    mt_status st = mt__h5_write_attr_string(
+        g, "description",
+        "meshtopo archive of one mesh version: the face list exactly as submitted "
+        "(positions, face_vertex_counts, face_vertex_indices; rejected faces included), "
+        "provenance attributes and the build's topology report (group report). /VTKHDF "
+        "holds the faces the build kept; its CellData/original_face_id maps cells back.",
+        name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_attr_int(g, "format_version", H5T_NATIVE_UINT32, &format_version, name,
+                                   diag);
+    if (st == MT_OK) st = mt__h5_write_attr_string(g, "mesh_id", meta->mesh_id, name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_attr_int(g, "version", H5T_NATIVE_UINT32, &meta->version, name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_attr_int(g, "utime", H5T_NATIVE_INT64, &meta->utime, name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_attr_string(g, "source", meta->source ? meta->source : "", name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_attr_int(g, "content_hash", H5T_NATIVE_UINT64, &meta->content_hash, name,
+                                   diag);
+    if (st == MT_OK)
+        st = mt__h5_write_attr_int(g, "num_verts", H5T_NATIVE_INT64, &num_verts, name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_attr_int(g, "num_faces", H5T_NATIVE_INT64, &num_faces, name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_attr_int(g, "num_indices", H5T_NATIVE_INT64, &num_indices, name, diag);
+    /* A mesh without geometry has a positions dataset of shape (0, 3). */
+    hsize_t pos[2] = {list->positions ? list->num_verts : 0, 3};
+    hsize_t counts[1] = {list->num_faces}, indices[1] = {list->num_indices};
+    /* With geometry, positions is a second name (an HDF5 hard link) of
+     * /VTKHDF/Points: the same N x 3 float64 values, stored once. */
+    if (st == MT_OK && list->positions) {
+        if (H5Lcreate_hard(file, "/VTKHDF/Points", g, "positions", H5P_DEFAULT, H5P_DEFAULT) < 0)
+            st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot link /meshtopo/positions", name);
+    } else if (st == MT_OK) {
+        st = mt__h5_write_dataset(g, "positions", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, pos,
+                                  list->positions, name, diag);
+    }
+    /* int32 as in mesh_t: the uint32 entries are written with an int32 memory
+     * type (same bits, no conversion), so an index read as -1 shows as -1. */
+    if (st == MT_OK)
+        st = mt__h5_write_dataset(g, "face_vertex_counts", H5T_STD_I32LE, H5T_NATIVE_INT32, 1,
+                                  counts, list->face_sizes, name, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_dataset(g, "face_vertex_indices", H5T_STD_I32LE, H5T_NATIVE_INT32, 1,
+                                  indices, list->face_indices, name, diag);
+    hid_t rg = st == MT_OK ? group_create(g, "report", name, diag) : -1;
+    if (st == MT_OK && rg < 0) st = MT_ERR_IO;
+    if (st == MT_OK) st = mt__report_write(rg, mt_mesh_report(mesh), name, diag);
+    if (rg >= 0) H5Gclose(rg);
+    H5Gclose(g);
+    return st;
+}
+
+/* fsync of a path opened read-only (a file or a directory). */
+static int fsync_path(const char *path, int flags)
+{
+    int fd = open(path, O_RDONLY | flags);
+    if (fd < 0) return -1;
+    int rc = fsync(fd);
+    int saved = errno;
+    close(fd);
+    errno = saved;
+    return rc;
+}
+
+/* Crash safety, step by step (HDF5 1.10 files are not crash-safe while
+ * open for writing: a file killed before it is closed cannot be opened
+ * again, so nothing is ever written under the final name):
+ *  1. H5Fcreate a temporary name in the same directory (same file system,
+ *     so step 4 is atomic); H5F_CLOSE_STRONG makes H5Fclose close every
+ *     object and really release the file.
+ *  2. H5Fflush(H5F_SCOPE_GLOBAL) writes HDF5's metadata cache and raw data
+ *     out of its buffers; H5Fclose then writes the superblock's final
+ *     end-of-file address. Only after both is the file complete.
+ *  3. fsync the file: complete in the page cache is not on disk.
+ *  4. link() the final name to it (fails with EEXIST instead of replacing
+ *     an existing version, unlike rename), then unlink the temporary name.
+ *  5. fsync the directory so the new name itself survives a power loss.
+ * A crash before 4 leaves only a temporary file (removed at the next open);
+ * between 4 and the unlink, both names of one complete file. */
+static mt_status write_durably(const mt_archive *archive, const char *final_name,
+                               const mt_archive_meta *meta, const mt_face_list *list,
+                               const mt_mesh *mesh, mt_archive_write_stats *stats, mt_diag *diag)
+{
+    char tmp_name[64];
+    snprintf(tmp_name, sizeof tmp_name, MT__ARCHIVE_TMP_PREFIX "%ld-%u.part", (long)getpid(),
+             atomic_fetch_add(&tmp_counter, 1u));
+    char *tmp = mt__archive_path(archive, tmp_name);
+    char *final_path = mt__archive_path(archive, final_name);
+    if (!tmp || !final_path) {
+        free(tmp);
+        free(final_path);
+        return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
+    }
+    vtk_cells cells;
+    mt_status st = vtk_cells_make(list, mesh, &cells, diag);
+    double t0 = mt__archive_now_ms();
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    hid_t file = -1;
+    if (st == MT_OK) {
+        if (fapl >= 0) H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
+        file = fapl < 0 ? -1 : H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+        if (file < 0) st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot create the file", tmp);
+    }
+    if (st == MT_OK) st = write_vtkhdf(file, &cells, list->num_verts, tmp, diag);
+    if (st == MT_OK) st = write_meshtopo(file, meta, list, mesh, tmp, diag);
+    if (st == MT_OK && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
+        st = mt__archive_fail(diag, MT_ERR_IO, "%s: H5Fflush failed", tmp);
+    if (file >= 0 && H5Fclose(file) < 0 && st == MT_OK)
+        st = mt__archive_fail(diag, MT_ERR_IO, "%s: H5Fclose failed", tmp);
+    if (fapl >= 0) H5Pclose(fapl);
+    vtk_cells_free(&cells);
+    double t1 = mt__archive_now_ms();
+    if (st == MT_OK && fsync_path(tmp, 0) != 0)
+        st = mt__archive_fail(diag, MT_ERR_IO, "%s: fsync failed: %s", tmp, strerror(errno));
+    if (st == MT_OK && link(tmp, final_path) != 0) {
+        if (errno == EEXIST)
+            st = mt__archive_fail(diag, MT_ERR_INVALID_ARG,
+                                  "%s: version %u of mesh '%s' is already archived", final_path,
+                                  meta->version, meta->mesh_id);
+        else
+            st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot link the new file into place: %s",
+                                  final_path, strerror(errno));
+    }
+    unlink(tmp); /* after a successful link: the second name; after a failure: the leftover */
+    if (st == MT_OK && fsync_path(archive->dir, O_DIRECTORY) != 0)
+        st = mt__archive_fail(diag, MT_ERR_IO, "%s: fsync of the directory failed: %s",
+                              archive->dir, strerror(errno));
+    double t2 = mt__archive_now_ms();
+    if (st == MT_OK && stats) {
+        struct stat sb;
+        stats->write_ms = t1 - t0;
+        stats->fsync_ms = t2 - t1;
+        stats->file_bytes = stat(final_path, &sb) == 0 ? (uint64_t)sb.st_size : 0;
+    }
+    free(tmp);
+    free(final_path);
+    return st;
+}
+
+mt_status mt_archive_write(mt_archive *archive, const mt_archive_meta *meta,
+                           const mt_face_list *list, const mt_mesh *mesh,
+                           mt_archive_write_stats *out_stats, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    mt__h5_quiet();
+    if (out_stats) memset(out_stats, 0, sizeof *out_stats);
+    if (!archive || !meta || !list || !mesh)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_write: NULL argument");
+    if (archive->read_only)
+        return mt__archive_fail(diag, MT_ERR_UNSUPPORTED, "%s: archive opened read-only",
+                                archive->dir);
+    mt_status st = mt_archive_id_check(meta->mesh_id, diag);
+    if (st != MT_OK) return st;
+    if (meta->version == 0)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh '%s': version 0 is not a version",
+                                meta->mesh_id);
+    st = mt_face_list_check(list, diag);
+    if (st != MT_OK) return st;
+    if (mt_mesh_num_verts(mesh) != list->num_verts || mt_mesh_num_faces(mesh) != list->num_faces)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
+                                "mesh '%s': the built mesh (%u vertices, %u faces) is not the "
+                                "face list's (%u, %u)",
+                                meta->mesh_id, mt_mesh_num_verts(mesh), mt_mesh_num_faces(mesh),
+                                list->num_verts, list->num_faces);
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    mt_archive_file_name(meta->mesh_id, meta->version, name, sizeof name);
+    if (mt_archive_contains(archive, meta->mesh_id, meta->version))
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
+                                "%s/%s: version %u of mesh '%s' is already archived", archive->dir,
+                                name, meta->version, meta->mesh_id);
+    return write_durably(archive, name, meta, list, mesh, out_stats, diag);
+}

@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""An archived mesh read with h5py under the documented names, without
+meshtopo's code: /VTKHDF (Version [1, 0], Type "UnstructuredGrid", counts,
+Points, Connectivity, Offsets, Types as uint8, CellData/original_face_id)
+and /meshtopo (provenance attributes, the face list exactly as in the OFF
+file, the report). Run with Debian's /usr/bin/python3; exit 77 without h5py.
+
+usage: archive_h5py_check.py --fixture PATH --corpus DIR
+"""
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+
+try:
+    import h5py
+    import numpy as np
+except ImportError:
+    print("skip: h5py/numpy not installed for", sys.executable)
+    sys.exit(77)
+
+failures = []
+
+
+def expect(cond, what):
+    print(("ok   " if cond else "FAIL ") + what)
+    if not cond:
+        failures.append(what)
+
+
+def read_off(path):
+    """Vertices and faces of a plain ASCII OFF file."""
+    with open(path, encoding="ascii") as f:
+        words = [w for line in f for w in line.split("#")[0].split()]
+    assert words[0] == "OFF"
+    nv, nf = int(words[1]), int(words[2])
+    pos = 4
+    verts = [[float(words[pos + 3 * i + k]) for k in range(3)] for i in range(nv)]
+    pos += 3 * nv
+    faces = []
+    for _ in range(nf):
+        n = int(words[pos])
+        faces.append([int(w) for w in words[pos + 1:pos + 1 + n]])
+        pos += 1 + n
+    return verts, faces
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--fixture", required=True)
+    ap.add_argument("--corpus", required=True)
+    args = ap.parse_args()
+    # A defective corpus mesh: out-of-range indices and degenerate faces.
+    mesh = os.path.join(args.corpus, "trimesh_notenoughindices.off")
+    verts, faces = read_off(mesh)
+    with tempfile.TemporaryDirectory(prefix="meshtopo-h5py-") as tmp:
+        subprocess.run([args.fixture, tmp, "arm 1. x", "3", mesh], check=True)
+        names = os.listdir(tmp)
+        expect(len(names) == 1 and names[0].endswith(".vtkhdf"), f"one .vtkhdf file: {names}")
+        with h5py.File(os.path.join(tmp, names[0]), "r") as f:
+            g = f["VTKHDF"]
+            expect(list(g.attrs["Version"]) == [1, 0] and g.attrs["Version"].dtype == np.int64,
+                   "VTKHDF Version is int64 [1, 0]")
+            t = g.attrs["Type"]
+            expect((t.decode() if isinstance(t, bytes) else t) == "UnstructuredGrid",
+                   "VTKHDF Type is UnstructuredGrid")
+            kept = [i for i, fc in enumerate(faces)
+                    if len(fc) >= 3 and len(set(fc)) == len(fc) and all(0 <= v < len(verts) for v in fc)]
+            expect(g["NumberOfPoints"][0] == len(verts), "NumberOfPoints")
+            expect(g["NumberOfCells"][0] == len(kept), f"NumberOfCells = {len(kept)} kept faces")
+            expect(g["Types"].dtype == np.uint8, "Types are uint8")
+            expect(g["Points"].shape == (len(verts), 3), "Points shape")
+            expect(np.array_equal(g["Points"][()], np.array(verts).reshape(-1, 3)),
+                   "Points equal the OFF vertices")
+            offs = g["Offsets"][()]
+            conn = g["Connectivity"][()]
+            ids = g["CellData/original_face_id"][()]
+            expect(list(ids) == kept, "original_face_id lists the kept faces")
+            expect(all(list(conn[offs[c]:offs[c + 1]]) == faces[ids[c]] for c in range(len(kept))),
+                   "each cell's connectivity is its original face")
+            m = f["meshtopo"]
+            for key in ("mesh_id", "version", "utime", "source", "content_hash",
+                        "format_version", "num_verts", "num_faces", "num_indices"):
+                expect(key in m.attrs, f"meshtopo attribute {key}")
+            mid = m.attrs["mesh_id"]
+            expect((mid.decode() if isinstance(mid, bytes) else mid) == "arm 1. x", "mesh_id")
+            expect(int(m.attrs["version"]) == 3, "version")
+            counts = m["face_vertex_counts"][()]
+            flat = m["face_vertex_indices"][()]
+            expect(list(counts) == [len(fc) for fc in faces], "face_vertex_counts as submitted")
+            expect(list(flat) == [v for fc in faces for v in fc],
+                   "face_vertex_indices as submitted, rejected faces too")
+            expect(np.array_equal(m["positions"][()], np.array(verts).reshape(-1, 3)),
+                   "positions as submitted")
+            r = m["report"]
+            expect(int(r.attrs["num_faces"]) == len(faces), "report num_faces")
+            expect(int(r.attrs["num_faces_valid"]) == len(kept), "report num_faces_valid")
+            d = r["defects"]
+            expect(set(d.dtype.names) == {"kind", "a", "b", "c"}, "defects columns")
+            expect(int(r.attrs["num_defects"]) == d.shape[0] and d.shape[0] > 0,
+                   "defects listed")
+    if failures:
+        print(f"{len(failures)} check(s) failed")
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,39 @@
+/* Helpers shared by the archive tests: scratch directories, archiving a
+ * face list after building and validating it, and comparing face lists bit
+ * for bit. */
+#ifndef MESHTOPO_TEST_ARCHIVE_UTIL_H
+#define MESHTOPO_TEST_ARCHIVE_UTIL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "meshtopo/archive.h"
+
+/* A fresh directory under $TMPDIR (or /tmp), path written into buf. */
+bool at_tmpdir(char *buf, size_t size);
+
+/* Removes a scratch directory and the files in it (one level). */
+void at_rmdir(const char *dir);
+
+/* Builds list (checking the build and mt_mesh_validate), archives it as
+ * mesh_id / version with the given utime, source and hash. Returns the
+ * write's status; *out_mesh (may be NULL) keeps the built mesh. */
+mt_status at_archive_list(mt_archive *archive, const char *mesh_id, uint32_t version,
+                          const mt_face_list *list, uint64_t hash, mt_mesh **out_mesh);
+
+/* Whether two face lists are identical: counts, sizes, indices, and
+ * positions bit for bit (both NULL counts as equal). */
+bool at_face_lists_equal(const mt_face_list *a, const mt_face_list *b);
+
+/* A stand-in content hash for the tests (FNV-1a over the arrays), with the
+ * signature mt_archive_verify_file takes. */
+mt_status at_hash(void *ctx, const mt_face_list *faces, uint64_t *out_hash, mt_diag *diag);
+
+/* Writes `size` bytes to path; false on failure. */
+bool at_write_bytes(const char *path, const void *data, size_t size);
+
+/* Copies a file; false on failure. */
+bool at_copy_file(const char *from, const char *to, long truncate_to);
+
+#endif

@@ -1,0 +1,118 @@
+/* `meshtopo archive SUBCOMMAND DIR ...`: offline inspection and management
+ * of a meshtopod archive directory (one VTKHDF file per mesh version). This
+ * file holds the command's table entry, its help and the dispatch to the
+ * cmd_archive_*.c subcommands. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "cmd_archive.h"
+
+static const mt_cli_option options[] = {
+    {"json", NULL, "ls, show, verify: print one JSON object"},
+    {"version", "N", "show, export, rm: this version (default: the highest archived)"},
+    {"all", NULL, "rm: remove every version of the mesh"},
+};
+
+typedef struct subcommand {
+    const char *name;
+    size_t min_args, max_args; /* after the subcommand's name */
+    int (*run)(const mt_cli_args *args);
+    bool json, version, all; /* which options apply */
+} subcommand;
+
+static const subcommand subcommands[] = {
+    {"ls", 1, 1, mt_cli_archive_ls, true, false, false},
+    {"show", 2, 2, mt_cli_archive_show, true, true, false},
+    {"verify", 1, 1, mt_cli_archive_verify, true, false, false},
+    {"export", 3, 3, mt_cli_archive_export, false, true, false},
+    {"rm", 2, 2, mt_cli_archive_rm, false, true, true},
+};
+
+int mt_cli_archive_open(const char *dir, bool read_only, mt_archive **out)
+{
+    mt_archive_options open_options = {.read_only = read_only};
+    mt_diag diag;
+    mt_status st = mt_archive_open(dir, &open_options, out, &diag);
+    if (st == MT_OK) return MT_CLI_EXIT_OK;
+    mt_cli_error("archive", "%s", diag.message);
+    return MT_CLI_EXIT_READ;
+}
+
+int mt_cli_archive_version(const mt_cli_args *args, uint32_t *out)
+{
+    *out = 0;
+    const char *text = mt_cli_arg(args, "version");
+    if (!text) return MT_CLI_EXIT_OK;
+    char *end = NULL;
+    unsigned long long v = text[0] >= '0' && text[0] <= '9' ? strtoull(text, &end, 10) : 0;
+    if (!end || *end != '\0' || v == 0 || v > UINT32_MAX) {
+        mt_cli_error("archive", "--version: expected a version number (1 or more), got '%s'", text);
+        return MT_CLI_EXIT_USAGE;
+    }
+    *out = (uint32_t)v;
+    return MT_CLI_EXIT_OK;
+}
+
+static int run_archive(const mt_cli_args *args)
+{
+    const char *name = args->positionals[0];
+    const subcommand *sub = NULL;
+    for (size_t i = 0; i < sizeof subcommands / sizeof subcommands[0]; i++)
+        if (strcmp(subcommands[i].name, name) == 0) sub = &subcommands[i];
+    if (!sub) {
+        mt_cli_error("archive", "unknown subcommand '%s' (ls, show, verify, export, rm)", name);
+        return MT_CLI_EXIT_USAGE;
+    }
+    size_t given = args->num_positionals - 1;
+    if (given < sub->min_args || given > sub->max_args) {
+        mt_cli_error("archive", "%s takes %zu argument%s, got %zu (see meshtopo help archive)",
+                     sub->name, sub->min_args, sub->min_args == 1 ? "" : "s", given);
+        return MT_CLI_EXIT_USAGE;
+    }
+    const char *bad = (!sub->json && mt_cli_flag(args, "json"))        ? "--json"
+                      : (!sub->version && mt_cli_arg(args, "version")) ? "--version"
+                      : (!sub->all && mt_cli_flag(args, "all"))        ? "--all"
+                                                                       : NULL;
+    if (bad) {
+        mt_cli_error("archive", "%s does not apply to '%s'", bad, sub->name);
+        return MT_CLI_EXIT_USAGE;
+    }
+    return sub->run(args);
+}
+
+const mt_cli_command mt_cli_cmd_archive = {
+    .name = "archive",
+    .summary = "list, show, verify, export or remove archived mesh versions (offline)",
+    .synopsis = "ls|show|verify|export|rm DIR [ID] [OUT] [--version N] [--all] [--json]",
+    .description =
+        "Works on a meshtopod archive directory without the daemon: one HDF5 file per mesh\n"
+        "version, also a VTKHDF file that ParaView and VTK open (NAME.vN.vtkhdf, the mesh id\n"
+        "percent-encoded in NAME).\n"
+        "\n"
+        "  archive ls DIR [--json]\n"
+        "      every archived version: mesh id, version, time, source, file size, vertices,\n"
+        "      faces, defects, components, genus; unreadable files are listed with the reason.\n"
+        "  archive show DIR ID [--version N] [--json]\n"
+        "      one version's provenance and topology report (rebuilt from the stored face\n"
+        "      list and checked against the stored report).\n"
+        "  archive verify DIR [--json]\n"
+        "      checks every file: readable, shapes and types consistent, name matching its\n"
+        "      mesh id and version, VTKHDF cells matching the face list, content hash\n"
+        "      matching, rebuild giving the stored report. One line per file.\n"
+        "  archive export DIR ID [--version N] OUT.{off,obj,ply}\n"
+        "      writes the face list exactly as submitted (rejected faces too).\n"
+        "  archive rm DIR ID [--version N | --all]\n"
+        "      removes one version (default the highest) or every version of ID.\n"
+        "\n"
+        "ls, show, verify and export open the archive read-only (safe while meshtopod\n"
+        "writes to it); rm also removes leftovers of interrupted writes.\n"
+        "\n"
+        "exit codes: 0 success, 2 usage error, 3 the directory, a file or a version could\n"
+        "not be read, found or written (verify: at least one bad file; export: OUT could\n"
+        "not be written).\n",
+    .options = options,
+    .num_options = sizeof options / sizeof options[0],
+    .min_positionals = 2,
+    .max_positionals = 4,
+    .run = run_archive,
+};
