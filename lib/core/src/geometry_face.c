@@ -95,7 +95,7 @@ mt_status mt_face_normal(const mt_mesh *mesh, uint32_t face, double out_normal[3
 {
     if (!out_normal)
         return mt__fail(diag, MT_ERR_INVALID_ARG, face, "mt_face_normal: out_normal is NULL");
-    uint32_t h, size;
+    uint32_t h = MT_NONE, size = 0;
     mt_status s = face_start(mesh, face, "mt_face_normal", &h, diag);
     if (s != MT_OK) return s;
     double a2[3];
@@ -109,7 +109,7 @@ mt_status mt_face_area(const mt_mesh *mesh, uint32_t face, double *out_area, mt_
 {
     if (!out_area)
         return mt__fail(diag, MT_ERR_INVALID_ARG, face, "mt_face_area: out_area is NULL");
-    uint32_t h, size;
+    uint32_t h = MT_NONE, size = 0;
     mt_status s = face_start(mesh, face, "mt_face_area", &h, diag);
     if (s != MT_OK) return s;
     double a2[3];
@@ -124,7 +124,7 @@ mt_status mt_face_centroid(const mt_mesh *mesh, uint32_t face, double out_centro
 {
     if (!out_centroid)
         return mt__fail(diag, MT_ERR_INVALID_ARG, face, "mt_face_centroid: out_centroid is NULL");
-    uint32_t h, size;
+    uint32_t h = MT_NONE, size = 0;
     mt_status s = face_start(mesh, face, "mt_face_centroid", &h, diag);
     if (s != MT_OK) return s;
     double a2[3], n[3];
