@@ -19,46 +19,63 @@
 #endif
 
 #define MT__BENCH_MAX_REPS 99
-#define MT__BENCH_MAX_CASES 8
-#define MT__BENCH_MAX_RUNNERS 4
+#define MT__BENCH_MAX_CASES 16
+#define MT__BENCH_MAX_RUNNERS 8
 
-/* Command-line options (see mt__bench_usage in bench.c). */
+/* Command-line options (see usage in bench.c). */
 typedef struct mt__bench_options {
+    bool all;               /* `meshtopo-bench all`: every mesh, files into out_dir */
     uint64_t faces;         /* target triangle count of the grid */
+    uint64_t torus_faces;   /* target triangle count of the closed torus (all) */
     uint32_t reps;          /* timed repetitions per library and case */
-    uint32_t threads;       /* mt_build_options.threads (0 = automatic) */
-    uint64_t seed;          /* seed of the permuted copy */
-    bool quick;             /* small mesh, few repetitions (smoke test) */
+    bool threads_given;     /* --threads: one meshtopo row, else rows for 1 and 2 threads */
+    uint32_t threads;       /* mt_build_options.threads of that row (0 = automatic) */
+    uint64_t seed;          /* seed of the permuted copies */
+    bool quick;             /* small meshes, few repetitions (smoke test) */
     bool peer_no_reserve;   /* peers time the plain add loop, without reserve() */
-    const char *csv_path;   /* NULL: no CSV */
-    const char *md_path;    /* NULL: no Markdown */
+    const char *csv_path;   /* NULL: no CSV (all: out_dir/bench.csv) */
+    const char *md_path;    /* NULL: no Markdown (all: out_dir/bench.md) */
+    const char *svg_path;   /* NULL: no plot (all: out_dir/build-time.svg) */
+    const char *out_dir;    /* all: where the three files go */
+    const char *corpus_dir; /* where npm_bunny.off and igl_fertility.off are */
     const char *peer_dir;   /* NULL: look next to the executable */
     const char *tmp_parent; /* NULL: $TMPDIR or /tmp */
+    char command[512];      /* the command line, for the Markdown file */
+    char machine[256];      /* CPU model, cores, kernel: where it was measured */
 } mt__bench_options;
 
 /* One mesh in one order: the face list meshtopo builds from in process and
  * the raw file (bench_input.c) the peers read the same bytes from. */
 typedef struct mt__bench_case {
-    char mesh[48];  /* "grid 707x707" */
+    char mesh[48];  /* "grid 707x707", "npm_bunny" */
     char order[16]; /* "ordered" or "permuted" */
     mt_face_list list;
     char path[PATH_MAX];
 } mt__bench_case;
 
-/* What a library built: counts checked across libraries, and one sweep's
- * totals (neighbours visited, sum of their vertex ids) as a cross-check. */
+/* Bytes of a face list (positions, face sizes, indices): what a build reads. */
+uint64_t mt__bench_case_input_bytes(const mt__bench_case *bench_case);
+
+/* What a library built: counts checked across libraries, and one run's
+ * totals of each sweep (elements visited, sum of their ids) as a
+ * cross-check. components is MT__BENCH_UNKNOWN when the library does not
+ * compute them. */
+#define MT__BENCH_UNKNOWN UINT64_MAX
 typedef struct mt__bench_topology {
-    uint64_t verts, edges, faces, boundary_loops;
-    uint64_t rejected_faces; /* faces the library refused or left out */
-    uint64_t neighbours, checksum;
+    uint64_t verts, edges, faces, boundary_loops, components;
+    uint64_t rejected_faces;            /* faces the library refused or left out */
+    uint64_t loop_verts;                /* vertices over all extracted boundary loops */
+    uint64_t ring_neighbours, ring_sum; /* one-ring sweep: neighbours, sum of vertex ids */
+    uint64_t adj_neighbours, adj_sum;   /* face-adjacency sweep: neighbours, sum of face ids */
 } mt__bench_topology;
 
-/* One timed repetition: build, then one-ring sweep over every vertex. */
+/* One timed repetition: build, one-ring sweep over every vertex, face
+ * adjacency sweep over every face, boundary-loop extraction, connected
+ * components (each timed on its own; the mesh is freed untimed). */
 typedef struct mt__bench_sample {
-    double build_ms;
-    double sweep_ms;
-    uint64_t neighbours, checksum;
-    int64_t heap_bytes; /* heap growth over the build (mallinfo2), -1 if unknown */
+    double build_ms, ring_ms, adj_ms, loops_ms, components_ms; /* NAN when not measured */
+    mt__bench_topology seen; /* what this repetition's queries found */
+    int64_t heap_bytes;      /* heap growth over the build (mallinfo2), -1 if unknown */
 } mt__bench_sample;
 
 typedef enum mt__bench_state {
@@ -67,15 +84,22 @@ typedef enum mt__bench_state {
     MT__BENCH_FAILED
 } mt__bench_state;
 
+/* What a runner measures: a library building a mesh, or the memcpy floor
+ * (no mesh, no queries: only its time is in build_ms). */
+typedef enum mt__bench_kind { MT__BENCH_LIBRARY, MT__BENCH_FLOOR } mt__bench_kind;
+
 /* One library on one case. */
 typedef struct mt__bench_result {
     const char *library;
+    mt__bench_kind kind;
+    bool is_meshtopo;
+    uint32_t threads; /* build threads (0 = automatic) */
     const mt__bench_case *bench_case;
     mt__bench_state state;
     char message[512]; /* why it was skipped or failed */
     char version[32];
     mt__bench_topology topology;
-    uint64_t structure_bytes; /* meshtopo: mt_mesh_memory_bytes; 0 for peers */
+    uint64_t structure_bytes; /* meshtopo: mt_mesh_memory_bytes; floors: bytes written */
     uint64_t report_bytes;    /* meshtopo: mt_mesh_report_memory_bytes */
     uint32_t num_samples;
     mt__bench_sample samples[MT__BENCH_MAX_REPS];
@@ -84,10 +108,15 @@ typedef struct mt__bench_result {
 /* A way to measure one library: start loads a case and warms up (filling
  * version and topology in the result), rep runs one timed repetition, stop
  * releases everything. start and rep return false after writing the reason
- * into result->message. */
+ * into result->message. The make functions fill everything but exe. */
 typedef struct mt__bench_runner mt__bench_runner;
 struct mt__bench_runner {
-    const char *library;
+    char library[32]; /* row name: "meshtopo-1t", "OpenMesh", "memcpy-fresh" */
+    mt__bench_kind kind;
+    bool is_meshtopo;
+    uint32_t threads;      /* meshtopo: mt_build_options.threads */
+    bool fresh;            /* floor: into freshly allocated memory each repetition */
+    const char *peer_flag; /* peer: extra argument ("--soup") or NULL */
     bool (*start)(mt__bench_runner *runner, const mt__bench_case *bench_case,
                   const mt__bench_options *options, mt__bench_result *result);
     bool (*rep)(mt__bench_runner *runner, mt__bench_sample *out, mt__bench_result *result);
@@ -96,39 +125,79 @@ struct mt__bench_runner {
     char exe[PATH_MAX]; /* peer executable, empty for in-process runners */
 };
 
-/* Entry point shared by the meshtopo-bench executable (and later the
- * `meshtopo bench` subcommand). Returns the process exit code. */
+/* Entry point of the meshtopo-bench executable (also `meshtopo bench`):
+ * `[build] [options]` or `all [options]`. Returns the process exit code. */
 int mt__bench_command(int argc, char **argv);
 
 /* bench_clock.c */
 double mt__bench_now_ms(void);
 int64_t mt__bench_heap_bytes(void);
 
-/* bench_input.c: builds the cases and writes their raw files into dir. */
+/* bench_input.c: builds the cases (all: bunny, a closed corpus mesh, the
+ * grid and the torus; otherwise the grid), each ordered and permuted, and
+ * writes their raw files into dir. */
 bool mt__bench_cases_make(const mt__bench_options *options, const char *dir, mt__bench_case *cases,
                           uint32_t *out_num_cases, char *err, size_t err_size);
-/* Removes the raw files (the peers have read them once started); free
- * removes them too and releases the face lists. */
-void mt__bench_cases_remove_files(mt__bench_case *cases, uint32_t num_cases);
+/* Removes the raw file of a case (its peers have read it once started);
+ * free removes them too and releases the face lists. */
+void mt__bench_case_remove_file(mt__bench_case *bench_case);
 void mt__bench_cases_free(mt__bench_case *cases, uint32_t num_cases);
 bool mt__bench_input_write(const mt_face_list *list, const char *path, char *err, size_t err_size);
 
-/* bench_meshtopo.c and bench_peer.c */
-void mt__bench_runner_meshtopo(mt__bench_runner *out);
-void mt__bench_runner_peer(mt__bench_runner *out, const char *library, const char *exe);
+/* bench_meshtopo.c, bench_peer.c and bench_floor.c */
+void mt__bench_runner_meshtopo(mt__bench_runner *out, uint32_t threads);
+void mt__bench_runner_peer(mt__bench_runner *out, const char *library, const char *peer_flag);
+void mt__bench_runner_floor(mt__bench_runner *out, bool fresh);
 
-/* bench_table.c: medians, the console table, CSV and Markdown. results is
- * [num_cases][num_runners], row-major. */
-double mt__bench_median(const mt__bench_result *result, bool sweep);
+/* bench_table.c: medians and the figures of one row, shared by every
+ * printer. results is [num_cases][num_runners], row-major. */
+typedef enum mt__bench_metric {
+    MT__BENCH_BUILD,
+    MT__BENCH_RING,
+    MT__BENCH_ADJ,
+    MT__BENCH_LOOPS,
+    MT__BENCH_COMPONENTS
+} mt__bench_metric;
+
+typedef struct mt__bench_row {
+    const mt__bench_result *r;
+    bool ok;
+    double faces; /* of the case's input */
+    double build_ms, build_min, build_max, build_ratio, ns_per_face;
+    double ring_ms, ring_ratio, ring_per_s;
+    double adj_ms, adj_ratio, adj_per_s;
+    double loops_ms, components_ms;
+    double heap_per_face;      /* mallinfo2 growth / F */
+    double structure_per_face; /* meshtopo only: mt_mesh_memory_bytes / F */
+} mt__bench_row;
+
+double mt__bench_median(const mt__bench_result *result, mt__bench_metric metric);
+/* The meshtopo row the ratios of a case are taken against: its fastest
+ * build (NULL when meshtopo has no measurement). */
+const mt__bench_result *mt__bench_base(const mt__bench_result *row, uint32_t num_runners);
+mt__bench_row mt__bench_row_compute(const mt__bench_result *r, const mt__bench_result *base);
+/* "%.*f" of x, or "-" when x is not a number. */
+const char *mt__bench_num(char *buf, size_t size, double x, int decimals);
+const char *mt__bench_ms(char *buf, size_t size, double x);
+const char *mt__bench_rate(char *buf, size_t size, double x);
+const char *mt__bench_threads_text(const mt__bench_result *r, char *buf, size_t size);
+
 void mt__bench_table_print(FILE *out, const mt__bench_options *options,
                            const mt__bench_result *results, uint32_t num_cases,
                            uint32_t num_runners);
+/* Targets of the benchmark issue for every case of 100k faces or more;
+ * returns true when all were met (the exit status does not depend on it). */
 bool mt__bench_targets_print(FILE *out, const mt__bench_result *results, uint32_t num_cases,
                              uint32_t num_runners);
+
+/* bench_files.c: the same rows as CSV and Markdown; bench_svg.c: build time
+ * against faces, log-log, one line per library and order. */
 bool mt__bench_csv_write(const char *path, const mt__bench_options *options,
                          const mt__bench_result *results, uint32_t num_cases, uint32_t num_runners);
 bool mt__bench_markdown_write(const char *path, const mt__bench_options *options,
                               const mt__bench_result *results, uint32_t num_cases,
                               uint32_t num_runners);
+bool mt__bench_svg_write(const char *path, const mt__bench_result *results, uint32_t num_cases,
+                         uint32_t num_runners);
 
 #endif

@@ -1,6 +1,8 @@
-/* The benchmark inputs: a triangulated grid in its natural order and the
- * same grid with vertex ids and face order shuffled, each also written to a
- * raw file so the peer programs read byte-identical input.
+/* The benchmark inputs, each in its natural order and with vertex ids and
+ * face order shuffled (mt_face_list_permute, fixed seed): a triangulated
+ * grid with boundary; for `all` also the bunny and a closed genus-4 mesh of
+ * the corpus (read with meshtopo::io) and a closed torus. Each case is also
+ * written to a raw file so the peer programs read byte-identical input.
  *
  * Raw file layout (native byte order, read back only on the same machine):
  *   0  char[8]  "MTBENCH1"
@@ -20,6 +22,7 @@
 
 #include "bench.h"
 #include "meshtopo/generate.h"
+#include "meshtopo/io.h"
 
 static bool write_all(FILE *f, const void *data, size_t elem_size, size_t count)
 {
@@ -84,38 +87,103 @@ static void grid_size(uint64_t faces, uint32_t *nx, uint32_t *ny)
     *ny = (uint32_t)y;
 }
 
+/* nu by nv cells of a torus with nu (around the hole) about 4 nv. */
+static void torus_size(uint64_t faces, uint32_t *nu, uint32_t *nv)
+{
+    double cells = (double)(faces < 18 ? 18 : faces) / 2.0;
+    double v = floor(sqrt(cells / 4.0));
+    if (v < 3) v = 3;
+    double u = floor(cells / v + 0.5);
+    if (u < 3) u = 3;
+    *nu = (uint32_t)u;
+    *nv = (uint32_t)v;
+}
+
+uint64_t mt__bench_case_input_bytes(const mt__bench_case *bench_case)
+{
+    const mt_face_list *l = &bench_case->list;
+    return (l->positions ? 24ull * l->num_verts : 0) + 4ull * l->num_faces + 4ull * l->num_indices;
+}
+
+/* Makes the ordered case of one mesh into *ordered (mesh name set). */
+static bool mesh_make(const mt__bench_options *options, uint32_t which, mt__bench_case *ordered,
+                      char *err, size_t err_size)
+{
+    mt_status st;
+    uint32_t a, b;
+    const char *corpus_name = NULL;
+    switch (which) {
+        case 0:
+            grid_size(options->faces, &a, &b);
+            st = mt_gen_grid(a, b, true, &ordered->list);
+            if (st != MT_OK) {
+                snprintf(err, err_size, "mt_gen_grid(%u, %u) failed: %s", a, b, mt_strerror(st));
+                return false;
+            }
+            snprintf(ordered->mesh, sizeof ordered->mesh, "grid %ux%u", a, b);
+            return true;
+        case 1:
+            torus_size(options->torus_faces, &a, &b);
+            st = mt_gen_torus(a, b, &ordered->list);
+            if (st != MT_OK) {
+                snprintf(err, err_size, "mt_gen_torus(%u, %u) failed: %s", a, b, mt_strerror(st));
+                return false;
+            }
+            snprintf(ordered->mesh, sizeof ordered->mesh, "torus %ux%u", a, b);
+            return true;
+        case 2:
+            corpus_name = "npm_bunny";
+            break;
+        default:
+            corpus_name = "igl_fertility";
+            break;
+    }
+    char path[PATH_MAX];
+    int n = snprintf(path, sizeof path, "%s/%s.off", options->corpus_dir, corpus_name);
+    if (n < 0 || (size_t)n >= sizeof path) {
+        snprintf(err, err_size, "corpus path too long: %s", options->corpus_dir);
+        return false;
+    }
+    mt_diag diag;
+    mt_diag_clear(&diag);
+    st = mt_read_file(path, MT_FORMAT_AUTO, &ordered->list, &diag);
+    if (st != MT_OK) {
+        snprintf(err, err_size, "cannot read %s (--corpus DIR): %s", path, diag.message);
+        return false;
+    }
+    snprintf(ordered->mesh, sizeof ordered->mesh, "%s", corpus_name);
+    return true;
+}
+
 bool mt__bench_cases_make(const mt__bench_options *options, const char *dir, mt__bench_case *cases,
                           uint32_t *out_num_cases, char *err, size_t err_size)
 {
+    /* Meshes by size: bunny, fertility, grid, torus for all; else the grid. */
+    static const uint32_t all_meshes[] = {2, 3, 0, 1};
+    static const uint32_t grid_only[] = {0};
+    const uint32_t *meshes = options->all ? all_meshes : grid_only;
+    uint32_t num_meshes = options->all ? 4 : 1;
     *out_num_cases = 0;
-    uint32_t nx, ny;
-    grid_size(options->faces, &nx, &ny);
-
-    mt__bench_case *ordered = &cases[0];
-    mt__bench_case *permuted = &cases[1];
-    memset(ordered, 0, sizeof *ordered);
-    memset(permuted, 0, sizeof *permuted);
-
-    mt_status st = mt_gen_grid(nx, ny, true, &ordered->list);
-    if (st != MT_OK) {
-        snprintf(err, err_size, "mt_gen_grid(%u, %u) failed: %s", nx, ny, mt_strerror(st));
-        return false;
+    for (uint32_t m = 0; m < num_meshes; m++) {
+        mt__bench_case *ordered = &cases[2 * m];
+        mt__bench_case *permuted = &cases[2 * m + 1];
+        memset(ordered, 0, sizeof *ordered);
+        memset(permuted, 0, sizeof *permuted);
+        if (!mesh_make(options, meshes[m], ordered, err, err_size)) return false;
+        snprintf(ordered->order, sizeof ordered->order, "ordered");
+        *out_num_cases = 2 * m + 1;
+        if (!face_list_copy(&ordered->list, &permuted->list, err, err_size)) return false;
+        *out_num_cases = 2 * m + 2;
+        mt_diag diag;
+        mt_diag_clear(&diag);
+        mt_status st = mt_face_list_permute(&permuted->list, options->seed, &diag);
+        if (st != MT_OK) {
+            snprintf(err, err_size, "mt_face_list_permute failed: %s", diag.message);
+            return false;
+        }
+        snprintf(permuted->mesh, sizeof permuted->mesh, "%s", ordered->mesh);
+        snprintf(permuted->order, sizeof permuted->order, "permuted");
     }
-    snprintf(ordered->mesh, sizeof ordered->mesh, "grid %ux%u", nx, ny);
-    snprintf(ordered->order, sizeof ordered->order, "ordered");
-    *out_num_cases = 1;
-
-    if (!face_list_copy(&ordered->list, &permuted->list, err, err_size)) return false;
-    *out_num_cases = 2;
-    mt_diag diag;
-    mt_diag_clear(&diag);
-    st = mt_face_list_permute(&permuted->list, options->seed, &diag);
-    if (st != MT_OK) {
-        snprintf(err, err_size, "mt_face_list_permute failed: %s", diag.message);
-        return false;
-    }
-    snprintf(permuted->mesh, sizeof permuted->mesh, "%s", ordered->mesh);
-    snprintf(permuted->order, sizeof permuted->order, "permuted");
 
     for (uint32_t i = 0; i < *out_num_cases; i++) {
         int n = snprintf(cases[i].path, sizeof cases[i].path, "%s/case%u-%s.mtbench", dir, i,
@@ -132,16 +200,16 @@ bool mt__bench_cases_make(const mt__bench_options *options, const char *dir, mt_
     return true;
 }
 
-void mt__bench_cases_remove_files(mt__bench_case *cases, uint32_t num_cases)
+void mt__bench_case_remove_file(mt__bench_case *bench_case)
 {
-    for (uint32_t i = 0; i < num_cases; i++) {
-        if (cases[i].path[0]) remove(cases[i].path);
-        cases[i].path[0] = '\0';
-    }
+    if (bench_case->path[0]) remove(bench_case->path);
+    bench_case->path[0] = '\0';
 }
 
 void mt__bench_cases_free(mt__bench_case *cases, uint32_t num_cases)
 {
-    mt__bench_cases_remove_files(cases, num_cases);
-    for (uint32_t i = 0; i < num_cases; i++) mt_face_list_free(&cases[i].list);
+    for (uint32_t i = 0; i < num_cases; i++) {
+        mt__bench_case_remove_file(&cases[i]);
+        mt_face_list_free(&cases[i].list);
+    }
 }

@@ -1,6 +1,9 @@
-/* meshtopo measured in process: mt_mesh_build timed on the case's face list,
- * then a one-ring sweep over every internal vertex (MT_FOR_VERT_OUT over the
- * raw view, summing the heads so the loop cannot be optimised away). The
+/* meshtopo measured in process: mt_mesh_build timed on the case's face list
+ * with 1 or 2 threads, then a one-ring sweep over every internal vertex
+ * (MT_FOR_VERT_OUT over the raw view), a face-adjacency sweep over every
+ * face (its half-edge ring, the face across each twin), boundary loops with
+ * mt_boundary_loops and the component of every face with mt_face_component.
+ * Sweeps sum the ids they visit so no loop can be optimised away. The
  * warm-up build is validated and its report gives the counts the peers are
  * checked against. A failing build is reported, never fatal. */
 #include <stdlib.h>
@@ -8,6 +11,7 @@
 
 #include "bench.h"
 #include "meshtopo/mesh.h"
+#include "meshtopo/query.h"
 #include "meshtopo/report.h"
 #include "meshtopo/validate.h"
 
@@ -20,21 +24,111 @@ typedef struct meshtopo_state {
     mt_build_options build_options;
 } meshtopo_state;
 
-static void sweep(const mt_mesh *mesh, uint64_t *out_neighbours, uint64_t *out_checksum)
+static void ring_sweep(const mt_mesh *mesh, mt__bench_topology *seen)
 {
     mt_mesh_view view;
     mt_mesh_get_view(mesh, &view);
     uint64_t neighbours = 0;
-    uint64_t checksum = 0;
+    uint64_t sum = 0;
     for (uint32_t v = 0; v < view.num_verts_internal; v++) {
         MT_FOR_VERT_OUT(&view, v, it)
         {
-            checksum += view.he_head[it.current];
+            sum += view.he_head[it.current];
             neighbours++;
         }
     }
-    *out_neighbours = neighbours;
-    *out_checksum = checksum;
+    seen->ring_neighbours = neighbours;
+    seen->ring_sum = sum;
+}
+
+/* Every face's neighbours across its edges: the face of each twin. */
+static void adj_sweep(const mt_mesh *mesh, mt__bench_topology *seen)
+{
+    mt_mesh_view view;
+    mt_mesh_get_view(mesh, &view);
+    uint64_t neighbours = 0;
+    uint64_t sum = 0;
+    for (uint32_t f = 0; f < view.num_faces; f++) {
+        uint32_t start = view.face_he[f];
+        if (start == MT_NONE) continue;
+        uint32_t he = start;
+        uint32_t steps = 0;
+        do {
+            uint32_t across = view.he_face[he ^ 1u];
+            if (across != MT_NONE) {
+                sum += across;
+                neighbours++;
+            }
+            he = view.he_next[he];
+        } while (he != start && ++steps < MT_RING_STEP_LIMIT);
+    }
+    seen->adj_neighbours = neighbours;
+    seen->adj_sum = sum;
+}
+
+/* Boundary loops as vertex lists: size query, buffers, fill. */
+static bool loops_extract(const mt_mesh *mesh, mt__bench_topology *seen, mt__bench_result *result)
+{
+    size_t num_verts = 0, num_loops = 0;
+    mt_status st = mt_boundary_loops(mesh, NULL, 0, NULL, 0, &num_verts, &num_loops);
+    uint32_t *verts = NULL, *offsets = NULL;
+    if (st == MT_OK || st == MT_ERR_BUFFER_TOO_SMALL) {
+        verts = malloc((num_verts ? num_verts : 1) * sizeof *verts);
+        offsets = malloc((num_loops + 1) * sizeof *offsets);
+        st = verts && offsets ? mt_boundary_loops(mesh, verts, num_verts, offsets, num_loops + 1,
+                                                  &num_verts, &num_loops)
+                              : MT_ERR_NOMEM;
+    }
+    free(verts);
+    free(offsets);
+    if (st != MT_OK) {
+        snprintf(result->message, sizeof result->message, "mt_boundary_loops failed: %s",
+                 mt_strerror(st));
+        return false;
+    }
+    seen->boundary_loops = num_loops;
+    seen->loop_verts = num_verts;
+    return true;
+}
+
+/* The component of every face; the count is one more than the largest. */
+static bool components_label(const mt_mesh *mesh, mt__bench_topology *seen,
+                             mt__bench_result *result)
+{
+    uint32_t num_faces = mt_mesh_num_faces(mesh);
+    uint64_t count = 0;
+    for (uint32_t f = 0; f < num_faces; f++) {
+        uint32_t c;
+        mt_status st = mt_face_component(mesh, f, &c);
+        if (st == MT_ERR_NOT_FOUND) continue;
+        if (st != MT_OK) {
+            snprintf(result->message, sizeof result->message, "mt_face_component(%u) failed: %s", f,
+                     mt_strerror(st));
+            return false;
+        }
+        if (c + 1ull > count) count = c + 1ull;
+    }
+    seen->components = count;
+    return true;
+}
+
+/* Times the queries on a built mesh into out (times and what they saw). */
+static bool queries_run(const mt_mesh *mesh, mt__bench_sample *out, mt__bench_result *result)
+{
+    double t0 = mt__bench_now_ms();
+    ring_sweep(mesh, &out->seen);
+    double t1 = mt__bench_now_ms();
+    adj_sweep(mesh, &out->seen);
+    double t2 = mt__bench_now_ms();
+    if (!loops_extract(mesh, &out->seen, result)) return false;
+    double t3 = mt__bench_now_ms();
+    if (!components_label(mesh, &out->seen, result)) return false;
+    double t4 = mt__bench_now_ms();
+    out->ring_ms = t1 - t0;
+    out->adj_ms = t2 - t1;
+    out->loops_ms = t3 - t2;
+    out->components_ms = t4 - t3;
+    return true;
 }
 
 static bool build(meshtopo_state *s, mt_mesh **out_mesh, mt__bench_result *result)
@@ -60,7 +154,7 @@ static bool meshtopo_start(mt__bench_runner *runner, const mt__bench_case *bench
     }
     runner->state = s;
     s->bench_case = bench_case;
-    s->build_options.threads = options->threads;
+    s->build_options.threads = runner->threads;
     snprintf(result->version, sizeof result->version, "%s", MESHTOPO_BENCH_VERSION);
 
     /* Warm-up: also the run that is checked and counted. */
@@ -75,14 +169,21 @@ static bool meshtopo_start(mt__bench_runner *runner, const mt__bench_case *bench
         mt_mesh_destroy(mesh);
         return false;
     }
+    mt__bench_sample warm;
+    memset(&warm, 0, sizeof warm);
+    if (!queries_run(mesh, &warm, result)) {
+        mt_mesh_destroy(mesh);
+        return false;
+    }
     const mt_report *report = mt_mesh_report(mesh);
     mt__bench_topology *t = &result->topology;
+    *t = warm.seen;
     t->verts = report->num_verts;
     t->edges = report->num_edges;
     t->faces = report->num_faces_valid;
     t->boundary_loops = report->boundary_loops;
+    t->components = report->connected_components;
     t->rejected_faces = report->num_faces - report->num_faces_valid;
-    sweep(mesh, &t->neighbours, &t->checksum);
     result->structure_bytes = mt_mesh_memory_bytes(mesh);
     result->report_bytes = mt_mesh_report_memory_bytes(mesh);
     mt_mesh_destroy(mesh);
@@ -98,14 +199,11 @@ static bool meshtopo_rep(mt__bench_runner *runner, mt__bench_sample *out, mt__be
     if (!build(s, &mesh, result)) return false;
     double t1 = mt__bench_now_ms();
     int64_t heap1 = mt__bench_heap_bytes();
-    double t2 = mt__bench_now_ms();
-    sweep(mesh, &out->neighbours, &out->checksum);
-    double t3 = mt__bench_now_ms();
+    bool ok = queries_run(mesh, out, result);
     mt_mesh_destroy(mesh);
     out->build_ms = t1 - t0;
-    out->sweep_ms = t3 - t2;
     out->heap_bytes = heap0 < 0 || heap1 < 0 ? -1 : heap1 - heap0;
-    return true;
+    return ok;
 }
 
 static void meshtopo_stop(mt__bench_runner *runner)
@@ -114,10 +212,17 @@ static void meshtopo_stop(mt__bench_runner *runner)
     runner->state = NULL;
 }
 
-void mt__bench_runner_meshtopo(mt__bench_runner *out)
+void mt__bench_runner_meshtopo(mt__bench_runner *out, uint32_t threads)
 {
     memset(out, 0, sizeof *out);
-    out->library = "meshtopo";
+    if (threads == 0) {
+        snprintf(out->library, sizeof out->library, "meshtopo-auto");
+    } else {
+        snprintf(out->library, sizeof out->library, "meshtopo-%ut", threads);
+    }
+    out->kind = MT__BENCH_LIBRARY;
+    out->is_meshtopo = true;
+    out->threads = threads;
     out->start = meshtopo_start;
     out->rep = meshtopo_rep;
     out->stop = meshtopo_stop;

@@ -2,7 +2,7 @@
  * driver starts it with posix_spawn on one raw input file and talks to it
  * over two pipes, one line at a time (the protocol is in peer_common.hpp):
  *   peer -> "ready key=value ..."  after loading and one warm-up build
- *   "run"  -> "rep key=value ..."  one timed build + sweep
+ *   "run"  -> "rep key=value ..."  one timed build, sweeps, loops, components
  *   "quit" (or EOF) -> exits 0;    "error <text>" and a non-zero exit on failure
  * Only the child started here is ever waited for. */
 #include <errno.h>
@@ -143,7 +143,10 @@ static bool peer_spawn(mt__bench_runner *runner, peer_state *s, const char *inpu
     posix_spawn_file_actions_adddup2(&actions, to_child[0], STDIN_FILENO);
     posix_spawn_file_actions_adddup2(&actions, from_child[1], STDOUT_FILENO);
     char no_reserve_flag[] = "--no-reserve";
-    char *argv[] = {runner->exe, (char *)input_path, no_reserve ? no_reserve_flag : NULL, NULL};
+    char *argv[5] = {runner->exe, (char *)input_path, NULL, NULL, NULL};
+    int argc = 2;
+    if (runner->peer_flag) argv[argc++] = (char *)runner->peer_flag;
+    if (no_reserve) argv[argc++] = no_reserve_flag;
     int err = posix_spawn(&s->pid, runner->exe, &actions, NULL, argv, environ);
     posix_spawn_file_actions_destroy(&actions);
     close(to_child[0]);
@@ -170,6 +173,18 @@ fail_errno:
     return false;
 }
 
+/* The counts and sweep totals both protocol lines carry. */
+static bool seen_parse(const char *line, mt__bench_topology *t)
+{
+    return field_u64(line, "boundary_loops", &t->boundary_loops) &&
+           field_u64(line, "components", &t->components) &&
+           field_u64(line, "loop_verts", &t->loop_verts) &&
+           field_u64(line, "ring_neighbours", &t->ring_neighbours) &&
+           field_u64(line, "ring_sum", &t->ring_sum) &&
+           field_u64(line, "adj_neighbours", &t->adj_neighbours) &&
+           field_u64(line, "adj_sum", &t->adj_sum);
+}
+
 static bool peer_start(mt__bench_runner *runner, const mt__bench_case *bench_case,
                        const mt__bench_options *options, mt__bench_result *result)
 {
@@ -187,10 +202,7 @@ static bool peer_start(mt__bench_runner *runner, const mt__bench_case *bench_cas
     const char *version = field(line, "version");
     if (strncmp(line, "ready ", 6) != 0 || !version || !field_u64(line, "V", &t->verts) ||
         !field_u64(line, "E", &t->edges) || !field_u64(line, "F", &t->faces) ||
-        !field_u64(line, "boundary_loops", &t->boundary_loops) ||
-        !field_u64(line, "failed_faces", &t->rejected_faces) ||
-        !field_u64(line, "neighbours", &t->neighbours) ||
-        !field_u64(line, "checksum", &t->checksum)) {
+        !field_u64(line, "failed_faces", &t->rejected_faces) || !seen_parse(line, t)) {
         snprintf(result->message, sizeof result->message, "%s peer: unexpected line '%.400s'",
                  runner->library, line);
         return false;
@@ -209,11 +221,13 @@ static bool peer_rep(mt__bench_runner *runner, mt__bench_sample *out, mt__bench_
     }
     char line[1024];
     if (!peer_read_line(s, line, sizeof line, runner->library, result)) return false;
+    memset(out, 0, sizeof *out);
     if (strncmp(line, "rep ", 4) != 0 || !field_double(line, "build_ms", &out->build_ms) ||
-        !field_double(line, "sweep_ms", &out->sweep_ms) ||
-        !field_u64(line, "neighbours", &out->neighbours) ||
-        !field_u64(line, "checksum", &out->checksum) ||
-        !field_i64(line, "heap_bytes", &out->heap_bytes)) {
+        !field_double(line, "ring_ms", &out->ring_ms) ||
+        !field_double(line, "adj_ms", &out->adj_ms) ||
+        !field_double(line, "loops_ms", &out->loops_ms) ||
+        !field_double(line, "components_ms", &out->components_ms) ||
+        !seen_parse(line, &out->seen) || !field_i64(line, "heap_bytes", &out->heap_bytes)) {
         snprintf(result->message, sizeof result->message, "%s peer: unexpected line '%.400s'",
                  runner->library, line);
         return false;
@@ -221,12 +235,13 @@ static bool peer_rep(mt__bench_runner *runner, mt__bench_sample *out, mt__bench_
     return true;
 }
 
-void mt__bench_runner_peer(mt__bench_runner *out, const char *library, const char *exe)
+void mt__bench_runner_peer(mt__bench_runner *out, const char *library, const char *peer_flag)
 {
     memset(out, 0, sizeof *out);
-    out->library = library;
+    snprintf(out->library, sizeof out->library, "%s", library);
+    out->kind = MT__BENCH_LIBRARY;
+    out->peer_flag = peer_flag;
     out->start = peer_start;
     out->rep = peer_rep;
     out->stop = peer_stop;
-    snprintf(out->exe, sizeof out->exe, "%s", exe);
 }

@@ -1,7 +1,7 @@
 /* The numbers meshtopo-bench prints: medians of the repetitions, ratios to
- * meshtopo (runner 0 of each case), the console table, the targets of the
- * benchmark issue, and the same rows as CSV and Markdown. Every printer
- * reads its figures from one row_values so the three outputs cannot drift. */
+ * meshtopo's fastest row of each case, the console table and the targets of
+ * the benchmark issue. Every printer (here, bench_files.c, bench_svg.c) reads
+ * its figures from one mt__bench_row so the outputs cannot drift. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,13 +21,32 @@ static double median_of(double *values, uint32_t n)
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-double mt__bench_median(const mt__bench_result *result, bool sweep)
+static double sample_metric(const mt__bench_sample *s, mt__bench_metric metric)
+{
+    switch (metric) {
+        case MT__BENCH_BUILD:
+            return s->build_ms;
+        case MT__BENCH_RING:
+            return s->ring_ms;
+        case MT__BENCH_ADJ:
+            return s->adj_ms;
+        case MT__BENCH_LOOPS:
+            return s->loops_ms;
+        default:
+            return s->components_ms;
+    }
+}
+
+/* Median over the repetitions that measured the metric (NAN when none). */
+double mt__bench_median(const mt__bench_result *result, mt__bench_metric metric)
 {
     double values[MT__BENCH_MAX_REPS];
+    uint32_t n = 0;
     for (uint32_t i = 0; i < result->num_samples; i++) {
-        values[i] = sweep ? result->samples[i].sweep_ms : result->samples[i].build_ms;
+        double x = sample_metric(&result->samples[i], metric);
+        if (!isnan(x)) values[n++] = x;
     }
-    return median_of(values, result->num_samples);
+    return median_of(values, n);
 }
 
 /* Median heap growth of the build, NAN when unknown: mallinfo2 missing, or
@@ -42,65 +61,87 @@ static double median_heap(const mt__bench_result *result)
     return median_of(values, n);
 }
 
-typedef struct row_values {
-    const mt__bench_result *r;
-    bool ok;
-    double build_ms, build_min, build_max, build_ratio, ns_per_face;
-    double sweep_ms, sweep_ratio, neighbours_per_s;
-    double heap_per_face;      /* mallinfo2 growth / F */
-    double structure_per_face; /* meshtopo only: mt_mesh_memory_bytes / F */
-} row_values;
-
-static row_values row_compute(const mt__bench_result *r, const mt__bench_result *base)
+static bool measured(const mt__bench_result *r)
 {
-    row_values v;
+    return r && r->state == MT__BENCH_OK && r->num_samples > 0;
+}
+
+const mt__bench_result *mt__bench_base(const mt__bench_result *row, uint32_t num_runners)
+{
+    const mt__bench_result *best = NULL;
+    double best_ms = INFINITY;
+    for (uint32_t k = 0; k < num_runners; k++) {
+        if (!row[k].is_meshtopo || !measured(&row[k])) continue;
+        double ms = mt__bench_median(&row[k], MT__BENCH_BUILD);
+        if (ms < best_ms) {
+            best_ms = ms;
+            best = &row[k];
+        }
+    }
+    return best;
+}
+
+mt__bench_row mt__bench_row_compute(const mt__bench_result *r, const mt__bench_result *base)
+{
+    mt__bench_row v;
     memset(&v, 0, sizeof v);
     v.r = r;
-    v.ok = r->state == MT__BENCH_OK && r->num_samples > 0;
+    v.ok = measured(r);
+    v.faces = r->bench_case ? (double)r->bench_case->list.num_faces : NAN;
     if (!v.ok) return v;
-    double faces = r->topology.faces ? (double)r->topology.faces : NAN;
-    v.build_ms = mt__bench_median(r, false);
-    v.sweep_ms = mt__bench_median(r, true);
+    double built =
+        r->kind == MT__BENCH_LIBRARY && r->topology.faces ? (double)r->topology.faces : v.faces;
+    v.build_ms = mt__bench_median(r, MT__BENCH_BUILD);
     v.build_min = v.build_max = r->samples[0].build_ms;
     for (uint32_t i = 1; i < r->num_samples; i++) {
         v.build_min = fmin(v.build_min, r->samples[i].build_ms);
         v.build_max = fmax(v.build_max, r->samples[i].build_ms);
     }
-    bool base_ok = base->state == MT__BENCH_OK && base->num_samples > 0;
-    v.build_ratio = base_ok ? v.build_ms / mt__bench_median(base, false) : NAN;
-    v.sweep_ratio = base_ok ? v.sweep_ms / mt__bench_median(base, true) : NAN;
-    v.ns_per_face = v.build_ms * 1e6 / faces;
-    v.neighbours_per_s = (double)r->samples[0].neighbours / (v.sweep_ms * 1e-3);
-    v.heap_per_face = median_heap(r) / faces;
-    v.structure_per_face = r->structure_bytes ? (double)r->structure_bytes / faces : NAN;
+    v.ns_per_face = v.build_ms * 1e6 / v.faces;
+    bool base_ok = measured(base);
+    v.build_ratio = base_ok ? v.build_ms / mt__bench_median(base, MT__BENCH_BUILD) : NAN;
+    if (r->kind != MT__BENCH_LIBRARY) {
+        v.ring_ms = v.ring_ratio = v.ring_per_s = NAN;
+        v.adj_ms = v.adj_ratio = v.adj_per_s = NAN;
+        v.loops_ms = v.components_ms = v.heap_per_face = v.structure_per_face = NAN;
+        return v;
+    }
+    v.ring_ms = mt__bench_median(r, MT__BENCH_RING);
+    v.adj_ms = mt__bench_median(r, MT__BENCH_ADJ);
+    v.ring_ratio = base_ok ? v.ring_ms / mt__bench_median(base, MT__BENCH_RING) : NAN;
+    v.adj_ratio = base_ok ? v.adj_ms / mt__bench_median(base, MT__BENCH_ADJ) : NAN;
+    v.ring_per_s = (double)r->topology.ring_neighbours / (v.ring_ms * 1e-3);
+    v.adj_per_s = (double)r->topology.adj_neighbours / (v.adj_ms * 1e-3);
+    v.loops_ms = mt__bench_median(r, MT__BENCH_LOOPS);
+    v.components_ms = mt__bench_median(r, MT__BENCH_COMPONENTS);
+    v.heap_per_face = median_heap(r) / built;
+    v.structure_per_face = r->structure_bytes ? (double)r->structure_bytes / built : NAN;
     return v;
 }
 
-static const char *threads_text(const mt__bench_options *o, const mt__bench_result *r, char *buf,
-                                size_t size)
+const char *mt__bench_threads_text(const mt__bench_result *r, char *buf, size_t size)
 {
-    if (strcmp(r->library, "meshtopo") != 0) return "1";
-    if (o->threads == 0) return "auto";
-    snprintf(buf, size, "%u", o->threads);
+    if (r->kind != MT__BENCH_LIBRARY) return "1";
+    if (r->threads == 0) return "auto";
+    snprintf(buf, size, "%u", r->threads);
     return buf;
 }
 
-/* "%.*f" of x, or "-" when x is not a number. */
-static const char *num(char *buf, size_t size, double x, int decimals)
+const char *mt__bench_num(char *buf, size_t size, double x, int decimals)
 {
     if (isnan(x) || isinf(x)) return "-";
     snprintf(buf, size, "%.*f", decimals, x);
     return buf;
 }
 
-/* Milliseconds: two decimals below 10 ms, one above. */
-static const char *ms(char *buf, size_t size, double x)
+/* Milliseconds: three decimals below 1 ms, two below 10 ms, one above. */
+const char *mt__bench_ms(char *buf, size_t size, double x)
 {
-    return num(buf, size, x, x < 10 ? 2 : 1);
+    return mt__bench_num(buf, size, x, x < 1 ? 3 : x < 10 ? 2 : 1);
 }
 
 /* Engineering notation for rates: 123.4 M. */
-static const char *rate(char *buf, size_t size, double x)
+const char *mt__bench_rate(char *buf, size_t size, double x)
 {
     if (isnan(x) || isinf(x)) return "-";
     if (x >= 1e9)
@@ -112,66 +153,59 @@ static const char *rate(char *buf, size_t size, double x)
     return buf;
 }
 
-static void mesh_line(FILE *out, const mt__bench_options *o, const mt__bench_result *results,
-                      uint32_t num_cases, uint32_t num_runners, const char *prefix)
-{
-    for (uint32_t c = 0; c < num_cases; c++) {
-        const mt__bench_result *r = &results[(size_t)c * num_runners];
-        const mt_face_list *l = &r->bench_case->list;
-        fprintf(out, "%s%s, %s: %u vertices, %u faces, %llu indices\n", prefix, r->bench_case->mesh,
-                r->bench_case->order, l->num_verts, l->num_faces,
-                (unsigned long long)l->num_indices);
-    }
-    char buf[16];
-    fprintf(out, "%smedian of %u repetitions after one warm-up; meshtopo threads: %s\n", prefix,
-            o->reps, o->threads ? (snprintf(buf, sizeof buf, "%u", o->threads), buf) : "auto");
-    fprintf(out, "%sOpenMesh and CGAL %s before each timed build\n", prefix,
-            o->peer_no_reserve ? "do not reserve()"
-                               : "reserve() the exact V, E, F of their warm-up build");
-}
-
 void mt__bench_table_print(FILE *out, const mt__bench_options *options,
                            const mt__bench_result *results, uint32_t num_cases,
                            uint32_t num_runners)
 {
-    mesh_line(out, options, results, num_cases, num_runners, "");
-    fprintf(out, "\n%-9s %-8s %-9s %9s %6s %8s %9s %6s %13s %10s\n", "library", "version", "order",
-            "build ms", "ratio", "ns/face", "sweep ms", "ratio", "neighbours/s", "bytes/face");
+    fprintf(out,
+            "median of %u repetitions after one warm-up; OpenMesh and CGAL %s; ratio: the "
+            "row's median time over the fastest meshtopo row's (above 1: meshtopo is "
+            "faster)\n",
+            options->reps,
+            options->peer_no_reserve ? "do not reserve()"
+                                     : "reserve() the V, E, F of their warm-up build");
     for (uint32_t c = 0; c < num_cases; c++) {
-        const mt__bench_result *base = &results[(size_t)c * num_runners];
+        const mt__bench_result *row = &results[(size_t)c * num_runners];
+        const mt__bench_result *base = mt__bench_base(row, num_runners);
+        const mt_face_list *l = &row->bench_case->list;
+        fprintf(out, "\n%s, %s: %u vertices, %u faces\n", row->bench_case->mesh,
+                row->bench_case->order, l->num_verts, l->num_faces);
+        fprintf(out, "  %-13s %-7s %3s %9s %6s %7s %9s %9s %6s %8s %8s\n", "library", "version",
+                "thr", "build ms", "ratio", "ns/face", "ring/s", "adj/s", "B/face", "loops ms",
+                "comp ms");
         for (uint32_t k = 0; k < num_runners; k++) {
-            const mt__bench_result *r = &base[k];
-            row_values v = row_compute(r, base);
+            const mt__bench_result *r = &row[k];
+            mt__bench_row v = mt__bench_row_compute(r, base);
             if (!v.ok) {
-                fprintf(out, "%-9s %-8s %-9s %s: %s\n", r->library,
-                        r->version[0] ? r->version : "-", r->bench_case->order,
+                fprintf(out, "  %-13s %s: %s\n", r->library,
                         r->state == MT__BENCH_SKIPPED ? "skipped" : "FAILED", r->message);
                 continue;
             }
-            char b[8][32];
-            fprintf(out, "%-9s %-8s %-9s %9s %6s %8s %9s %6s %13s %10s\n", r->library, r->version,
-                    r->bench_case->order, ms(b[0], 32, v.build_ms), num(b[1], 32, v.build_ratio, 2),
-                    num(b[2], 32, v.ns_per_face, 1), ms(b[3], 32, v.sweep_ms),
-                    num(b[4], 32, v.sweep_ratio, 2), rate(b[5], 32, v.neighbours_per_s),
-                    num(b[6], 32, v.heap_per_face, 1));
+            char b[10][32];
+            fprintf(out, "  %-13s %-7.7s %3s %9s %6s %7s %9s %9s %6s %8s %8s\n", r->library,
+                    r->version, mt__bench_threads_text(r, b[0], 32),
+                    mt__bench_ms(b[1], 32, v.build_ms), mt__bench_num(b[2], 32, v.build_ratio, 2),
+                    mt__bench_num(b[3], 32, v.ns_per_face, 1),
+                    mt__bench_rate(b[4], 32, v.ring_per_s), mt__bench_rate(b[5], 32, v.adj_per_s),
+                    mt__bench_num(b[6], 32, v.heap_per_face, 1), mt__bench_ms(b[7], 32, v.loops_ms),
+                    mt__bench_ms(b[8], 32, v.components_ms));
+        }
+        if (base && base->topology.faces) {
+            fprintf(out,
+                    "  meshtopo structure %.1f bytes/face (mt_mesh_memory_bytes), report %.2f "
+                    "bytes/face\n",
+                    (double)base->structure_bytes / (double)base->topology.faces,
+                    (double)base->report_bytes / (double)base->topology.faces);
         }
     }
     fprintf(out,
-            "\nratio: the library's median time over meshtopo's (above 1: meshtopo is faster).\n"
-            "bytes/face: heap growth over the build (mallinfo2), positions included\n"
-            "(- when the heap cannot be measured, as under AddressSanitizer).\n");
-    for (uint32_t c = 0; c < num_cases; c++) {
-        const mt__bench_result *r = &results[(size_t)c * num_runners];
-        if (r->state != MT__BENCH_OK || !r->topology.faces) continue;
-        fprintf(out,
-                "meshtopo %s: structure %.1f bytes/face (mt_mesh_memory_bytes), report %.2f "
-                "bytes/face\n",
-                r->bench_case->order, (double)r->structure_bytes / (double)r->topology.faces,
-                (double)r->report_bytes / (double)r->topology.faces);
-    }
+            "\nring/s, adj/s: neighbours visited per second by the one-ring and the "
+            "face-adjacency sweep.\nB/face: heap growth over the build (mallinfo2), positions "
+            "included (- when unknown).\nmemcpy rows: the bandwidth floor (input bytes read, "
+            "meshtopo's structure bytes written).\n");
 }
 
-/* The benchmark issue's targets, by library and order. */
+/* The benchmark issue's build targets, by library and order. */
 typedef struct target {
     const char *library;
     const char *order;
@@ -186,125 +220,86 @@ static const target targets[] = {
 };
 
 #define MT__BENCH_MAX_BYTES_PER_FACE 56.0
+#define MT__BENCH_MAX_FLOOR_RATIO 3.0
+#define MT__BENCH_TARGET_MIN_FACES 100000u
+
+static bool verdict(FILE *out, bool met, const mt__bench_case *c, const char *text)
+{
+    fprintf(out, "  %-4s %-22s %-8s %s\n", met ? "met" : "MISS", c->mesh, c->order, text);
+    return met;
+}
 
 bool mt__bench_targets_print(FILE *out, const mt__bench_result *results, uint32_t num_cases,
                              uint32_t num_runners)
 {
     bool all_met = true;
-    bool any = false;
-    fprintf(out, "\ntargets:\n");
+    uint32_t checked = 0;
+    fprintf(out, "\ntargets (meshes of %u faces or more; fastest meshtopo row):\n",
+            MT__BENCH_TARGET_MIN_FACES);
     for (uint32_t c = 0; c < num_cases; c++) {
-        const mt__bench_result *base = &results[(size_t)c * num_runners];
-        row_values mv = row_compute(base, base);
-        if (!mv.ok) continue;
+        const mt__bench_result *row = &results[(size_t)c * num_runners];
+        const mt__bench_case *bc = row->bench_case;
+        if (bc->list.num_faces < MT__BENCH_TARGET_MIN_FACES) continue;
+        const mt__bench_result *base = mt__bench_base(row, num_runners);
+        if (!base) {
+            fprintf(out, "  not checked on %s, %s: meshtopo has no measurement\n", bc->mesh,
+                    bc->order);
+            continue;
+        }
+        checked++;
+        mt__bench_row mv = mt__bench_row_compute(base, base);
+        char text[160];
         double bytes = isnan(mv.heap_per_face)
                            ? (double)(base->structure_bytes + base->report_bytes) /
                                  (double)base->topology.faces
                            : mv.heap_per_face;
-        bool met = bytes <= MT__BENCH_MAX_BYTES_PER_FACE;
-        all_met = all_met && met;
-        any = true;
-        fprintf(out, "  %-4s %-8s memory %5.1f bytes/face (at most %.0f)\n", met ? "met" : "MISS",
-                base->bench_case->order, bytes, MT__BENCH_MAX_BYTES_PER_FACE);
-        for (uint32_t k = 1; k < num_runners; k++) {
-            row_values v = row_compute(&base[k], base);
+        snprintf(text, sizeof text, "memory %.1f bytes/face (at most %.0f)", bytes,
+                 MT__BENCH_MAX_BYTES_PER_FACE);
+        all_met &= verdict(out, bytes <= MT__BENCH_MAX_BYTES_PER_FACE, bc, text);
+        double best_ring = 0, best_adj = 0;
+        const char *ring_lib = NULL, *adj_lib = NULL;
+        for (uint32_t k = 0; k < num_runners; k++) {
+            const mt__bench_result *r = &row[k];
+            if (r->is_meshtopo) continue;
+            mt__bench_row v = mt__bench_row_compute(r, base);
             if (!v.ok) continue;
+            if (r->kind == MT__BENCH_FLOOR) {
+                if (strcmp(r->library, "memcpy-fresh") != 0) continue;
+                double f = 1.0 / v.build_ratio;
+                snprintf(text, sizeof text, "build %.2fx the fresh-memory floor (at most %.0fx)", f,
+                         MT__BENCH_MAX_FLOOR_RATIO);
+                all_met &= verdict(out, f <= MT__BENCH_MAX_FLOOR_RATIO, bc, text);
+                continue;
+            }
+            if (v.ring_per_s > best_ring) {
+                best_ring = v.ring_per_s;
+                ring_lib = r->library;
+            }
+            if (v.adj_per_s > best_adj) {
+                best_adj = v.adj_per_s;
+                adj_lib = r->library;
+            }
             for (size_t t = 0; t < sizeof targets / sizeof targets[0]; t++) {
-                if (strcmp(targets[t].library, base[k].library) != 0 ||
-                    strcmp(targets[t].order, base->bench_case->order) != 0) {
+                if (strcmp(targets[t].library, r->library) != 0 ||
+                    strcmp(targets[t].order, bc->order) != 0) {
                     continue;
                 }
-                met = v.build_ratio >= targets[t].min_build_ratio;
-                all_met = all_met && met;
-                fprintf(out, "  %-4s %-8s build  %5.2fx the speed of %s (at least %.0fx)\n",
-                        met ? "met" : "MISS", base->bench_case->order, v.build_ratio,
-                        base[k].library, targets[t].min_build_ratio);
+                snprintf(text, sizeof text, "build %.2fx the speed of %s (at least %.0fx)",
+                         v.build_ratio, r->library, targets[t].min_build_ratio);
+                all_met &= verdict(out, v.build_ratio >= targets[t].min_build_ratio, bc, text);
             }
-            met = v.sweep_ratio >= 1.0;
-            all_met = all_met && met;
-            fprintf(out, "  %-4s %-8s sweep  %5.2fx the speed of %s (at least 1x)\n",
-                    met ? "met" : "MISS", base->bench_case->order, v.sweep_ratio, base[k].library);
+        }
+        if (ring_lib) {
+            snprintf(text, sizeof text, "one-ring sweep %.2fx the speed of %s, the fastest peer",
+                     mv.ring_per_s / best_ring, ring_lib);
+            all_met &= verdict(out, mv.ring_per_s >= best_ring, bc, text);
+        }
+        if (adj_lib) {
+            snprintf(text, sizeof text, "adjacency sweep %.2fx the speed of %s, the fastest peer",
+                     mv.adj_per_s / best_adj, adj_lib);
+            all_met &= verdict(out, mv.adj_per_s >= best_adj, bc, text);
         }
     }
-    if (!any) fprintf(out, "  not checked: meshtopo has no measurement\n");
-    return any && all_met;
-}
-
-bool mt__bench_csv_write(const char *path, const mt__bench_options *options,
-                         const mt__bench_result *results, uint32_t num_cases, uint32_t num_runners)
-{
-    FILE *f = fopen(path, "w");
-    if (!f) return false;
-    fprintf(f,
-            "mesh,order,library,version,state,threads,reps,verts,edges,faces,boundary_loops,"
-            "build_ms_median,build_ms_min,build_ms_max,build_ratio,ns_per_face,sweep_ms_median,"
-            "sweep_ratio,neighbours,neighbours_per_s,heap_bytes_per_face,"
-            "structure_bytes_per_face\n");
-    for (uint32_t c = 0; c < num_cases; c++) {
-        const mt__bench_result *base = &results[(size_t)c * num_runners];
-        for (uint32_t k = 0; k < num_runners; k++) {
-            const mt__bench_result *r = &base[k];
-            row_values v = row_compute(r, base);
-            char t[16], b[10][32];
-            const char *state = r->state == MT__BENCH_OK        ? "ok"
-                                : r->state == MT__BENCH_SKIPPED ? "skipped"
-                                                                : "failed";
-            fprintf(f, "%s,%s,%s,%s,%s,%s,%u,%llu,%llu,%llu,%llu,", r->bench_case->mesh,
-                    r->bench_case->order, r->library, r->version, state,
-                    threads_text(options, r, t, sizeof t), r->num_samples,
-                    (unsigned long long)r->topology.verts, (unsigned long long)r->topology.edges,
-                    (unsigned long long)r->topology.faces,
-                    (unsigned long long)r->topology.boundary_loops);
-            if (!v.ok) {
-                fprintf(f, ",,,,,,,,,,\n");
-                continue;
-            }
-            fprintf(f, "%s,%s,%s,%s,%s,%s,%s,%llu,%s,%s,%s\n", num(b[0], 32, v.build_ms, 3),
-                    num(b[1], 32, v.build_min, 3), num(b[2], 32, v.build_max, 3),
-                    num(b[3], 32, v.build_ratio, 3), num(b[4], 32, v.ns_per_face, 2),
-                    num(b[5], 32, v.sweep_ms, 3), num(b[6], 32, v.sweep_ratio, 3),
-                    (unsigned long long)r->samples[0].neighbours,
-                    num(b[7], 32, v.neighbours_per_s, 0), num(b[8], 32, v.heap_per_face, 2),
-                    num(b[9], 32, v.structure_per_face, 2));
-        }
-    }
-    return fclose(f) == 0;
-}
-
-bool mt__bench_markdown_write(const char *path, const mt__bench_options *options,
-                              const mt__bench_result *results, uint32_t num_cases,
-                              uint32_t num_runners)
-{
-    FILE *f = fopen(path, "w");
-    if (!f) return false;
-    fprintf(f, "# meshtopo build benchmark\n\n");
-    mesh_line(f, options, results, num_cases, num_runners, "- ");
-    fprintf(f,
-            "\n| library | version | order | threads | build ms | ratio | ns/face | sweep ms | "
-            "ratio | neighbours/s | bytes/face |\n"
-            "|---|---|---|---|--:|--:|--:|--:|--:|--:|--:|\n");
-    for (uint32_t c = 0; c < num_cases; c++) {
-        const mt__bench_result *base = &results[(size_t)c * num_runners];
-        for (uint32_t k = 0; k < num_runners; k++) {
-            const mt__bench_result *r = &base[k];
-            row_values v = row_compute(r, base);
-            char t[16], b[8][32];
-            fprintf(f, "| %s | %s | %s | %s |", r->library, r->version[0] ? r->version : "-",
-                    r->bench_case->order, threads_text(options, r, t, sizeof t));
-            if (!v.ok) {
-                fprintf(f, " %s | | | | | | |\n",
-                        r->state == MT__BENCH_SKIPPED ? "skipped" : "failed");
-                continue;
-            }
-            fprintf(f, " %s | %s | %s | %s | %s | %s | %s |\n", ms(b[0], 32, v.build_ms),
-                    num(b[1], 32, v.build_ratio, 2), num(b[2], 32, v.ns_per_face, 1),
-                    ms(b[3], 32, v.sweep_ms), num(b[4], 32, v.sweep_ratio, 2),
-                    rate(b[5], 32, v.neighbours_per_s), num(b[6], 32, v.heap_per_face, 1));
-        }
-    }
-    fprintf(f,
-            "\nratio: the library's median time over meshtopo's (above 1: meshtopo is "
-            "faster). bytes/face: heap growth over the build (mallinfo2), positions "
-            "included.\n");
-    return fclose(f) == 0;
+    if (checked == 0) fprintf(out, "  none checked: no mesh in this run is that large\n");
+    return checked > 0 && all_met;
 }

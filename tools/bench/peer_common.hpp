@@ -1,8 +1,9 @@
 // What the peer programs (OpenMesh, CGAL) share: reading the raw input file
 // meshtopo-bench writes (layout in bench_input.c), the clock and heap meters,
 // and the line protocol the driver speaks over stdin/stdout (bench_peer.c).
-// A peer supplies build, sweep and topology for its library; run_peer does
-// the rest, so every library is timed over exactly the same steps.
+// A peer supplies build, the sweeps, boundary loops, components and counts
+// for its library; run_peer does the rest, so every library is timed over
+// exactly the same steps.
 #ifndef MESHTOPO_BENCH_PEER_COMMON_HPP
 #define MESHTOPO_BENCH_PEER_COMMON_HPP
 
@@ -34,14 +35,20 @@ struct Input {
     std::vector<uint32_t> indices;  // num_indices
 };
 
-// Counts of the built mesh, compared by the driver across libraries.
+// Counts of the built mesh, compared by the driver across libraries (and
+// the counts to reserve() before a build).
 struct Topology {
-    uint64_t verts = 0, edges = 0, faces = 0, boundary_loops = 0;
+    uint64_t verts = 0, edges = 0, faces = 0;
 };
 
-// Totals of one one-ring sweep: neighbours visited and the sum of their ids.
+// Totals of one sweep: elements visited and the sum of their ids.
 struct Sweep {
     uint64_t neighbours = 0, checksum = 0;
+};
+
+// Boundary loops extracted as vertex lists: how many, and their vertices.
+struct Loops {
+    uint64_t loops = 0, verts = 0;
 };
 
 inline double now_ms()
@@ -124,31 +131,73 @@ inline bool face_usable(const uint32_t *fv, uint32_t size, uint32_t num_verts)
 
 // Runs the protocol for one library. Peer provides:
 //   typename Peer::Mesh
+//   static const char *library()                  (row name, may depend on options)
+//   static bool option(const char *arg)           (true when it takes a flag)
+//   static void prepare(const Input &, uint64_t &failed_faces)   (once, untimed)
 //   static std::unique_ptr<Mesh> build(const Input &, const Topology &reserve,
 //                                      uint64_t &failed_faces)
 //       (reserve: counts to reserve() before adding, all zero for none)
-//   static Sweep sweep(const Mesh &)
-//   static Topology topology(const Mesh &)
-// Command line: PEER INPUT [--no-reserve]. By default every timed build
-// reserves the exact V, E, F its warm-up build found (the best case for the
-// library, what a caller knowing the counts would do); --no-reserve times
-// the plain add loop. Output lines (stdout, one per event):
-//   ready lib=NAME version=X reserve=0|1 V= E= F= boundary_loops= failed_faces=
-//         neighbours= checksum=
-//   rep build_ms= sweep_ms= neighbours= checksum= heap_bytes=   (one per "run" on stdin)
-//   error TEXT                                                 (then exit status 1)
+//   static Sweep ring_sweep(const Mesh &)         (neighbour vertices of every vertex)
+//   static Sweep adj_sweep(const Mesh &)          (faces across every face's edges)
+//   static Loops loops(const Mesh &)              (boundary loops as vertex lists)
+//   static uint64_t components(Mesh &)            (labels every face, returns the count)
+//   static Topology topology(const Mesh &)        (V, E, F)
+// Command line: PEER INPUT [--no-reserve] [peer flags]. By default every
+// timed build reserves the exact V, E, F its warm-up build found (the best
+// case for the library, what a caller knowing the counts would do);
+// --no-reserve times the plain add loop. Output lines (stdout, one per event):
+//   ready lib=NAME version=X reserve=0|1 V= E= F= boundary_loops= components=
+//         failed_faces= loop_verts= ring_neighbours= ring_sum= adj_neighbours= adj_sum=
+//   rep build_ms= ring_ms= adj_ms= loops_ms= components_ms= boundary_loops= loop_verts=
+//       components= ring_neighbours= ring_sum= adj_neighbours= adj_sum= heap_bytes=
+//                                                   (one per "run" on stdin)
+//   error TEXT                                      (then exit status 1)
 // "quit" or the end of stdin ends the program. The warm-up build is untimed;
-// each mesh is freed before the next build starts.
+// each mesh is freed (untimed) before the next build starts.
+struct Measured {
+    double ring_ms = 0, adj_ms = 0, loops_ms = 0, components_ms = 0;
+    Sweep ring, adj;
+    Loops loops;
+    uint64_t components = 0;
+};
+
 template <class Peer>
-int run_peer(int argc, char **argv, const char *library, const char *version)
+Measured measure_queries(typename Peer::Mesh &mesh)
+{
+    Measured m;
+    double t0 = now_ms();
+    m.ring = Peer::ring_sweep(mesh);
+    double t1 = now_ms();
+    m.adj = Peer::adj_sweep(mesh);
+    double t2 = now_ms();
+    m.loops = Peer::loops(mesh);
+    double t3 = now_ms();
+    m.components = Peer::components(mesh);
+    double t4 = now_ms();
+    m.ring_ms = t1 - t0;
+    m.adj_ms = t2 - t1;
+    m.loops_ms = t3 - t2;
+    m.components_ms = t4 - t3;
+    return m;
+}
+
+template <class Peer>
+int run_peer(int argc, char **argv, const char *version)
 {
     bool reserve = true;
-    if (argc == 3 && std::strcmp(argv[2], "--no-reserve") == 0) reserve = false;
-    if (argc < 2 || argc > 3 || (argc == 3 && reserve)) {
+    bool usage_ok = argc >= 2;
+    for (int i = 2; i < argc; i++) {
+        if (std::strcmp(argv[i], "--no-reserve") == 0) {
+            reserve = false;
+        } else if (!Peer::option(argv[i])) {
+            usage_ok = false;
+        }
+    }
+    if (!usage_ok) {
         std::fprintf(stderr,
-                     "usage: %s INPUT [--no-reserve]\n"
+                     "usage: %s INPUT [--no-reserve] [peer options]\n"
                      "Reads a meshtopo-bench input file, builds it once as a warm-up, then\n"
-                     "answers each \"run\" line on stdin with one timed build and sweep.\n",
+                     "answers each \"run\" line on stdin with one timed build and its queries.\n",
                      argv[0]);
         return 2;
     }
@@ -160,19 +209,23 @@ int run_peer(int argc, char **argv, const char *library, const char *version)
             return 1;
         }
         uint64_t failed = 0;
+        Peer::prepare(in, failed);
         Topology hint;
         auto mesh = Peer::build(in, hint, failed);
-        Sweep warm = Peer::sweep(*mesh);
+        Measured warm = measure_queries<Peer>(*mesh);
         Topology t = Peer::topology(*mesh);
         mesh.reset();
         if (reserve) hint = t;
         std::printf(
             "ready lib=%s version=%s reserve=%d V=%llu E=%llu F=%llu boundary_loops=%llu "
-            "failed_faces=%llu neighbours=%llu checksum=%llu\n",
-            library, version, reserve ? 1 : 0, (unsigned long long)t.verts,
+            "components=%llu failed_faces=%llu loop_verts=%llu ring_neighbours=%llu "
+            "ring_sum=%llu adj_neighbours=%llu adj_sum=%llu\n",
+            Peer::library(), version, reserve ? 1 : 0, (unsigned long long)t.verts,
             (unsigned long long)t.edges, (unsigned long long)t.faces,
-            (unsigned long long)t.boundary_loops, (unsigned long long)failed,
-            (unsigned long long)warm.neighbours, (unsigned long long)warm.checksum);
+            (unsigned long long)warm.loops.loops, (unsigned long long)warm.components,
+            (unsigned long long)failed, (unsigned long long)warm.loops.verts,
+            (unsigned long long)warm.ring.neighbours, (unsigned long long)warm.ring.checksum,
+            (unsigned long long)warm.adj.neighbours, (unsigned long long)warm.adj.checksum);
         std::fflush(stdout);
 
         char line[256];
@@ -189,14 +242,17 @@ int run_peer(int argc, char **argv, const char *library, const char *version)
             mesh = Peer::build(in, hint, failed_rep);
             double t1 = now_ms();
             int64_t heap1 = heap_bytes();
-            double t2 = now_ms();
-            Sweep s = Peer::sweep(*mesh);
-            double t3 = now_ms();
+            Measured m = measure_queries<Peer>(*mesh);
             mesh.reset();
             std::printf(
-                "rep build_ms=%.4f sweep_ms=%.4f neighbours=%llu checksum=%llu "
-                "heap_bytes=%lld\n",
-                t1 - t0, t3 - t2, (unsigned long long)s.neighbours, (unsigned long long)s.checksum,
+                "rep build_ms=%.4f ring_ms=%.4f adj_ms=%.4f loops_ms=%.4f components_ms=%.4f "
+                "boundary_loops=%llu loop_verts=%llu components=%llu ring_neighbours=%llu "
+                "ring_sum=%llu adj_neighbours=%llu adj_sum=%llu heap_bytes=%lld\n",
+                t1 - t0, m.ring_ms, m.adj_ms, m.loops_ms, m.components_ms,
+                (unsigned long long)m.loops.loops, (unsigned long long)m.loops.verts,
+                (unsigned long long)m.components, (unsigned long long)m.ring.neighbours,
+                (unsigned long long)m.ring.checksum, (unsigned long long)m.adj.neighbours,
+                (unsigned long long)m.adj.checksum,
                 (long long)(heap0 < 0 || heap1 < 0 ? -1 : heap1 - heap0));
             std::fflush(stdout);
         }
