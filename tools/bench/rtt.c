@@ -44,7 +44,7 @@ static void usage(FILE *out)
             "  --seconds S        length of each throughput run (default 2)\n"
             "  --clients N        client processes in the throughput runs (default 4)\n"
             "  --batch N          vertex ids per batched query (default 1000)\n"
-            "  --window N         queries in flight per client (default 4)\n"
+            "  --window N         queries in flight per client (default 16)\n"
             "  --seed N           seed of the queried vertex ids (default 1)\n"
             "  --csv FILE         also write the figures as CSV\n"
             "  --markdown FILE    also write the table as Markdown\n"
@@ -85,7 +85,7 @@ static int parse_options(int argc, char **argv, mt__rtt_options *o)
     o->seconds = 2.0;
     o->clients = 4;
     o->batch = 1000;
-    o->window = 4;
+    o->window = 16;
     o->seed = 1;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
