@@ -11,8 +11,9 @@
 #endif
 
 static const mt_cli_command *const commands[] = {
-    &mt_cli_cmd_inspect, &mt_cli_cmd_send, &mt_cli_cmd_query, &mt_cli_cmd_list,
-    &mt_cli_cmd_watch,   &mt_cli_cmd_spy,  &mt_cli_cmd_bench, &mt_cli_cmd_archive,
+    &mt_cli_cmd_inspect, &mt_cli_cmd_send,    &mt_cli_cmd_query,
+    &mt_cli_cmd_list,    &mt_cli_cmd_watch,   &mt_cli_cmd_spy,
+    &mt_cli_cmd_bench,   &mt_cli_cmd_archive, &mt_cli_cmd_replay,
 };
 static const size_t num_commands = sizeof commands / sizeof commands[0];
 
@@ -52,8 +53,8 @@ static void print_help(FILE *out)
             "  5  meshtopod answered with an error (unknown mesh, refused defect, ...)\n"
             "  6  no answer from meshtopod (timeout), or LCM could not be used\n"
             "\n"
-            "send, query, list and watch talk to meshtopod over LCM; --lcm-url and --prefix\n"
-            "default to $MESHTOPO_LCM_URL and $MESHTOPO_PREFIX.\n");
+            "send, query, list, watch and replay talk to meshtopod over LCM; --lcm-url and\n"
+            "--prefix default to $MESHTOPO_LCM_URL and $MESHTOPO_PREFIX.\n");
 }
 
 static int run_command(const mt_cli_command *cmd, int argc, char **argv)
