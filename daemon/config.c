@@ -52,6 +52,11 @@ static const setting settings[] = {
      "versions kept per mesh id, 0 = all"},
     {"heartbeat-ms", "MESHTOPOD_HEARTBEAT_MS", KIND_U32, FIELD(heartbeat_ms), 10, 3600000,
      "period of the status message"},
+    {"max-transfer-bytes", "MESHTOPOD_MAX_TRANSFER_BYTES", KIND_BYTES, FIELD(max_transfer_bytes), 1,
+     UINT64_MAX,
+     "memory held by unfinished chunked submissions; more is refused (suffixes k, M, G)"},
+    {"transfer-timeout-ms", "MESHTOPOD_TRANSFER_TIMEOUT_MS", KIND_U32, FIELD(transfer_timeout_ms),
+     10, 3600000, "a chunked submission without a chunk for this long is dropped"},
     {"log-level", "MESHTOPOD_LOG_LEVEL", KIND_LEVEL, FIELD(log_level), 0, 0,
      "error, warn, info or debug"},
 };
@@ -69,6 +74,8 @@ static void set_defaults(mtd_config *c)
     c->max_indices = 128u << 20;
     c->max_versions = 8;
     c->heartbeat_ms = 1000;
+    c->max_transfer_bytes = 1ull << 30;
+    c->transfer_timeout_ms = 10000;
     c->log_level = MTD_LOG_INFO;
 }
 
@@ -254,9 +261,12 @@ void mtd_config_log(const mtd_config *c)
 {
     mtd_log(MTD_LOG_INFO, "config",
             "lcm_url=%s prefix=%s name=%s workers=%u max_verts=%u max_faces=%u "
-            "max_indices=%llu max_store_bytes=%llu max_versions=%u heartbeat_ms=%u log_level=%s",
+            "max_indices=%llu max_store_bytes=%llu max_versions=%u heartbeat_ms=%u "
+            "max_transfer_bytes=%llu "
+            "transfer_timeout_ms=%u log_level=%s",
             c->lcm_url[0] ? c->lcm_url : "(lcm default)", c->channel_prefix, c->name, c->workers,
             c->max_verts, c->max_faces, (unsigned long long)c->max_indices,
             (unsigned long long)c->max_store_bytes, c->max_versions, c->heartbeat_ms,
+            (unsigned long long)c->max_transfer_bytes, c->transfer_timeout_ms,
             mtd_log_level_name(c->log_level));
 }

@@ -21,9 +21,11 @@ typedef struct mtd_config {
     uint32_t max_verts;                /* largest mesh accepted */
     uint32_t max_faces;
     uint64_t max_indices;
-    uint64_t max_store_bytes; /* memory for built meshes, 0 = no limit */
-    uint32_t max_versions;    /* versions kept per mesh id, 0 = all */
-    uint32_t heartbeat_ms;    /* period of the status message */
+    uint64_t max_store_bytes;     /* memory for built meshes, 0 = no limit */
+    uint32_t max_versions;        /* versions kept per mesh id, 0 = all */
+    uint32_t heartbeat_ms;        /* period of the status message */
+    uint64_t max_transfer_bytes;  /* memory held by unfinished chunked submissions */
+    uint32_t transfer_timeout_ms; /* a transfer without a chunk for this long is dropped */
     mtd_log_level log_level;
 } mtd_config;
 

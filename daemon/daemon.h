@@ -28,6 +28,11 @@
 #define MTD_TOPOLOGY_LIST_MAX 65536u
 /* Length of the error texts in replies (longer ones are cut). */
 #define MTD_ERROR_MAX 512
+/* Missing ranges listed in one mesh_transfer_t (16 bytes each). */
+#define MTD_TRANSFER_GAPS_MAX 1024
+
+/* One unfinished chunked submission (transfer.c). */
+typedef struct mtd_transfer mtd_transfer;
 
 typedef struct mtd_daemon {
     mtd_config config;
@@ -45,6 +50,14 @@ typedef struct mtd_daemon {
     atomic_bool stopping; /* no new work once set */
 
     atomic_int_fast64_t submissions, builds, queries, errors, duplicates;
+
+    /* Chunked submissions, keyed by (reply channel, request id); guarded by
+     * transfer_lock. transfer_bytes counts against max_transfer_bytes. */
+    pthread_mutex_t transfer_lock;
+    mtd_transfer *transfers;
+    size_t transfers_active;
+    uint64_t transfer_bytes;
+    atomic_int_fast64_t chunks, transfers_completed, transfers_expired, transfers_refused;
     pthread_mutex_t error_lock;
     char last_error[MTD_ERROR_MAX];
     int64_t last_error_utime;
@@ -85,6 +98,16 @@ void mtd_send_reply_error(mtd_daemon *daemon, const char *channel, int64_t reque
                           const char *mesh_id, int32_t kind, bool remember, int32_t status,
                           const char *error);
 
+/* Reads the header every request starts with: fingerprint, utime,
+ * request_id, reply_channel (int32 length with its NUL, then the bytes).
+ * Returns true with the channel copied into channel[MTD_CHANNEL_MAX + 1]. */
+bool mtd_peek_request_header(const void *data, size_t size, int64_t *out_request_id, char *channel);
+
+/* Checks the reply channel and the request cache. Returns true when the
+ * request is new (now marked pending) and must be run; a finished one has
+ * had its reply published again. */
+bool mtd_begin_request(mtd_daemon *daemon, const char *channel, int64_t request_id);
+
 /* ---- submissions (submit.c) ---- */
 
 /* Handles one decoded mesh_t whose request was new in the request cache.
@@ -92,6 +115,25 @@ void mtd_send_reply_error(mtd_daemon *daemon, const char *channel, int64_t reque
  * of msg (heap-allocated, decoded by mt_msgs_decode). */
 void mtd_submit_handle(mtd_daemon *daemon, meshtopo_mesh_t *msg, const void *encoded,
                        size_t encoded_size);
+
+/* mtd_submit_handle with the content hash already computed (a chunked
+ * submission hashes its reassembled content once). */
+void mtd_submit_handle_hashed(mtd_daemon *daemon, meshtopo_mesh_t *msg, uint64_t content_hash);
+
+/* ---- chunked submissions (transfer.c) ---- */
+
+/* Handles one received mesh_chunk_t (bytes with its fingerprint, not yet
+ * decoded): decodes it, adds it to its transfer (admitting a new one within
+ * the limits), answers with mesh_transfer_t when asked or wrong, and hands a
+ * complete mesh to mtd_submit_handle. Runs on the LCM thread. */
+void mtd_chunk_handle(mtd_daemon *daemon, const void *data, size_t size);
+
+/* Drops every transfer that received nothing for transfer_timeout_ms and
+ * releases its memory. Returns how many were dropped. */
+size_t mtd_transfers_expire(mtd_daemon *daemon);
+
+/* Frees every transfer (at destroy). */
+void mtd_transfers_free(mtd_daemon *daemon);
 
 /* ---- queries (query.c) ---- */
 
@@ -111,7 +153,7 @@ void mtd_topology_free(meshtopo_topology_t *topology);
 
 /* ---- heartbeat (heartbeat.c) ---- */
 
-/* Publishes one status_t on PREFIX+"STATUS". */
+/* Expires stalled transfers, then publishes one status_t on PREFIX+"STATUS". */
 void mtd_heartbeat_publish(mtd_daemon *daemon);
 
 #endif

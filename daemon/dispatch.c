@@ -4,7 +4,9 @@
  * channel and request_id) is answered from the request cache, not run again.
  * Bytes that do not decode are still answered when their request header
  * (utime, request_id, reply_channel, common to mesh_t and query_t) can be
- * read, so a sender learns what was wrong. Also the daemon's create/stop. */
+ * read, so a sender learns what was wrong. mesh_chunk_t, the pieces of a
+ * large mesh on the same SUBMIT channel, goes to transfer.c. Also the
+ * daemon's create/stop. */
 #include "daemon.h"
 
 #include <inttypes.h>
@@ -116,11 +118,7 @@ static int64_t read_be64(const unsigned char *p)
     return (int64_t)v;
 }
 
-/* Reads the header every request starts with: fingerprint, utime,
- * request_id, reply_channel (int32 length with its NUL, then the bytes).
- * Returns true with the channel copied into channel[MTD_CHANNEL_MAX + 1]. */
-static bool peek_request_header(const void *data, size_t size, int64_t *out_request_id,
-                                char *channel)
+bool mtd_peek_request_header(const void *data, size_t size, int64_t *out_request_id, char *channel)
 {
     const unsigned char *p = data;
     if (size < 8 + 8 + 8 + 4) return false;
@@ -141,7 +139,7 @@ static void answer_undecodable(mtd_daemon *d, bool submit, const void *data, siz
     char channel[MTD_CHANNEL_MAX + 1];
     char error[MTD_ERROR_MAX];
     snprintf(error, sizeof error, "undecodable %s: %s", submit ? "mesh_t" : "query_t", why);
-    if (!peek_request_header(data, size, &request_id, channel)) {
+    if (!mtd_peek_request_header(data, size, &request_id, channel)) {
         note_error(d, error);
         mtd_log(MTD_LOG_WARN, "undecodable", "bytes=%zu error=%s (no reply channel to answer on)",
                 size, error);
@@ -155,9 +153,7 @@ static void answer_undecodable(mtd_daemon *d, bool submit, const void *data, siz
                              MESHTOPO_STATUS_CODE_T_UNDECODABLE, error);
 }
 
-/* Checks the reply channel and the request cache. Returns true when the
- * request is new and must be run. */
-static bool begin_request(mtd_daemon *d, const char *channel, int64_t request_id)
+bool mtd_begin_request(mtd_daemon *d, const char *channel, int64_t request_id)
 {
     if (!reply_channel_ok(channel)) {
         char error[MTD_ERROR_MAX];
@@ -187,12 +183,17 @@ static void on_submit(const lcm_recv_buf_t *rbuf, const char *channel, void *use
 {
     (void)channel;
     mtd_daemon *d = user;
-    atomic_fetch_add(&d->submissions, 1);
     size_t size = rbuf->data_size;
-    if (mt_msgs_type_of(rbuf->data, size) != &mt_msgs_type_mesh) {
-        answer_undecodable(
-            d, true, rbuf->data, size,
-            size < 8 ? "shorter than a fingerprint" : "wrong fingerprint (not a meshtopo.mesh_t)");
+    const mt_msgs_type *type = mt_msgs_type_of(rbuf->data, size);
+    if (type == &mt_msgs_type_mesh_chunk) {
+        mtd_chunk_handle(d, rbuf->data, size); /* counts the mesh once it is complete */
+        return;
+    }
+    atomic_fetch_add(&d->submissions, 1);
+    if (type != &mt_msgs_type_mesh) {
+        answer_undecodable(d, true, rbuf->data, size,
+                           size < 8 ? "shorter than a fingerprint"
+                                    : "wrong fingerprint (not a meshtopo.mesh_t nor mesh_chunk_t)");
         return;
     }
     meshtopo_mesh_t *msg = calloc(1, sizeof *msg);
@@ -206,7 +207,7 @@ static void on_submit(const lcm_recv_buf_t *rbuf, const char *channel, void *use
     if (atomic_load(&d->stopping)) {
         mtd_send_ack_error(d, msg->reply_channel, msg->request_id, msg->mesh_id, false,
                            MESHTOPO_STATUS_CODE_T_BUSY, "the daemon is shutting down");
-    } else if (begin_request(d, msg->reply_channel, msg->request_id)) {
+    } else if (mtd_begin_request(d, msg->reply_channel, msg->request_id)) {
         mtd_submit_handle(d, msg, rbuf->data, size); /* takes msg */
         return;
     }
@@ -232,7 +233,7 @@ static void on_query(const lcm_recv_buf_t *rbuf, const char *channel, void *user
         answer_undecodable(d, false, rbuf->data, size, why);
         return;
     }
-    if (begin_request(d, msg.reply_channel, msg.request_id)) mtd_query_handle(d, &msg);
+    if (mtd_begin_request(d, msg.reply_channel, msg.request_id)) mtd_query_handle(d, &msg);
     meshtopo_query_t_decode_cleanup(&msg);
 }
 
@@ -272,6 +273,7 @@ mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **o
     d->lcm = lcm;
     d->start_utime = mtd_now_utime();
     pthread_mutex_init(&d->error_lock, NULL);
+    pthread_mutex_init(&d->transfer_lock, NULL);
     char host[64] = "";
     gethostname(host, sizeof host - 1);
     snprintf(d->instance, sizeof d->instance, "%s:%d:%" PRId64, host, (int)getpid(),
@@ -331,6 +333,8 @@ void mtd_daemon_destroy(mtd_daemon *d)
     if (!d) return;
     mtd_daemon_stop(d);
     mtd_pool_destroy(d->pool);
+    mtd_transfers_free(d);
+    pthread_mutex_destroy(&d->transfer_lock);
     mtd_reqcache_destroy(d->cache);
     mtd_store_destroy(d->store);
     pthread_mutex_destroy(&d->error_lock);

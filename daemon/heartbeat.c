@@ -1,6 +1,7 @@
 /* meshtopod's heartbeat: one status_t on PREFIX+"STATUS" every heartbeat_ms
  * (and a last one when it stops), with what the store holds, the worker
- * pool's load and the counters since the start. Clients wait for the first
+ * pool's load, the unfinished chunked submissions (stalled ones expire
+ * here first) and the counters since the start. Clients wait for the first
  * one before sending anything. */
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +12,7 @@
 
 void mtd_heartbeat_publish(mtd_daemon *d)
 {
+    mtd_transfers_expire(d);
     mtd_store_totals totals;
     mtd_store_get_totals(d->store, &totals);
     mtd_pool_stats pool;
@@ -42,6 +44,14 @@ void mtd_heartbeat_publish(mtd_daemon *d)
     st.builds_in_progress = (int32_t)pool.running;
     st.builds_queued = (int32_t)pool.queued;
     st.last_error = last_error;
+    pthread_mutex_lock(&d->transfer_lock);
+    st.transfers_active = (int32_t)d->transfers_active;
+    st.transfer_bytes = (int64_t)d->transfer_bytes;
+    pthread_mutex_unlock(&d->transfer_lock);
+    st.chunks = atomic_load(&d->chunks);
+    st.transfers_completed = atomic_load(&d->transfers_completed);
+    st.transfers_expired = atomic_load(&d->transfers_expired);
+    st.transfers_refused = atomic_load(&d->transfers_refused);
 
     int size = meshtopo_status_t_encoded_size(&st);
     void *buf = size > 0 ? malloc((size_t)size) : NULL;

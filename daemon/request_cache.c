@@ -273,6 +273,26 @@ mt_status mtd_reqcache_begin(mtd_reqcache *cache, const char *reply_channel, int
     return status;
 }
 
+mt_status mtd_reqcache_peek(mtd_reqcache *cache, const char *reply_channel, int64_t request_id,
+                            mtd_request_state *out_state, mtd_reply **out_reply)
+{
+    *out_reply = NULL;
+    *out_state = MTD_REQUEST_NEW;
+    size_t len = channel_length(reply_channel);
+    if (len == 0) return MT_ERR_INVALID_ARG;
+    uint64_t hash = key_hash(reply_channel, len, request_id);
+    pthread_mutex_lock(&cache->lock);
+    centry *e = *find_link(cache, hash, reply_channel, len, request_id);
+    if (e && e->reply) {
+        *out_state = MTD_REQUEST_DONE;
+        *out_reply = reply_retain(e->reply);
+    } else if (e) {
+        *out_state = MTD_REQUEST_PENDING;
+    }
+    pthread_mutex_unlock(&cache->lock);
+    return MT_OK;
+}
+
 mt_status mtd_reqcache_finish(mtd_reqcache *cache, const char *reply_channel, int64_t request_id,
                               const void *data, size_t size)
 {

@@ -67,6 +67,11 @@ typedef enum mtd_request_state {
 mt_status mtd_reqcache_begin(mtd_reqcache *cache, const char *reply_channel, int64_t request_id,
                              mtd_request_state *out_state, mtd_reply **out_reply);
 
+/* mtd_reqcache_begin without marking anything: MTD_REQUEST_NEW means the
+ * cache does not know the request. Counts no hit. */
+mt_status mtd_reqcache_peek(mtd_reqcache *cache, const char *reply_channel, int64_t request_id,
+                            mtd_request_state *out_state, mtd_reply **out_reply);
+
 /* Stores the encoded reply of a request (copying `size` bytes of `data`), so
  * retries get it; the request stops being pending. Works without a begin too
  * (the reply is remembered as a new request). If the request already has a

@@ -229,6 +229,11 @@ static void build_job(void *arg, bool cancelled)
 void mtd_submit_handle(mtd_daemon *d, meshtopo_mesh_t *msg, const void *encoded,
                        size_t encoded_size)
 {
+    mtd_submit_handle_hashed(d, msg, mt_msgs_mesh_content_hash(msg, encoded, encoded_size));
+}
+
+void mtd_submit_handle_hashed(mtd_daemon *d, meshtopo_mesh_t *msg, uint64_t content_hash)
+{
     char error[MTD_ERROR_MAX];
     int32_t status = check_mesh(&d->config, msg, error, sizeof error);
     if (status != MESHTOPO_STATUS_CODE_T_OK) {
@@ -249,7 +254,7 @@ void mtd_submit_handle(mtd_daemon *d, meshtopo_mesh_t *msg, const void *encoded,
     }
     job->daemon = d;
     job->msg = msg;
-    job->content_hash = mt_msgs_mesh_content_hash(msg, encoded, encoded_size);
+    job->content_hash = content_hash;
     mtd_log(MTD_LOG_DEBUG, "submit",
             "mesh_id=%s request_id=%" PRId64 " verts=%" PRId32 " faces=%" PRId32, msg->mesh_id,
             msg->request_id, msg->num_verts, msg->num_faces);

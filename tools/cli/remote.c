@@ -52,8 +52,17 @@ int mt_cli_remote_parse(const mt_cli_args *args, mt_cli_remote *out)
 
 int mt_cli_client_create(const char *command, const mt_cli_remote *remote, mt_client **out)
 {
+    return mt_cli_client_create_progress(command, remote, NULL, NULL, out);
+}
+
+int mt_cli_client_create_progress(const char *command, const mt_cli_remote *remote,
+                                  mt_client_progress_fn progress, void *progress_user,
+                                  mt_client **out)
+{
     mt_client_options opts;
     memset(&opts, 0, sizeof opts);
+    opts.progress = progress;
+    opts.progress_user = progress_user;
     opts.lcm_url = remote->lcm_url;
     opts.channel_prefix = remote->prefix;
     opts.timeout_ms = remote->timeout_ms;

@@ -46,6 +46,11 @@ int mt_cli_remote_parse(const mt_cli_args *args, mt_cli_remote *out);
  * start) after printing the reason. */
 int mt_cli_client_create(const char *command, const mt_cli_remote *remote, mt_client **out);
 
+/* mt_cli_client_create with a progress callback for chunked submissions. */
+int mt_cli_client_create_progress(const char *command, const mt_cli_remote *remote,
+                                  mt_client_progress_fn progress, void *progress_user,
+                                  mt_client **out);
+
 /* The exit code of a failed client call, after printing one line naming the
  * mesh (unless mesh_id is NULL): MT_CLI_EXIT_REFUSED when the daemon answered with an error
  * (`answered`), MT_CLI_EXIT_NO_ANSWER after a timeout, MT_CLI_EXIT_USAGE for

@@ -182,8 +182,8 @@ mt_status mt_client_submit(mt_client *client, const char *mesh_id, const mt_face
     uint64_t tail = mt__content_size(list);
     if (tail == 0)
         return mt__client_fail(diag, MT_ERR_TOO_LARGE,
-                               "mesh of %u vertices, %u faces, %llu indices does not fit one "
-                               "mesh_t message",
+                               "mesh of %u vertices, %u faces, %llu indices does not fit "
+                               "mesh_t's counts",
                                list->num_verts, list->num_faces,
                                (unsigned long long)list->num_indices);
 
@@ -214,7 +214,14 @@ mt_status mt_client_submit(mt_client *client, const char *mesh_id, const mt_face
     out_ack->sent_content_hash = mt_msgs_mesh_content_hash(&m, buf->data, (size_t)size);
 
     mt__pending p;
-    st = call_sync(client, request_id, &mt_msgs_type_ack, client->submit_channel, buf, &p, diag);
+    if (size <= MT_CLIENT_SINGLE_MESSAGE_MAX) {
+        st =
+            call_sync(client, request_id, &mt_msgs_type_ack, client->submit_channel, buf, &p, diag);
+    } else {
+        st = mt__client_submit_chunked(client, &m, buf->data, (size_t)size, (size_t)tail,
+                                       out_ack->sent_content_hash, &p, diag);
+        mt__msgbuf_release(buf);
+    }
     if (p.has_answer) out_ack->msg = p.answer.ack;
     return st;
 }

@@ -265,12 +265,72 @@ static void run_deadlines(mt_client *client)
     }
 }
 
+/* The request with this id, left in the table, or NULL (mutex held). */
+static mt__pending *table_find(mt_client *client, int64_t request_id)
+{
+    for (mt__pending *p = client->buckets[bucket_of(request_id)]; p; p = p->next)
+        if (p->request_id == request_id) return p;
+    return NULL;
+}
+
+/* A mesh_transfer_t: progress of a chunked submission (recorded for its
+ * sender, which is woken; the submission's attempts start afresh since the
+ * daemon is alive), or its refusal (which completes it). */
+static void on_transfer_status(mt_client *client, meshtopo_mesh_transfer_t *msg)
+{
+    pthread_mutex_lock(&client->mutex);
+    mt__pending *p = table_find(client, msg->request_id);
+    if (!p || !p->transfer) {
+        client->stats.unknown_replies++;
+        pthread_mutex_unlock(&client->mutex);
+        return;
+    }
+    client->stats.replies++;
+    if (msg->status != MESHTOPO_STATUS_CODE_T_OK) {
+        table_take(client, p->request_id);
+        p->status = mt_client_status_of_code(msg->status);
+        mt__client_fail(&p->diag, p->status, "%s: %s", mt_client_code_name(msg->status),
+                        msg->error && msg->error[0] ? msg->error : "(no error text)");
+        complete_locked(p); /* chunked submissions are synchronous */
+        pthread_mutex_unlock(&client->mutex);
+        return;
+    }
+    mt__transfer *t = p->transfer;
+    t->seq++;
+    t->complete = msg->complete;
+    t->received = msg->received_bytes > 0 ? (uint64_t)msg->received_bytes : 0;
+    t->listed_until = msg->listed_until > 0 ? (uint64_t)msg->listed_until : 0;
+    size_t n = msg->num_missing > 0 ? (size_t)msg->num_missing : 0;
+    if (n > MT__TRANSFER_GAPS_MAX) n = MT__TRANSFER_GAPS_MAX;
+    if (n > 0) { /* the arrays are NULL when empty */
+        memcpy(t->missing_offsets, msg->missing_offsets, n * sizeof *t->missing_offsets);
+        memcpy(t->missing_lengths, msg->missing_lengths, n * sizeof *t->missing_lengths);
+    }
+    t->num_missing = n;
+    p->deadline_us = mt__client_now_us() + (int64_t)client->timeout_ms * 1000;
+    p->attempts_left = client->attempts - 1;
+    pthread_cond_broadcast(&p->cond);
+    pthread_mutex_unlock(&client->mutex);
+}
+
 /* The reply channel's handler: decode, match by request id, complete. */
 static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
     mt_client *client = user;
     size_t size = rbuf->data_size;
     const mt_msgs_type *type = mt_msgs_type_of(rbuf->data, size);
+    if (type == &mt_msgs_type_mesh_transfer) {
+        meshtopo_mesh_transfer_t msg;
+        if (mt_msgs_decode(type, rbuf->data, size, &msg, NULL, 0) != 0) {
+            pthread_mutex_lock(&client->mutex);
+            client->stats.undecodable++;
+            pthread_mutex_unlock(&client->mutex);
+            return;
+        }
+        on_transfer_status(client, &msg);
+        meshtopo_mesh_transfer_t_decode_cleanup(&msg);
+        return;
+    }
     mt__answer answer;
     char error[MT_MSGS_ERROR_SIZE];
     if ((type != &mt_msgs_type_reply && type != &mt_msgs_type_ack) ||
@@ -398,6 +458,13 @@ mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_di
     if (opts->external_handle && !opts->lcm)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG,
                                "external_handle needs a caller-provided lcm");
+    if (opts->chunk_bytes &&
+        (opts->chunk_bytes < 64 || opts->chunk_bytes > MT_CLIENT_MAX_CHUNK_BYTES))
+        return mt__client_fail(diag, MT_ERR_INVALID_ARG, "chunk_bytes %d is not within 64..%d",
+                               opts->chunk_bytes, MT_CLIENT_MAX_CHUNK_BYTES);
+    if (opts->window_chunks && (opts->window_chunks < 1 || opts->window_chunks > 4096))
+        return mt__client_fail(diag, MT_ERR_INVALID_ARG, "window_chunks %d is not within 1..4096",
+                               opts->window_chunks);
     const char *source = opts->source ? opts->source : "meshtopo-client";
     if (strlen(source) >= 256)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "source name longer than 255 bytes");
@@ -413,6 +480,11 @@ mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_di
     int retries = opts->retries == 0 ? MT_CLIENT_DEFAULT_RETRIES : opts->retries;
     client->attempts = retries < 0 ? 1 : (retries > 1000 ? 1001 : retries + 1);
     client->external_handle = opts->external_handle;
+    client->chunk_bytes = opts->chunk_bytes ? opts->chunk_bytes : MT_CLIENT_DEFAULT_CHUNK_BYTES;
+    client->window_chunks =
+        opts->window_chunks ? opts->window_chunks : MT_CLIENT_DEFAULT_WINDOW_CHUNKS;
+    client->progress = opts->progress;
+    client->progress_user = opts->progress_user;
     client->next_deadline_us = INT64_MAX;
     /* Ids start at a random point so a restarted node reusing a channel name
      * does not repeat recent ones; they stay positive. */

@@ -24,6 +24,17 @@ typedef union mt__answer {
     meshtopo_ack_t ack;
 } mt__answer;
 
+/* What the daemon last said about a chunked submission (mesh_transfer_t). */
+#define MT__TRANSFER_GAPS_MAX 1024
+typedef struct mt__transfer {
+    uint64_t seq; /* statuses received so far */
+    int complete; /* every byte is in: only the ack is awaited */
+    uint64_t received, listed_until;
+    size_t num_missing;
+    int64_t missing_offsets[MT__TRANSFER_GAPS_MAX];
+    int64_t missing_lengths[MT__TRANSFER_GAPS_MAX];
+} mt__transfer;
+
 typedef struct mt__pending {
     int64_t request_id;
     struct mt__pending *next;     /* in its bucket of the table */
@@ -40,6 +51,9 @@ typedef struct mt__pending {
     int has_answer;
     mt__answer answer;
     mt_diag diag;
+
+    /* A chunked submission: statuses land here and signal cond. */
+    mt__transfer *transfer;
 
     /* Synchronous: the waiter sleeps on cond. Asynchronous: callback != NULL. */
     pthread_cond_t cond;
@@ -59,7 +73,11 @@ struct mt_client {
     char query_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];
     char source[256];
     int timeout_ms;
-    int attempts; /* 1 + retries */
+    int attempts;      /* 1 + retries */
+    int chunk_bytes;   /* content bytes per mesh_chunk_t */
+    int window_chunks; /* chunks sent per status round trip */
+    mt_client_progress_fn progress;
+    void *progress_user;
 
     pthread_t thread;
     int thread_started;
@@ -101,6 +119,14 @@ void mt__msgbuf_release(mt__msgbuf *buf);
  * for a synchronous call from the client's own thread; p is then not in the
  * table. */
 mt_status mt__client_start(mt_client *client, mt__pending *p);
+
+/* Sends a mesh whose encoded mesh_t (buf, `size` bytes; its last `tail`
+ * bytes are the content) is too large for one datagram as mesh_chunk_t
+ * pieces and waits for the ack, like a synchronous call: p (zeroed by the
+ * caller) holds the answer whatever the status (submit_chunked.c). */
+mt_status mt__client_submit_chunked(mt_client *client, const meshtopo_mesh_t *m,
+                                    const uint8_t *encoded, size_t size, size_t tail,
+                                    uint64_t content_hash, mt__pending *p, mt_diag *diag);
 
 /* Waits until the synchronous request p completes (it is then out of the
  * table) and releases its buffer. */

@@ -18,8 +18,9 @@ static uint64_t hash_big_endian(uint64_t hash, uint64_t value, int bytes)
 }
 
 /* Bytes of mesh_t's content fields (num_verts .. face_vertex_indices) once
- * encoded; 0 when a count does not fit its int32 field or the whole would
- * not fit one LCM message. */
+ * encoded; 0 when a count does not fit its int32 field or the whole mesh_t
+ * would not fit the int sizes of LCM's encoders (chunked submissions carry
+ * more than one LCM message could). */
 uint64_t mt__content_size(const mt_face_list *list)
 {
     if (list->num_verts > INT32_MAX / 3 || list->num_faces > INT32_MAX ||
@@ -27,7 +28,7 @@ uint64_t mt__content_size(const mt_face_list *list)
         return 0;
     uint64_t npos = list->positions ? 3ull * list->num_verts : 0;
     uint64_t size = 8 + 8 * npos + 4 + 4ull * list->num_faces + 4 + 4 * list->num_indices;
-    return size > LCM_MAX_MESSAGE_SIZE - 2048 ? 0 : size;
+    return size > (uint64_t)INT32_MAX - 65536 ? 0 : size;
 }
 
 mt_status mt_client_content_hash(const mt_face_list *list, uint64_t *out_hash, mt_diag *diag)

@@ -28,6 +28,21 @@ typedef struct mt_client mt_client;
 #define MT_CLIENT_DEFAULT_RETRIES 3
 /* Longest channel prefix accepted (the reply channel must fit in LCM's 63). */
 #define MT_CLIENT_MAX_PREFIX 24
+/* A mesh whose encoded mesh_t is larger than this travels as mesh_chunk_t
+ * pieces (msgs/mesh_chunk_t.lcm), each one UDP datagram. */
+#define MT_CLIENT_SINGLE_MESSAGE_MAX 60000
+/* Content bytes per chunk: the default and the largest allowed (a chunk then
+ * encodes to under 60,000 bytes with the longest ids). */
+#define MT_CLIENT_DEFAULT_CHUNK_BYTES 57344
+#define MT_CLIENT_MAX_CHUNK_BYTES 59000
+/* Chunks sent before waiting for the daemon's transfer status. */
+#define MT_CLIENT_DEFAULT_WINDOW_CHUNKS 16
+
+/* Progress of a chunked submission: bytes of the mesh's content the daemon
+ * has confirmed, of `total`. Called on the submitting thread, after each
+ * status from the daemon and once more with done == total when the ack
+ * arrives. */
+typedef void (*mt_client_progress_fn)(uint64_t done, uint64_t total, void *user);
 
 /* Options of mt_client_create. A zeroed struct (or NULL) gives the defaults. */
 typedef struct mt_client_options {
@@ -53,6 +68,16 @@ typedef struct mt_client_options {
     int retries;
     /* Name of the node, sent as mesh_t.source; NULL = "meshtopo-client". */
     const char *source;
+    /* Chunked submission (large meshes): content bytes per chunk, 0 =
+     * MT_CLIENT_DEFAULT_CHUNK_BYTES, 64..MT_CLIENT_MAX_CHUNK_BYTES. */
+    int chunk_bytes;
+    /* Chunks sent per round trip to the daemon, 0 =
+     * MT_CLIENT_DEFAULT_WINDOW_CHUNKS, 1..4096. Larger windows go faster
+     * until the daemon's socket receive buffer overflows and chunks are lost. */
+    int window_chunks;
+    /* Called with the progress of chunked submissions; NULL = none. */
+    mt_client_progress_fn progress;
+    void *progress_user;
 } mt_client_options;
 
 /* Counters of one client (mt_client_get_stats). */
@@ -140,8 +165,12 @@ mt_status mt_client_content_hash(const mt_face_list *list, uint64_t *out_hash, m
  * from the client's own thread (an async callback) gives MT_ERR_INVALID_ARG. */
 
 /* Submits a face list as mesh `mesh_id` (a new version of it) and waits for
- * the ack. strict: the daemon refuses a mesh with any defect
- * (MT_ERR_DEFECT, with the report). out_ack is always initialised: filled
+ * the ack. A mesh larger than one datagram (MT_CLIENT_SINGLE_MESSAGE_MAX)
+ * goes as chunks: sent a window at a time, the daemon's missing ranges sent
+ * again, a poll when no status comes; the call fails with MT_ERR_IO
+ * ("timeout:") only after `retries` + 1 timeouts in a row without any word
+ * from the daemon, or with the daemon's refusal (TOO_LARGE, BUSY). strict: the daemon refuses a
+ * mesh with any defect (MT_ERR_DEFECT, with the report). out_ack is always initialised: filled
  * whenever an ack arrived (even with an error status), zeroed otherwise;
  * release it with mt_client_ack_free. */
 mt_status mt_client_submit(mt_client *client, const char *mesh_id, const mt_face_list *list,

@@ -1,0 +1,464 @@
+/* meshtopod's chunked submissions (msgs/mesh_chunk_t.lcm): reassembles the
+ * content of a mesh_t sent in single-datagram pieces, per (reply channel,
+ * request id), directly behind an encoded mesh_t header so the complete
+ * message goes through mt_msgs_decode and the ordinary submission path once.
+ * Admission is bounded (--max-transfer-bytes, the mesh limits), stalled
+ * transfers expire (--transfer-timeout-ms), and every chunk that contradicts
+ * its transfer is answered with BAD_REQUEST without touching the transfer. */
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "byte_ranges.h"
+#include "daemon.h"
+#include "log.h"
+#include "meshtopo/content_hash.h"
+
+/* Bytes of mesh_t's four content counts, encoded with no arrays behind them. */
+#define EMPTY_CONTENT_SIZE 16
+
+struct mtd_transfer {
+    mtd_transfer *next;
+    char channel[MTD_CHANNEL_MAX + 1];
+    int64_t request_id;
+    char *mesh_id, *source;
+    bool strict;
+    uint64_t total, hash;
+    uint8_t *message;   /* header_size + total bytes: the mesh_t being reassembled */
+    size_t header_size; /* the encoded mesh_t fields before num_verts */
+    size_t charged;     /* counted in transfer_bytes */
+    mtd_byte_ranges got;
+    int64_t first_us, last_us; /* monotonic */
+};
+
+static int64_t monotonic_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+static void transfer_free(mtd_transfer *t)
+{
+    if (!t) return;
+    free(t->mesh_id);
+    free(t->source);
+    free(t->message);
+    mtd_byte_ranges_free(&t->got);
+    free(t);
+}
+
+/* Unlinks t from the table and releases its charge (transfer_lock held). */
+static void unlink_transfer(mtd_daemon *d, mtd_transfer *t)
+{
+    for (mtd_transfer **link = &d->transfers; *link; link = &(*link)->next) {
+        if (*link == t) {
+            *link = t->next;
+            t->next = NULL;
+            d->transfers_active--;
+            d->transfer_bytes -= t->charged;
+            t->charged = 0;
+            return;
+        }
+    }
+}
+
+static mtd_transfer *find_transfer(mtd_daemon *d, const char *channel, int64_t request_id)
+{
+    for (mtd_transfer *t = d->transfers; t; t = t->next)
+        if (t->request_id == request_id && strcmp(t->channel, channel) == 0) return t;
+    return NULL;
+}
+
+/* An unfinished transfer of the same content from the same source under
+ * another key: what a restarted sender had already sent. */
+static mtd_transfer *find_resumable(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
+{
+    for (mtd_transfer *t = d->transfers; t; t = t->next)
+        if (t->total == (uint64_t)c->total_size && t->hash == (uint64_t)c->content_hash &&
+            t->strict == (c->strict != 0) && strcmp(t->mesh_id, c->mesh_id) == 0 &&
+            strcmp(t->source, c->source) == 0)
+            return t;
+    return NULL;
+}
+
+/* Publishes a mesh_transfer_t (never remembered: it describes the moment). */
+static void send_status(mtd_daemon *d, const char *channel, int64_t request_id, int32_t status,
+                        const char *error, const mtd_transfer *t, uint64_t total, bool complete)
+{
+    static int64_t offsets[MTD_TRANSFER_GAPS_MAX], lengths[MTD_TRANSFER_GAPS_MAX];
+    meshtopo_mesh_transfer_t msg;
+    memset(&msg, 0, sizeof msg);
+    msg.utime = mtd_now_utime();
+    msg.request_id = request_id;
+    msg.status = status;
+    msg.error = (char *)(error ? error : "");
+    msg.total_size = (int64_t)total;
+    msg.complete = complete;
+    msg.received_bytes = complete ? (int64_t)total : 0;
+    msg.listed_until = (int64_t)total;
+    if (t && !complete) {
+        uint64_t until = 0;
+        msg.num_missing = (int32_t)mtd_byte_ranges_gaps(&t->got, t->total, MTD_TRANSFER_GAPS_MAX,
+                                                        offsets, lengths, &until);
+        msg.missing_offsets = offsets;
+        msg.missing_lengths = lengths;
+        msg.listed_until = (int64_t)until;
+        msg.received_bytes = (int64_t)t->got.covered;
+    }
+    if (status != MESHTOPO_STATUS_CODE_T_OK)
+        mtd_log(MTD_LOG_INFO, "chunk_error", "request_id=%" PRId64 " status=%d error=%s",
+                request_id, (int)status, error);
+    mtd_send_reply(d, channel, request_id, false, &mt_msgs_type_mesh_transfer, &msg, status, error);
+}
+
+/* The largest content the mesh limits allow (mesh_t's arrays at their maxima). */
+static uint64_t content_limit(const mtd_config *config)
+{
+    return EMPTY_CONTENT_SIZE + 24ull * config->max_verts + 4ull * config->max_faces +
+           4ull * config->max_indices;
+}
+
+/* Encodes c's mesh_t fields before the content into a new buffer of
+ * header_size + total bytes. NULL when out of memory. */
+static uint8_t *new_message(const meshtopo_mesh_chunk_t *c, size_t *out_header_size)
+{
+    meshtopo_mesh_t m;
+    memset(&m, 0, sizeof m);
+    m.utime = c->utime;
+    m.request_id = c->request_id;
+    m.reply_channel = c->reply_channel;
+    m.mesh_id = c->mesh_id;
+    m.source = c->source;
+    m.strict = c->strict;
+    int size = meshtopo_mesh_t_encoded_size(&m);
+    if (size < EMPTY_CONTENT_SIZE) return NULL;
+    size_t header = (size_t)size - EMPTY_CONTENT_SIZE;
+    uint8_t *buf =
+        malloc(header + (size_t)c->total_size > (size_t)size ? header + (size_t)c->total_size
+                                                             : (size_t)size);
+    if (!buf) return NULL;
+    if (meshtopo_mesh_t_encode(buf, 0, size, &m) != size) {
+        free(buf);
+        return NULL;
+    }
+    *out_header_size = header;
+    return buf;
+}
+
+/* Admits a new transfer for chunk c (transfer_lock held), taking over a
+ * resumable one. Returns it, or NULL after answering why not. */
+static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
+{
+    char error[MTD_ERROR_MAX];
+    const uint64_t total = (uint64_t)c->total_size;
+    const uint64_t cap = d->config.max_transfer_bytes;
+    int32_t status = MESHTOPO_STATUS_CODE_T_OK;
+    mt_diag diag;
+    if (mtd_mesh_id_check(c->mesh_id, &diag) != MT_OK) {
+        snprintf(error, sizeof error, "mesh_id: %.400s", diag.message);
+        send_status(d, c->reply_channel, c->request_id, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error,
+                    NULL, total, false);
+        return NULL;
+    }
+    if (total > content_limit(&d->config)) {
+        status = MESHTOPO_STATUS_CODE_T_TOO_LARGE;
+        snprintf(error, sizeof error,
+                 "total_size: %" PRIu64
+                 " bytes exceed the largest mesh the daemon accepts "
+                 "(%" PRIu64 " bytes: --max-verts, --max-faces, --max-indices)",
+                 total, content_limit(&d->config));
+    } else if (total > cap || total > (uint64_t)INT32_MAX - 4096) {
+        status = MESHTOPO_STATUS_CODE_T_TOO_LARGE;
+        snprintf(error, sizeof error, "total_size: %" PRIu64 " bytes exceed %s (%" PRIu64 " bytes)",
+                 total, total > cap ? "--max-transfer-bytes" : "the largest LCM message",
+                 total > cap ? cap : (uint64_t)INT32_MAX - 4096);
+    }
+    mtd_transfer *old = status == MESHTOPO_STATUS_CODE_T_OK ? find_resumable(d, c) : NULL;
+    uint64_t freed = old ? old->charged : 0;
+    if (status == MESHTOPO_STATUS_CODE_T_OK && d->transfer_bytes - freed + total > cap) {
+        status = MESHTOPO_STATUS_CODE_T_BUSY;
+        snprintf(error, sizeof error,
+                 "total_size: %" PRIu64
+                 " bytes do not fit: %zu unfinished transfer(s) hold "
+                 "%" PRIu64 " of --max-transfer-bytes %" PRIu64 "; retry later",
+                 total, d->transfers_active, d->transfer_bytes, cap);
+    }
+    mtd_transfer *t = NULL;
+    if (status == MESHTOPO_STATUS_CODE_T_OK) {
+        t = calloc(1, sizeof *t);
+        if (t) {
+            t->mesh_id = strdup(c->mesh_id);
+            t->source = strdup(c->source);
+            t->message = new_message(c, &t->header_size);
+        }
+        if (!t || !t->mesh_id || !t->source || !t->message) {
+            transfer_free(t);
+            t = NULL;
+            status = MESHTOPO_STATUS_CODE_T_BUSY;
+            snprintf(error, sizeof error,
+                     "out of memory for a %" PRIu64 "-byte transfer; retry later", total);
+        }
+    }
+    if (status != MESHTOPO_STATUS_CODE_T_OK) {
+        atomic_fetch_add(&d->transfers_refused, 1);
+        send_status(d, c->reply_channel, c->request_id, status, error, NULL, total, false);
+        return NULL;
+    }
+    snprintf(t->channel, sizeof t->channel, "%s", c->reply_channel);
+    t->request_id = c->request_id;
+    t->strict = c->strict != 0;
+    t->total = total;
+    t->hash = (uint64_t)c->content_hash;
+    t->first_us = t->last_us = monotonic_us();
+    t->charged = t->header_size + total;
+    if (old) {
+        memcpy(t->message + t->header_size, old->message + old->header_size, total);
+        t->got = old->got;
+        memset(&old->got, 0, sizeof old->got);
+        unlink_transfer(d, old);
+        mtd_log(MTD_LOG_INFO, "transfer_resumed",
+                "mesh_id=%s request_id=%" PRId64 " from request_id=%" PRId64
+                " channel=%s bytes_held=%" PRIu64,
+                t->mesh_id, t->request_id, old->request_id, old->channel, t->got.covered);
+        transfer_free(old);
+    }
+    t->next = d->transfers;
+    d->transfers = t;
+    d->transfers_active++;
+    d->transfer_bytes += t->charged;
+    mtd_log(MTD_LOG_DEBUG, "transfer_begin",
+            "mesh_id=%s request_id=%" PRId64 " channel=%s total=%" PRIu64, t->mesh_id,
+            t->request_id, t->channel, total);
+    return t;
+}
+
+/* The first field in which chunk c contradicts transfer t, described in
+ * error; false when it agrees. */
+static bool contradicts(const mtd_transfer *t, const meshtopo_mesh_chunk_t *c, char *error,
+                        size_t size)
+{
+    if ((uint64_t)c->total_size != t->total)
+        snprintf(error, size, "total_size: %" PRId64 " differs from the transfer's %" PRIu64,
+                 c->total_size, t->total);
+    else if ((uint64_t)c->content_hash != t->hash)
+        snprintf(error, size,
+                 "content_hash: %016" PRIx64 " differs from the transfer's %016" PRIx64,
+                 (uint64_t)c->content_hash, t->hash);
+    else if (strcmp(c->mesh_id, t->mesh_id) != 0)
+        snprintf(error, size, "mesh_id: '%.100s' differs from the transfer's '%.100s'", c->mesh_id,
+                 t->mesh_id);
+    else if (strcmp(c->source, t->source) != 0)
+        snprintf(error, size, "source: '%.100s' differs from the transfer's '%.100s'", c->source,
+                 t->source);
+    else if ((c->strict != 0) != t->strict)
+        snprintf(error, size, "strict: %d differs from the transfer's %d", c->strict != 0,
+                 (int)t->strict);
+    else
+        return false;
+    return true;
+}
+
+/* Every byte of t is in (t is out of the table): decode, check the hash,
+ * submit once. Takes t. */
+static void finish(mtd_daemon *d, mtd_transfer *t)
+{
+    atomic_fetch_add(&d->transfers_completed, 1);
+    atomic_fetch_add(&d->submissions, 1);
+    const size_t size = t->header_size + t->total;
+    const uint8_t *content = t->message + t->header_size;
+    char error[MTD_ERROR_MAX];
+    mtd_log(MTD_LOG_INFO, "transfer_complete",
+            "mesh_id=%s request_id=%" PRId64 " bytes=%" PRIu64 " transfer_us=%" PRId64, t->mesh_id,
+            t->request_id, t->total, monotonic_us() - t->first_us);
+    uint64_t hash = mt_msgs_fnv1a(MT_MSGS_FNV1A_BASIS, content, t->total);
+    if (hash != t->hash) {
+        snprintf(error, sizeof error,
+                 "content_hash: the reassembled %" PRIu64 " bytes hash to %016" PRIx64
+                 ", the chunks said %016" PRIx64,
+                 t->total, hash, t->hash);
+        mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false,
+                           MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error);
+        transfer_free(t);
+        return;
+    }
+    meshtopo_mesh_t *msg = calloc(1, sizeof *msg);
+    char why[MT_MSGS_ERROR_SIZE];
+    if (!msg) {
+        mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false,
+                           MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory");
+    } else if (mt_msgs_decode(&mt_msgs_type_mesh, t->message, size, msg, why, sizeof why) != 0) {
+        snprintf(error, sizeof error, "undecodable mesh_t from the chunks' content: %s", why);
+        mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false,
+                           MESHTOPO_STATUS_CODE_T_UNDECODABLE, error);
+        free(msg);
+    } else if (atomic_load(&d->stopping)) {
+        mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false,
+                           MESHTOPO_STATUS_CODE_T_BUSY, "the daemon is shutting down");
+        meshtopo_mesh_t_decode_cleanup(msg);
+        free(msg);
+    } else if (mtd_begin_request(d, t->channel, t->request_id)) {
+        mtd_submit_handle_hashed(d, msg, hash); /* takes msg */
+    } else {
+        meshtopo_mesh_t_decode_cleanup(msg);
+        free(msg);
+    }
+    transfer_free(t);
+}
+
+/* A channel the daemon can answer on: 1..63 printable bytes. */
+static bool channel_ok(const char *channel)
+{
+    size_t n = strlen(channel);
+    if (n == 0 || n > MTD_CHANNEL_MAX) return false;
+    for (size_t i = 0; i < n; i++)
+        if (channel[i] <= ' ' || channel[i] > '~') return false;
+    return true;
+}
+
+/* Handles one decoded chunk (transfer_lock held). Returns a transfer that
+ * became complete (out of the table) for the caller to finish. */
+static mtd_transfer *take_chunk(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
+{
+    char error[MTD_ERROR_MAX];
+    const char *channel = c->reply_channel;
+    error[0] = '\0';
+    if (c->total_size <= 0)
+        snprintf(error, sizeof error, "total_size: %" PRId64 " must be positive", c->total_size);
+    else if (c->offset < 0)
+        snprintf(error, sizeof error, "offset: %" PRId64 " is negative", c->offset);
+    else if (c->offset > c->total_size || c->length > c->total_size - c->offset)
+        snprintf(error, sizeof error,
+                 "offset %" PRId64 " + length %" PRId32 " reaches past total_size %" PRId64,
+                 c->offset, c->length, c->total_size);
+    if (error[0]) {
+        send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error, NULL,
+                    c->total_size > 0 ? (uint64_t)c->total_size : 0, false);
+        return NULL;
+    }
+    mtd_transfer *t = find_transfer(d, channel, c->request_id);
+    if (!t) {
+        /* Finished already (building or acked), or new. */
+        mtd_request_state state = MTD_REQUEST_NEW;
+        mtd_reply *stored = NULL;
+        if (mtd_reqcache_peek(d->cache, channel, c->request_id, &state, &stored) == MT_OK &&
+            state != MTD_REQUEST_NEW) {
+            if (state == MTD_REQUEST_DONE && c->want_status) {
+                atomic_fetch_add(&d->duplicates, 1);
+                lcm_publish(d->lcm, channel, mtd_reply_data(stored),
+                            (unsigned)mtd_reply_size(stored));
+            } else if (state == MTD_REQUEST_PENDING && c->want_status) {
+                send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", NULL,
+                            (uint64_t)c->total_size, true);
+            }
+            mtd_reply_release(stored);
+            return NULL;
+        }
+        if (atomic_load(&d->stopping)) {
+            send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_BUSY,
+                        "the daemon is shutting down", NULL, (uint64_t)c->total_size, false);
+            return NULL;
+        }
+        if (!(t = admit(d, c))) return NULL;
+    } else if (contradicts(t, c, error, sizeof error)) {
+        send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error, NULL,
+                    t->total, false);
+        return NULL;
+    }
+    t->last_us = monotonic_us();
+    if (c->length > 0) {
+        uint64_t start = (uint64_t)c->offset, end = start + (uint64_t)c->length;
+        /* Copy first: a failed add only forgets that these bytes arrived. */
+        memcpy(t->message + t->header_size + start, c->data, (size_t)c->length);
+        if (mtd_byte_ranges_add(&t->got, start, end, NULL) != MT_OK)
+            mtd_log(MTD_LOG_WARN, "chunk", "request_id=%" PRId64 " out of memory for its ranges",
+                    c->request_id);
+    }
+    if (t->got.covered == t->total) {
+        send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", NULL, t->total, true);
+        unlink_transfer(d, t);
+        return t;
+    }
+    if (c->want_status)
+        send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", t, t->total, false);
+    return NULL;
+}
+
+void mtd_chunk_handle(mtd_daemon *d, const void *data, size_t size)
+{
+    atomic_fetch_add(&d->chunks, 1);
+    mtd_transfers_expire(d);
+    meshtopo_mesh_chunk_t c;
+    char why[MT_MSGS_ERROR_SIZE];
+    if (mt_msgs_decode(&mt_msgs_type_mesh_chunk, data, size, &c, why, sizeof why) != 0) {
+        char channel[MTD_CHANNEL_MAX + 1];
+        char error[MTD_ERROR_MAX];
+        int64_t request_id = 0;
+        snprintf(error, sizeof error, "undecodable mesh_chunk_t: %s", why);
+        if (mtd_peek_request_header(data, size, &request_id, channel))
+            send_status(d, channel, request_id, MESHTOPO_STATUS_CODE_T_UNDECODABLE, error, NULL, 0,
+                        false);
+        else
+            mtd_log(MTD_LOG_WARN, "undecodable", "bytes=%zu error=%s (no reply channel)", size,
+                    error);
+        return;
+    }
+    if (!channel_ok(c.reply_channel)) {
+        mtd_log(MTD_LOG_WARN, "bad_request",
+                "request_id=%" PRId64
+                " error=mesh_chunk_t with an unusable reply_channel "
+                "(not answered)",
+                c.request_id);
+        meshtopo_mesh_chunk_t_decode_cleanup(&c);
+        return;
+    }
+    pthread_mutex_lock(&d->transfer_lock);
+    mtd_transfer *complete = take_chunk(d, &c);
+    pthread_mutex_unlock(&d->transfer_lock);
+    meshtopo_mesh_chunk_t_decode_cleanup(&c);
+    if (complete) finish(d, complete);
+}
+
+size_t mtd_transfers_expire(mtd_daemon *d)
+{
+    const int64_t now = monotonic_us();
+    const int64_t timeout = (int64_t)d->config.transfer_timeout_ms * 1000;
+    mtd_transfer *expired = NULL;
+    size_t n = 0;
+    pthread_mutex_lock(&d->transfer_lock);
+    mtd_transfer *t = d->transfers;
+    while (t) {
+        mtd_transfer *next = t->next;
+        if (now - t->last_us > timeout) {
+            unlink_transfer(d, t);
+            t->next = expired;
+            expired = t;
+            n++;
+        }
+        t = next;
+    }
+    pthread_mutex_unlock(&d->transfer_lock);
+    while (expired) {
+        mtd_transfer *e = expired;
+        expired = e->next;
+        atomic_fetch_add(&d->transfers_expired, 1);
+        mtd_log(MTD_LOG_INFO, "transfer_expired",
+                "mesh_id=%s request_id=%" PRId64 " channel=%s received=%" PRIu64 "/%" PRIu64
+                " idle_ms=%" PRId64,
+                e->mesh_id, e->request_id, e->channel, e->got.covered, e->total,
+                (now - e->last_us) / 1000);
+        transfer_free(e);
+    }
+    return n;
+}
+
+void mtd_transfers_free(mtd_daemon *d)
+{
+    while (d->transfers) {
+        mtd_transfer *t = d->transfers;
+        unlink_transfer(d, t);
+        transfer_free(t);
+    }
+}

@@ -1,0 +1,600 @@
+/* meshtopod's chunked submissions (msgs/mesh_chunk_t.lcm) over in-process
+ * LCM (memq://): chunks out of order and duplicated, two transfers
+ * interleaved, chunks that lie (BAD_REQUEST naming the field, the transfer
+ * unharmed), a transfer abandoned half way (expired, memory released, seen
+ * in the heartbeat), a sender restarting under a new id and channel
+ * (resumed), the memory cap (BUSY, TOO_LARGE), and meshtopo::client choosing
+ * chunks by itself. Every mesh is built once and checked with the sender's
+ * content hash; the in-process builds are validated. */
+#include <inttypes.h>
+#include <lcm/lcm.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "daemon.h"
+#include "harness.h"
+#include "meshtopo/client.h"
+#include "meshtopo/content_hash.h"
+#include "meshtopo/core.h"
+
+#define REPLY "TEST_REPLY"
+#define REPLY2 "TEST_REPLY_RESTARTED"
+#define MAX_RECEIVED 256
+#define CHUNK 4096
+
+typedef struct received {
+    void *data;
+    size_t size;
+} received;
+
+typedef struct fixture {
+    lcm_t *lcm;
+    mtd_daemon *daemon;
+    received inbox[MAX_RECEIVED];
+    size_t num_inbox;
+    meshtopo_status_t status;
+    bool have_status;
+} fixture;
+
+/* A mesh encoded as mesh_t: its content is the tail the chunks carry. */
+typedef struct sent_mesh {
+    mt_face_list list;
+    void *encoded;
+    size_t size;
+    const uint8_t *content;
+    uint64_t total, hash;
+    const char *mesh_id;
+} sent_mesh;
+
+static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    fixture *fx = user;
+    if (fx->num_inbox == MAX_RECEIVED) return;
+    void *copy = malloc(rbuf->data_size);
+    memcpy(copy, rbuf->data, rbuf->data_size);
+    fx->inbox[fx->num_inbox++] = (received){copy, rbuf->data_size};
+}
+
+static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    fixture *fx = user;
+    if (fx->have_status) meshtopo_status_t_decode_cleanup(&fx->status);
+    fx->have_status = mt_msgs_decode(&mt_msgs_type_status, rbuf->data, rbuf->data_size, &fx->status,
+                                     NULL, 0) == 0;
+}
+
+static void fixture_init(fixture *fx, const char *max_transfer, const char *timeout_ms)
+{
+    memset(fx, 0, sizeof *fx);
+    char *argv[] = {"meshtopod",
+                    "--workers",
+                    "2",
+                    "--log-level",
+                    "error",
+                    "--max-transfer-bytes",
+                    (char *)max_transfer,
+                    "--transfer-timeout-ms",
+                    (char *)timeout_ms};
+    mtd_config config;
+    mtd_config_action action;
+    mt_diag diag;
+    CHECK_OK(mtd_config_parse(9, argv, &config, &action, &diag));
+    mtd_log_set_level(config.log_level);
+    fx->lcm = lcm_create("memq://");
+    CHECK(fx->lcm != NULL);
+    CHECK_OK(mtd_daemon_create(&config, fx->lcm, &fx->daemon, &diag));
+    lcm_subscribe(fx->lcm, REPLY, on_reply, fx);
+    lcm_subscribe(fx->lcm, REPLY2, on_reply, fx);
+    lcm_subscribe(fx->lcm, "MESHTOPO_STATUS", on_status, fx);
+}
+
+static void fixture_free(fixture *fx)
+{
+    mtd_daemon_destroy(fx->daemon);
+    lcm_destroy(fx->lcm);
+    for (size_t i = 0; i < fx->num_inbox; i++) free(fx->inbox[i].data);
+    if (fx->have_status) meshtopo_status_t_decode_cleanup(&fx->status);
+}
+
+/* A grid of nx * ny quads as triangles, encoded as mesh_t. */
+static void sent_mesh_make(sent_mesh *s, const char *mesh_id, uint32_t nx, uint32_t ny)
+{
+    memset(s, 0, sizeof *s);
+    s->mesh_id = mesh_id;
+    CHECK_OK(mt_gen_grid(nx, ny, true, &s->list));
+    mt_mesh *mesh = NULL;
+    mt_diag diag;
+    mt_build_options bo = {.strict = false, .threads = 1};
+    CHECK_OK(mt_mesh_build(&s->list, &bo, &mesh, &diag));
+    CHECK_OK(mt_mesh_validate(mesh, &diag));
+    mt_mesh_destroy(mesh);
+    meshtopo_mesh_t m;
+    memset(&m, 0, sizeof m);
+    m.utime = 1700000000000000;
+    m.reply_channel = REPLY;
+    m.mesh_id = (char *)mesh_id;
+    m.source = "test_chunks";
+    m.num_verts = (int32_t)s->list.num_verts;
+    m.num_position_values = 3 * (int32_t)s->list.num_verts;
+    m.positions = s->list.positions;
+    m.num_faces = (int32_t)s->list.num_faces;
+    m.face_vertex_counts = (int32_t *)s->list.face_sizes;
+    m.num_indices = (int32_t)s->list.num_indices;
+    m.face_vertex_indices = (int32_t *)s->list.face_indices;
+    int size = meshtopo_mesh_t_encoded_size(&m);
+    s->encoded = malloc((size_t)size);
+    CHECK_EQ(meshtopo_mesh_t_encode(s->encoded, 0, size, &m), size);
+    s->size = (size_t)size;
+    s->total = 16 + 8ull * (uint64_t)m.num_position_values + 4ull * s->list.num_faces +
+               4ull * s->list.num_indices;
+    s->content = (const uint8_t *)s->encoded + (s->size - s->total);
+    s->hash = mt_msgs_mesh_content_hash(&m, s->encoded, s->size);
+    CHECK(s->hash != 0);
+}
+
+static void sent_mesh_free(sent_mesh *s)
+{
+    free(s->encoded);
+    mt_face_list_free(&s->list);
+}
+
+static size_t num_chunks(const sent_mesh *s)
+{
+    return (size_t)((s->total + CHUNK - 1) / CHUNK);
+}
+
+/* A chunk of s as request request_id on channel; the caller may change it
+ * before publish_chunk. */
+static meshtopo_mesh_chunk_t chunk_of(const sent_mesh *s, const char *channel, int64_t request_id,
+                                      size_t index, bool want_status)
+{
+    meshtopo_mesh_chunk_t c;
+    memset(&c, 0, sizeof c);
+    c.utime = 1700000000000000;
+    c.request_id = request_id;
+    c.reply_channel = (char *)channel;
+    c.mesh_id = (char *)s->mesh_id;
+    c.source = "test_chunks";
+    c.total_size = (int64_t)s->total;
+    c.content_hash = (int64_t)s->hash;
+    c.want_status = want_status;
+    uint64_t offset = (uint64_t)index * CHUNK;
+    c.offset = (int64_t)offset;
+    c.length = (int32_t)(s->total - offset < CHUNK ? s->total - offset : CHUNK);
+    c.data = (uint8_t *)(uintptr_t)(s->content + offset);
+    return c;
+}
+
+static void publish_chunk(fixture *fx, const meshtopo_mesh_chunk_t *c)
+{
+    int size = meshtopo_mesh_chunk_t_encoded_size(c);
+    void *buf = malloc((size_t)size);
+    CHECK_EQ(meshtopo_mesh_chunk_t_encode(buf, 0, size, c), size);
+    CHECK_EQ(lcm_publish(fx->lcm, "MESHTOPO_SUBMIT", buf, (unsigned)size), 0);
+    free(buf);
+}
+
+static void send_chunk(fixture *fx, const sent_mesh *s, const char *channel, int64_t request_id,
+                       size_t index, bool want_status)
+{
+    meshtopo_mesh_chunk_t c = chunk_of(s, channel, request_id, index, want_status);
+    publish_chunk(fx, &c);
+}
+
+/* A poll: an empty chunk asking for the status. */
+static void send_poll(fixture *fx, const sent_mesh *s, const char *channel, int64_t request_id)
+{
+    meshtopo_mesh_chunk_t c = chunk_of(s, channel, request_id, 0, true);
+    c.length = 0;
+    publish_chunk(fx, &c);
+}
+
+static int64_t request_id_of(const mt_msgs_type *type, const void *msg)
+{
+    if (type == &mt_msgs_type_ack) return ((const meshtopo_ack_t *)msg)->request_id;
+    return ((const meshtopo_mesh_transfer_t *)msg)->request_id;
+}
+
+/* Handles LCM until a message of `type` for request_id arrives (into out,
+ * decode_cleanup it) or 20 s pass. Returns 0 when found. Other messages of
+ * the type for the request that came before it are dropped. */
+static int wait_for(fixture *fx, const mt_msgs_type *type, int64_t request_id, void *out, int line)
+{
+    for (int round = 0; round < 400; round++) {
+        lcm_handle_timeout(fx->lcm, round == 0 ? 0 : 50);
+        for (size_t i = 0; i < fx->num_inbox; i++) {
+            received *r = &fx->inbox[i];
+            if (mt_msgs_type_of(r->data, r->size) != type) continue;
+            if (mt_msgs_decode(type, r->data, r->size, out, NULL, 0) != 0) continue;
+            if (request_id_of(type, out) == request_id) {
+                free(r->data);
+                memmove(&fx->inbox[i], &fx->inbox[i + 1],
+                        (fx->num_inbox - i - 1) * sizeof *fx->inbox);
+                fx->num_inbox--;
+                return 0;
+            }
+            type->decode_cleanup(out);
+        }
+    }
+    mt_test_fail(__FILE__, line, "no %s for request %" PRId64 " within 20 s", type->name,
+                 request_id);
+    return -1;
+}
+
+/* Drops every message received so far (after handling what is queued). */
+static void drain(fixture *fx)
+{
+    while (lcm_handle_timeout(fx->lcm, 20) > 0) {
+    }
+    for (size_t i = 0; i < fx->num_inbox; i++) free(fx->inbox[i].data);
+    fx->num_inbox = 0;
+}
+
+/* Waits for the ack of a complete transfer and checks it: OK, the sender's
+ * content hash, the grid's counts. Returns the version. */
+static int32_t expect_ack(fixture *fx, const sent_mesh *s, int64_t request_id, int line)
+{
+    meshtopo_ack_t ack;
+    if (wait_for(fx, &mt_msgs_type_ack, request_id, &ack, line) != 0) return 0;
+    if (ack.status != 0) mt_test_fail(__FILE__, line, "ack: %s", ack.error);
+    if ((uint64_t)ack.content_hash != s->hash)
+        mt_test_fail(__FILE__, line, "ack content hash %016" PRIx64 ", sent %016" PRIx64,
+                     (uint64_t)ack.content_hash, s->hash);
+    CHECK_EQ(ack.num_reports, 1);
+    if (ack.num_reports == 1) {
+        CHECK_EQ(ack.reports[0].num_faces, s->list.num_faces);
+        CHECK_EQ(ack.reports[0].num_verts, s->list.num_verts);
+        CHECK_EQ(ack.reports[0].num_defects, 0);
+    }
+    int32_t version = ack.version;
+    meshtopo_ack_t_decode_cleanup(&ack);
+    return version;
+}
+
+/* Waits for a mesh_transfer_t with `status` whose error names `needle`. */
+static void expect_transfer_error(fixture *fx, int64_t request_id, int32_t status,
+                                  const char *needle, int line)
+{
+    meshtopo_mesh_transfer_t t;
+    if (wait_for(fx, &mt_msgs_type_mesh_transfer, request_id, &t, line) != 0) return;
+    if (t.status != status)
+        mt_test_fail(__FILE__, line, "status %d, expected %d (error '%s')", (int)t.status,
+                     (int)status, t.error);
+    else if (!strstr(t.error, needle))
+        mt_test_fail(__FILE__, line, "error '%s' does not name '%s'", t.error, needle);
+    meshtopo_mesh_transfer_t_decode_cleanup(&t);
+}
+
+static void heartbeat(fixture *fx)
+{
+    mtd_heartbeat_publish(fx->daemon);
+    lcm_handle_timeout(fx->lcm, 100);
+    CHECK(fx->have_status);
+}
+
+/* Chunks in reverse order, each sent twice; a poll half way lists exactly the
+ * chunks not yet sent; the mesh is built once. */
+static void test_out_of_order_duplicates(void)
+{
+    fixture fx;
+    fixture_init(&fx, "64M", "10000");
+    sent_mesh s;
+    sent_mesh_make(&s, "reverse", 30, 30);
+    size_t n = num_chunks(&s);
+    CHECK(n > 8);
+    size_t half = n / 2;
+    for (size_t k = n; k-- > half;) {
+        send_chunk(&fx, &s, REPLY, 7, k, false);
+        send_chunk(&fx, &s, REPLY, 7, k, false);
+    }
+    send_poll(&fx, &s, REPLY, 7);
+    meshtopo_mesh_transfer_t t;
+    if (wait_for(&fx, &mt_msgs_type_mesh_transfer, 7, &t, __LINE__) == 0) {
+        CHECK_EQ(t.status, 0);
+        CHECK(!t.complete);
+        CHECK_EQ(t.total_size, (int64_t)s.total);
+        CHECK_EQ(t.received_bytes, (int64_t)(s.total - half * CHUNK));
+        CHECK_EQ(t.listed_until, (int64_t)s.total);
+        CHECK_EQ(t.num_missing, 1);
+        if (t.num_missing == 1) {
+            CHECK_EQ(t.missing_offsets[0], 0);
+            CHECK_EQ(t.missing_lengths[0], (int64_t)(half * CHUNK));
+        }
+        meshtopo_mesh_transfer_t_decode_cleanup(&t);
+    }
+    for (size_t k = half; k-- > 0;) {
+        send_chunk(&fx, &s, REPLY, 7, k, false);
+        send_chunk(&fx, &s, REPLY, 7, k, false);
+    }
+    CHECK_EQ(expect_ack(&fx, &s, 7, __LINE__), 1);
+    /* Chunks arriving after the ack get the ack again, and build nothing. */
+    send_chunk(&fx, &s, REPLY, 7, 0, true);
+    CHECK_EQ(expect_ack(&fx, &s, 7, __LINE__), 1);
+    drain(&fx);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.builds, 1);
+    CHECK_EQ(fx.status.submissions, 1);
+    CHECK_EQ(fx.status.transfers_completed, 1);
+    CHECK_EQ(fx.status.transfers_active, 0);
+    CHECK_EQ(fx.status.transfer_bytes, 0);
+    CHECK_EQ(fx.status.chunks, (int64_t)(2 * n + 2));
+    CHECK_EQ(fx.status.errors, 0);
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+}
+
+/* Two transfers on the same channel, chunk by chunk in turn: each mesh is
+ * built from its own bytes. */
+static void test_interleaved(void)
+{
+    fixture fx;
+    fixture_init(&fx, "64M", "10000");
+    sent_mesh a, b;
+    sent_mesh_make(&a, "alpha", 30, 30);
+    sent_mesh_make(&b, "beta", 25, 40);
+    size_t na = num_chunks(&a), nb = num_chunks(&b);
+    for (size_t k = 0; k < na || k < nb; k++) {
+        if (k < na) send_chunk(&fx, &a, REPLY, 100, k, false);
+        if (k < nb) send_chunk(&fx, &b, REPLY, 200, k, false);
+    }
+    CHECK_EQ(expect_ack(&fx, &a, 100, __LINE__), 1);
+    CHECK_EQ(expect_ack(&fx, &b, 200, __LINE__), 1);
+    drain(&fx);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.builds, 2);
+    CHECK_EQ(fx.status.transfers_completed, 2);
+    CHECK_EQ(fx.status.transfers_active, 0);
+    sent_mesh_free(&a);
+    sent_mesh_free(&b);
+    fixture_free(&fx);
+}
+
+/* Chunks that lie about offset, length, total, hash or mesh id are refused
+ * with BAD_REQUEST naming the field (a chunk cut short: UNDECODABLE); the
+ * transfer they claim to belong to completes unharmed. */
+static void test_lying_chunks(void)
+{
+    fixture fx;
+    fixture_init(&fx, "64M", "10000");
+    sent_mesh s;
+    sent_mesh_make(&s, "honest", 30, 30);
+    size_t n = num_chunks(&s);
+    for (size_t k = 0; k < n / 2; k++) send_chunk(&fx, &s, REPLY, 9, k, false);
+
+    meshtopo_mesh_chunk_t c = chunk_of(&s, REPLY, 9, n - 1, true);
+    c.offset = (int64_t)s.total - 10; /* reaches past the end */
+    publish_chunk(&fx, &c);
+    expect_transfer_error(&fx, 9, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "reaches past total_size",
+                          __LINE__);
+    c = chunk_of(&s, REPLY, 9, 1, true);
+    c.offset = -4096;
+    publish_chunk(&fx, &c);
+    expect_transfer_error(&fx, 9, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "offset: -4096 is negative",
+                          __LINE__);
+    c = chunk_of(&s, REPLY, 9, 1, true);
+    c.total_size = (int64_t)s.total + 100; /* inconsistent total; bytes fit either */
+    publish_chunk(&fx, &c);
+    expect_transfer_error(&fx, 9, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "total_size", __LINE__);
+    c = chunk_of(&s, REPLY, 9, 1, true);
+    c.content_hash ^= 1;
+    publish_chunk(&fx, &c);
+    expect_transfer_error(&fx, 9, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "content_hash", __LINE__);
+    c = chunk_of(&s, REPLY, 9, 1, true);
+    c.mesh_id = "other";
+    publish_chunk(&fx, &c);
+    expect_transfer_error(&fx, 9, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "mesh_id", __LINE__);
+    c = chunk_of(&s, REPLY, 9, 1, true);
+    c.total_size = 0;
+    publish_chunk(&fx, &c);
+    expect_transfer_error(&fx, 9, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "must be positive", __LINE__);
+    /* A length larger than the bytes that follow: the message is cut short. */
+    c = chunk_of(&s, REPLY, 9, 1, true);
+    int size = meshtopo_mesh_chunk_t_encoded_size(&c);
+    uint8_t *buf = malloc((size_t)size);
+    CHECK_EQ(meshtopo_mesh_chunk_t_encode(buf, 0, size, &c), size);
+    CHECK_EQ(lcm_publish(fx.lcm, "MESHTOPO_SUBMIT", buf, (unsigned)(size - 100)), 0);
+    free(buf);
+    expect_transfer_error(&fx, 9, MESHTOPO_STATUS_CODE_T_UNDECODABLE, "mesh_chunk_t", __LINE__);
+
+    /* The honest transfer still holds its first half and completes. */
+    send_poll(&fx, &s, REPLY, 9);
+    meshtopo_mesh_transfer_t t;
+    if (wait_for(&fx, &mt_msgs_type_mesh_transfer, 9, &t, __LINE__) == 0) {
+        CHECK_EQ(t.status, 0);
+        CHECK_EQ(t.received_bytes, (int64_t)(n / 2) * CHUNK);
+        meshtopo_mesh_transfer_t_decode_cleanup(&t);
+    }
+    for (size_t k = n / 2; k < n; k++) send_chunk(&fx, &s, REPLY, 9, k, false);
+    CHECK_EQ(expect_ack(&fx, &s, 9, __LINE__), 1);
+    drain(&fx);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.builds, 1);
+    CHECK_EQ(fx.status.errors, 7);
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+}
+
+static void sleep_ms(int ms)
+{
+    struct timespec ts = {ms / 1000, (long)(ms % 1000) * 1000000L};
+    nanosleep(&ts, NULL);
+}
+
+/* A sender that stops half way: after the timeout the transfer is dropped
+ * and its memory released (heartbeat); its next chunk starts afresh. */
+static void test_abandoned(void)
+{
+    fixture fx;
+    fixture_init(&fx, "64M", "200");
+    sent_mesh s;
+    sent_mesh_make(&s, "abandoned", 30, 30);
+    size_t n = num_chunks(&s);
+    for (size_t k = 0; k < n / 2; k++) send_chunk(&fx, &s, REPLY, 11, k, false);
+    drain(&fx);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.transfers_active, 1);
+    CHECK(fx.status.transfer_bytes >= (int64_t)s.total);
+    CHECK_EQ(fx.status.transfers_expired, 0);
+    sleep_ms(400);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.transfers_active, 0);
+    CHECK_EQ(fx.status.transfer_bytes, 0);
+    CHECK_EQ(fx.status.transfers_expired, 1);
+    CHECK_EQ(fx.status.builds, 0);
+    send_poll(&fx, &s, REPLY, 11);
+    meshtopo_mesh_transfer_t t;
+    if (wait_for(&fx, &mt_msgs_type_mesh_transfer, 11, &t, __LINE__) == 0) {
+        CHECK_EQ(t.status, 0);
+        CHECK_EQ(t.received_bytes, 0);
+        CHECK_EQ(t.num_missing, 1);
+        meshtopo_mesh_transfer_t_decode_cleanup(&t);
+    }
+    for (size_t k = 0; k < n; k++) send_chunk(&fx, &s, REPLY, 11, k, false);
+    CHECK_EQ(expect_ack(&fx, &s, 11, __LINE__), 1);
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+}
+
+/* A sender restarts: under a new request id and reply channel, the same
+ * content resumes where the old transfer stopped; and a restart under the
+ * same id (all chunks again) after the ack builds nothing twice. */
+static void test_restart(void)
+{
+    fixture fx;
+    fixture_init(&fx, "64M", "10000");
+    sent_mesh s;
+    sent_mesh_make(&s, "restarted", 30, 30);
+    size_t n = num_chunks(&s);
+    for (size_t k = 0; k < n / 2; k++) send_chunk(&fx, &s, REPLY, 21, k, false);
+    send_poll(&fx, &s, REPLY2, 5000);
+    meshtopo_mesh_transfer_t t;
+    if (wait_for(&fx, &mt_msgs_type_mesh_transfer, 5000, &t, __LINE__) == 0) {
+        CHECK_EQ(t.status, 0);
+        CHECK_EQ(t.received_bytes, (int64_t)(n / 2) * CHUNK);
+        CHECK_EQ(t.num_missing, 1);
+        if (t.num_missing == 1) CHECK_EQ(t.missing_offsets[0], (int64_t)(n / 2) * CHUNK);
+        meshtopo_mesh_transfer_t_decode_cleanup(&t);
+    }
+    drain(&fx);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.transfers_active, 1); /* the old one was taken over */
+    for (size_t k = n / 2; k < n; k++) send_chunk(&fx, &s, REPLY2, 5000, k, false);
+    CHECK_EQ(expect_ack(&fx, &s, 5000, __LINE__), 1);
+    for (size_t k = 0; k < n; k++) send_chunk(&fx, &s, REPLY2, 5000, k, k + 1 == n);
+    CHECK_EQ(expect_ack(&fx, &s, 5000, __LINE__), 1);
+    drain(&fx);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.builds, 1);
+    CHECK_EQ(fx.status.transfers_active, 0);
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+}
+
+/* --max-transfer-bytes: a transfer larger than the cap is TOO_LARGE; one
+ * that fits alone but not beside another unfinished one is BUSY, and gets in
+ * once the first is done. */
+static void test_over_limit(void)
+{
+    fixture fx;
+    fixture_init(&fx, "100k", "10000");
+    sent_mesh a, b, big;
+    sent_mesh_make(&a, "first", 30, 30);
+    sent_mesh_make(&b, "second", 30, 31);
+    sent_mesh_make(&big, "big", 60, 60);
+    CHECK(a.total + b.total > 100 * 1024);
+    CHECK(big.total > 100 * 1024);
+    send_chunk(&fx, &big, REPLY, 31, 0, true);
+    expect_transfer_error(&fx, 31, MESHTOPO_STATUS_CODE_T_TOO_LARGE, "--max-transfer-bytes",
+                          __LINE__);
+    send_chunk(&fx, &a, REPLY, 32, 0, true);
+    meshtopo_mesh_transfer_t t;
+    if (wait_for(&fx, &mt_msgs_type_mesh_transfer, 32, &t, __LINE__) == 0) {
+        CHECK_EQ(t.status, 0);
+        meshtopo_mesh_transfer_t_decode_cleanup(&t);
+    }
+    send_chunk(&fx, &b, REPLY, 33, 0, true);
+    expect_transfer_error(&fx, 33, MESHTOPO_STATUS_CODE_T_BUSY, "retry later", __LINE__);
+    for (size_t k = 1; k < num_chunks(&a); k++) send_chunk(&fx, &a, REPLY, 32, k, false);
+    CHECK_EQ(expect_ack(&fx, &a, 32, __LINE__), 1);
+    for (size_t k = 0; k < num_chunks(&b); k++) send_chunk(&fx, &b, REPLY, 33, k, false);
+    CHECK_EQ(expect_ack(&fx, &b, 33, __LINE__), 1);
+    drain(&fx);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.transfers_refused, 2);
+    CHECK_EQ(fx.status.builds, 2);
+    CHECK_EQ(fx.status.transfer_bytes, 0);
+    sent_mesh_free(&a);
+    sent_mesh_free(&b);
+    sent_mesh_free(&big);
+    fixture_free(&fx);
+}
+
+static void on_progress(uint64_t done, uint64_t total, void *user)
+{
+    uint64_t *seen = user; /* [0] last done, [1] total, [2] calls, [3] went backwards */
+    if (done < seen[0]) seen[3] = 1;
+    seen[0] = done;
+    seen[1] = total;
+    seen[2]++;
+}
+
+/* meshtopo::client sends a mesh larger than one datagram in chunks (its
+ * thread handles the daemon's LCM too: one memq instance) and a small one
+ * whole; progress rises to the total. */
+static void test_client_chunks(void)
+{
+    fixture fx;
+    fixture_init(&fx, "64M", "10000");
+    uint64_t seen[4] = {0, 0, 0, 0};
+    mt_client_options opts;
+    memset(&opts, 0, sizeof opts);
+    opts.lcm = fx.lcm;
+    opts.chunk_bytes = 2000;
+    opts.window_chunks = 4;
+    opts.progress = on_progress;
+    opts.progress_user = seen;
+    mt_client *client = NULL;
+    mt_diag diag;
+    CHECK_OK(mt_client_create(&opts, &client, &diag));
+    sent_mesh s, small;
+    sent_mesh_make(&s, "via_client", 40, 40);
+    sent_mesh_make(&small, "small", 3, 3);
+    mt_client_ack ack;
+    CHECK_OK(mt_client_submit(client, "via_client", &s.list, 0, &ack, &diag));
+    CHECK_EQ(ack.msg.status, 0);
+    CHECK(ack.sent_content_hash == s.hash);
+    CHECK((uint64_t)ack.msg.content_hash == s.hash);
+    CHECK_EQ(ack.msg.version, 1);
+    mt_client_ack_free(&ack);
+    CHECK(seen[2] >= 2);
+    CHECK_EQ(seen[0], s.total);
+    CHECK_EQ(seen[1], s.total);
+    CHECK_EQ(seen[3], 0);
+    uint64_t calls = seen[2];
+    CHECK_OK(mt_client_submit(client, "small", &small.list, 0, &ack, &diag));
+    CHECK((uint64_t)ack.msg.content_hash == small.hash);
+    mt_client_ack_free(&ack);
+    CHECK_EQ(seen[2], calls); /* whole message: no chunks, no progress */
+    mt_client_destroy(client);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.transfers_completed, 1);
+    CHECK_EQ(fx.status.builds, 2);
+    sent_mesh_free(&s);
+    sent_mesh_free(&small);
+    fixture_free(&fx);
+}
+
+static const mt_test_case cases[] = {
+    {"out_of_order_duplicates", test_out_of_order_duplicates},
+    {"interleaved", test_interleaved},
+    {"lying_chunks", test_lying_chunks},
+    {"abandoned", test_abandoned},
+    {"restart", test_restart},
+    {"over_limit", test_over_limit},
+    {"client_chunks", test_client_chunks},
+};
+const mt_test_table mt_tests_chunks = {cases, sizeof cases / sizeof cases[0]};
