@@ -1,11 +1,13 @@
 /* meshtopod's queries: one query_t answered with one reply_t, every id of the
- * batch in it as two-level CSR (items -> groups -> values, values2), exactly
- * what the core library's query functions (meshtopo/query.h) answer; the
+ * batch in it as two-level CSR (items -> groups -> values, values2, reals),
+ * exactly what the core library's query and geometry functions
+ * (meshtopo/query.h, meshtopo/geometry.h) answer; the
  * table in msgs/reply_t.lcm says what each kind puts where. Every id is
  * checked before anything is answered: one id out of range gives
  * OUT_OF_RANGE and no items. Runs on the LCM thread; it only reads immutable
  * store entries, so a build never holds it up. */
 #include <inttypes.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,10 +15,12 @@
 
 #include "daemon.h"
 #include "log.h"
+#include "meshtopo/geometry.h"
 #include "meshtopo/query.h"
 #include "meshtopo/report.h"
 
-/* A growable array of int32_t (int8_t ones are stored widened, then narrowed). */
+/* A growable array of int32_t (int8_t ones are stored widened, then narrowed).
+ */
 typedef struct ivec {
     int32_t *v;
     size_t n, cap;
@@ -25,6 +29,8 @@ typedef struct ivec {
 /* The answer being built, and the first error met while building it. */
 typedef struct answer {
     ivec item_status, item_offsets, group_boundary, value_offsets, value2_offsets, values, values2;
+    double *reals; /* the geometry kinds' real values (reply_t.reals) */
+    size_t num_reals, reals_cap;
     size_t bytes;
     int32_t status;
     char error[MTD_ERROR_MAX];
@@ -53,7 +59,8 @@ static void push(answer *a, ivec *vec, int32_t value)
         a->bytes += vec->cap * sizeof(int32_t);
         if (a->bytes > MTD_REPLY_MAX_BYTES) {
             fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE,
-                 "the answer exceeds the daemon's reply limit of %u bytes; ask for fewer ids",
+                 "the answer exceeds the daemon's reply limit of %u bytes; ask for "
+                 "fewer ids",
                  (unsigned)MTD_REPLY_MAX_BYTES);
             return;
         }
@@ -67,6 +74,30 @@ static void push(answer *a, ivec *vec, int32_t value)
         vec->cap = cap;
     }
     vec->v[vec->n++] = value;
+}
+
+static void push_real(answer *a, double value)
+{
+    if (a->status != MESHTOPO_STATUS_CODE_T_OK) return;
+    if (a->num_reals == a->reals_cap) {
+        a->bytes += a->reals_cap * sizeof(double);
+        if (a->bytes > MTD_REPLY_MAX_BYTES) {
+            fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE,
+                 "the answer exceeds the daemon's reply limit of %u bytes; ask for "
+                 "fewer ids",
+                 (unsigned)MTD_REPLY_MAX_BYTES);
+            return;
+        }
+        size_t cap = a->reals_cap ? 2 * a->reals_cap : 64;
+        double *v = realloc(a->reals, cap * sizeof *v);
+        if (!v) {
+            fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory building the answer");
+            return;
+        }
+        a->reals = v;
+        a->reals_cap = cap;
+    }
+    a->reals[a->num_reals++] = value;
 }
 
 static void answer_init(answer *a)
@@ -83,6 +114,7 @@ static void answer_free(answer *a)
     ivec *vecs[] = {&a->item_status,    &a->item_offsets, &a->group_boundary, &a->value_offsets,
                     &a->value2_offsets, &a->values,       &a->values2};
     for (size_t i = 0; i < sizeof vecs / sizeof vecs[0]; i++) free(vecs[i]->v);
+    free(a->reals);
 }
 
 /* Ends a group of the current item. */
@@ -328,6 +360,89 @@ static void answer_defects(answer *a, const mt_mesh *mesh, const int32_t *ids, i
     for (int32_t i = 0; i < n; i++) answer_defect_kind(a, report, (uint32_t)ids[i]);
 }
 
+/* ---- geometry (meshtopo/geometry.h) ----------------------------------------
+ */
+
+/* A geometry call's failure: NO_GEOMETRY for a mesh without positions. */
+static void fail_geometry(answer *a, mt_status s, const char *what, int32_t id)
+{
+    if (s == MT_ERR_NO_GEOMETRY)
+        fail(a, MESHTOPO_STATUS_CODE_T_NO_GEOMETRY, "%s: the mesh was submitted without positions",
+             what);
+    else
+        fail_core(a, s, what, id);
+}
+
+static void answer_dihedral_angles(answer *a, const mt_mesh *mesh, const int32_t *ids, int32_t n)
+{
+    for (int32_t i = 0; i + 1 < n && a->status == MESHTOPO_STATUS_CODE_T_OK; i += 2) {
+        uint32_t u = (uint32_t)ids[i], v = (uint32_t)ids[i + 1];
+        mt_edge_shape shape = MT_EDGE_BOUNDARY;
+        mt_status s =
+            mt_edge_convexity(mesh, u, v, MESHTOPO_QUERY_T_GEOMETRY_TOLERANCE, &shape, NULL);
+        if (s == MT_ERR_NOT_FOUND) {
+            push_real(a, NAN);
+            item_end(a, MESHTOPO_STATUS_CODE_T_NOT_FOUND);
+            continue;
+        }
+        double angle = NAN;
+        if (s == MT_OK && shape <= MT_EDGE_REFLEX)
+            s = mt_edge_dihedral_angle(mesh, u, v, &angle, NULL);
+        if (s != MT_OK) {
+            fail_geometry(a, s, "dihedral angle at vertex", ids[i]);
+            break;
+        }
+        push(a, &a->values, (int32_t)shape);
+        push_real(a, angle);
+        group_end(a, false);
+        item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+    }
+}
+
+static void answer_angle_deficits(answer *a, const mt_mesh *mesh, const int32_t *ids, int32_t n)
+{
+    for (int32_t i = 0; i < n && a->status == MESHTOPO_STATUS_CODE_T_OK; i++) {
+        double deficit = 0.0;
+        bool boundary = false;
+        mt_status s = mt_vert_angle_deficit(mesh, (uint32_t)ids[i], &deficit, &boundary, NULL);
+        if (s != MT_OK) {
+            fail_geometry(a, s, "angle deficit of vertex", ids[i]);
+            break;
+        }
+        push_real(a, deficit);
+        group_end(a, boundary);
+        item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+    }
+}
+
+static void answer_convexity(answer *a, const mt_mesh *mesh)
+{
+    mt_convexity c;
+    const double tolerance = MESHTOPO_QUERY_T_GEOMETRY_TOLERANCE;
+    mt_status s = mt_mesh_convexity(mesh, tolerance, &c, NULL, 0, NULL);
+    uint32_t *edges = NULL;
+    size_t cap = 0;
+    if (s == MT_OK || s == MT_ERR_BUFFER_TOO_SMALL) {
+        if (!reserve_u32(a, &edges, &cap, 2 * c.num_reflex + 1)) return;
+        s = mt_mesh_convexity(mesh, tolerance, &c, edges, c.num_reflex, NULL);
+    }
+    if (s != MT_OK) {
+        fail_geometry(a, s, "convexity of the mesh", 0);
+        free(edges);
+        return;
+    }
+    push(a, &a->values, c.convex ? 1 : 0);
+    push(a, &a->values, (int32_t)c.reasons);
+    push(a, &a->values, (int32_t)c.num_reflex);
+    push(a, &a->values, (int32_t)c.num_degenerate);
+    group_end(a, false);
+    for (size_t k = 0; k < 2 * c.num_reflex; k++) push(a, &a->values, (int32_t)edges[k]);
+    group_end(a, false);
+    push_real(a, c.volume);
+    item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+    free(edges);
+}
+
 /* Checks the ids against what the kind takes and the mesh's counts. */
 static void check_ids(answer *a, const meshtopo_query_t *q, const mt_mesh *mesh)
 {
@@ -338,6 +453,8 @@ static void check_ids(answer *a, const meshtopo_query_t *q, const mt_mesh *mesh)
         case MESHTOPO_QUERY_T_VERTEX_RING:
         case MESHTOPO_QUERY_T_VALENCE:
         case MESHTOPO_QUERY_T_EDGE_FACES:
+        case MESHTOPO_QUERY_T_DIHEDRAL_ANGLES:
+        case MESHTOPO_QUERY_T_ANGLE_DEFICITS:
             limit = verts, what = "vertex";
             break;
         case MESHTOPO_QUERY_T_FACE_NEIGHBORS:
@@ -365,17 +482,22 @@ static void check_request(answer *a, const meshtopo_query_t *q)
         case MESHTOPO_QUERY_T_VALENCE:
         case MESHTOPO_QUERY_T_FACE_NEIGHBORS:
         case MESHTOPO_QUERY_T_EDGE_FACES:
+        case MESHTOPO_QUERY_T_DIHEDRAL_ANGLES:
+        case MESHTOPO_QUERY_T_ANGLE_DEFICITS:
             if (q->num_ids == 0)
                 fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "ids: kind %" PRId32 " needs ids",
                      q->kind);
-            else if (q->kind == MESHTOPO_QUERY_T_EDGE_FACES && q->num_ids % 2)
+            else if ((q->kind == MESHTOPO_QUERY_T_EDGE_FACES ||
+                      q->kind == MESHTOPO_QUERY_T_DIHEDRAL_ANGLES) &&
+                     q->num_ids % 2)
                 fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST,
-                     "ids: EDGE_FACES takes vertex pairs, got an odd count (%" PRId32 ")",
-                     q->num_ids);
+                     "ids: kind %" PRId32 " takes vertex pairs, got an odd count (%" PRId32 ")",
+                     q->kind, q->num_ids);
             break;
         case MESHTOPO_QUERY_T_BOUNDARY_LOOPS:
         case MESHTOPO_QUERY_T_REPORT:
         case MESHTOPO_QUERY_T_LIST_MESHES:
+        case MESHTOPO_QUERY_T_CONVEXITY:
             if (q->num_ids != 0)
                 fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST,
                      "ids: kind %" PRId32 " takes no ids, got %" PRId32, q->kind, q->num_ids);
@@ -393,7 +515,7 @@ static void check_request(answer *a, const meshtopo_query_t *q)
             break;
         default:
             fail(a, MESHTOPO_STATUS_CODE_T_UNKNOWN_KIND,
-                 "kind: %" PRId32 " is not a query_t kind (1..9)", q->kind);
+                 "kind: %" PRId32 " is not a query_t kind (1..12)", q->kind);
     }
     if (a->status == MESHTOPO_STATUS_CODE_T_OK && q->version < 0)
         fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "version: %" PRId32 " is negative", q->version);
@@ -447,6 +569,8 @@ static void send_answer(mtd_daemon *d, const meshtopo_query_t *q, answer *a, int
     reply.values = a->values.v;
     reply.num_values2 = (int32_t)a->values2.n;
     reply.values2 = a->values2.v;
+    reply.num_reals = (int32_t)a->num_reals;
+    reply.reals = a->reals;
     reply.num_reports = report ? 1 : 0;
     reply.reports = report;
     mtd_send_reply(d, q->reply_channel, q->request_id, true, &mt_msgs_type_reply, &reply,
@@ -584,6 +708,15 @@ void mtd_query_handle(mtd_daemon *d, const meshtopo_query_t *q)
                     break;
                 case MESHTOPO_QUERY_T_DEFECTS:
                     answer_defects(&a, mesh, q->ids, q->num_ids);
+                    break;
+                case MESHTOPO_QUERY_T_DIHEDRAL_ANGLES:
+                    answer_dihedral_angles(&a, mesh, q->ids, q->num_ids);
+                    break;
+                case MESHTOPO_QUERY_T_ANGLE_DEFICITS:
+                    answer_angle_deficits(&a, mesh, q->ids, q->num_ids);
+                    break;
+                case MESHTOPO_QUERY_T_CONVEXITY:
+                    answer_convexity(&a, mesh);
                     break;
                 case MESHTOPO_QUERY_T_REPORT:
                     if (mtd_topology_fill(mesh, mtd_entry_info(entry), 0, SIZE_MAX, &report) == 0)

@@ -16,6 +16,7 @@ usage: netns_remote.py --meshtopo PATH --meshtopod PATH --corpus DIR [CLEAN NONM
 """
 import argparse
 import json
+import math
 import os
 import signal
 import subprocess
@@ -110,6 +111,37 @@ def check_mesh(cli, corpus, name):
     return exp
 
 
+def check_geometry(cli, corpus):
+    """The geometry kinds on openmesh_cube_minimal_quads, whose quads turn
+    inward (face 0 runs counter-clockwise seen from inside): every edge is a
+    reflex 3 pi / 2 edge, every corner has deficit pi / 2, and convexity says
+    why the cube does not count as convex."""
+    path = os.path.join(corpus, "openmesh_cube_minimal_quads.off")
+    ack = run_json(cli, "send", path, "--id", "cube", "--json")
+    check(ack is not None and ack["status"] == "OK", "cube: sent")
+    got = run_json(cli, "query", "cube", "dihedral", "0", "1", "1", "2", "0", "6", "--json")
+    if check(got is not None and len(got["items"]) == 3, "cube: dihedral answers 3 pairs"):
+        for item in got["items"][:2]:
+            check(item["shape"] == "reflex" and abs(item["dihedral_angle"] - 1.5 * math.pi) < 1e-12,
+                  f"cube: edge {item['edge']} is reflex at 3 pi / 2 ({item})")
+        check(got["items"][2]["status"] == "NOT_FOUND" and got["items"][2]["dihedral_angle"] is None,
+              "cube: 0-6 is no edge: NOT_FOUND, no angle")
+    got = run_json(cli, "query", "cube", "deficit", "0-7", "--json")
+    if check(got is not None and len(got["items"]) == 8, "cube: deficit answers 8 vertices"):
+        check(all(abs(i["angle_deficit"] - math.pi / 2) < 1e-12 and not i["boundary"]
+                  for i in got["items"]), "cube: every corner's deficit is pi / 2")
+    got = run_json(cli, "query", "cube", "convexity", "--json")
+    if check(got is not None and len(got["items"]) == 1, "cube: convexity answers"):
+        c = got["items"][0]
+        check(not c["convex"] and "inward" in c["reasons"] and len(c["reflex_edges"]) == 12
+              and c["volume"] < 0, f"cube: not convex, inward, 12 reflex edges ({c})")
+    p = run(cli, "query", "cube", "convexity")
+    check(p is not None and p.returncode == 0 and "not convex (" in p.stdout,
+          f"cube: convexity prints a readable line ({p and p.stdout.strip()})")
+    p = run(cli, "query", "cube", "dihedral", "0")
+    check(p is not None and p.returncode == 2, "dihedral with an odd id count is a usage error")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--meshtopo", required=True)
@@ -182,6 +214,8 @@ def main():
                 check(m is not None and m["num_verts"] == exp["V"] and m["num_faces"] == exp["F"],
                       f"list --json holds {n} version 1 with V {exp['V']}, F {exp['F']}")
             check((name, 2) in held, f"list --json holds {name} version 2")
+
+        check_geometry(cli, args.corpus)
 
         p = run(cli, "query", "no_such_mesh", "ring", "0")
         check(p is not None and p.returncode == 5 and "no_such_mesh" in p.stderr,

@@ -353,6 +353,39 @@ static void fill_reply_face_neighbors(void *out)
     r->values2 = sides;
 }
 
+/* Dihedral angles of a reflex edge and of a boundary edge (no angle). */
+static void fill_reply_dihedral(void *out)
+{
+    static int8_t item_status[] = {MESHTOPO_STATUS_CODE_T_OK, MESHTOPO_STATUS_CODE_T_OK};
+    static int32_t item_offsets[] = {0, 1, 2};
+    static int8_t boundary[] = {0, 0};
+    static int32_t value_offsets[] = {0, 1, 2};
+    static int32_t value2_offsets[] = {0, 0, 0};
+    static int32_t shapes[] = {MESHTOPO_QUERY_T_SHAPE_REFLEX, MESHTOPO_QUERY_T_SHAPE_BOUNDARY};
+    static double angles[] = {4.1887902047863905, NAN};
+    meshtopo_reply_t *r = out;
+    r->utime = 1700000000780000;
+    r->request_id = 49;
+    r->status = MESHTOPO_STATUS_CODE_T_OK;
+    r->error = "";
+    r->mesh_id = "dented-cube";
+    r->version = 1;
+    r->kind = MESHTOPO_QUERY_T_DIHEDRAL_ANGLES;
+    r->num_items = 2;
+    r->item_status = item_status;
+    r->num_item_offsets = 3;
+    r->item_offsets = item_offsets;
+    r->num_groups = 2;
+    r->group_boundary = boundary;
+    r->num_value_offsets = 3;
+    r->value_offsets = value_offsets;
+    r->value2_offsets = value2_offsets;
+    r->num_values = 2;
+    r->values = shapes;
+    r->num_reals = 2;
+    r->reals = angles;
+}
+
 static void fill_reply_report(void *out)
 {
     static int32_t offsets[] = {0};
@@ -453,6 +486,65 @@ static void fill_status(void *out)
     s->builds_queued = 2;
     s->last_error = "unknown mesh \"kitchen.scan-41\"";
     s->last_error_utime = 1700000001500000;
+    s->transfers_active = 1;
+    s->transfer_bytes = 57344;
+    s->chunks = 1200;
+    s->transfers_completed = 2;
+    s->transfers_expired = 1;
+    s->transfers_refused = 1;
+}
+
+/* ---- mesh_chunk_t and mesh_transfer_t --------------------------------------- */
+
+/* The second 8-byte piece of a 20-byte content, asking for the status. */
+static void fill_mesh_chunk(void *out)
+{
+    static uint8_t data[] = {0x00, 0x00, 0x00, 0x03, 0x3f, 0xf0, 0x00, 0x00};
+    meshtopo_mesh_chunk_t *c = out;
+    c->utime = 1700000000050000;
+    c->request_id = 48;
+    c->reply_channel = "MESHTOPO_REPLY_robot-7_4242_1";
+    c->mesh_id = "kitchen.scan-43";
+    c->source = "scanner_d435";
+    c->strict = 1;
+    c->total_size = 20;
+    c->content_hash = (int64_t)0x8f3a5c2e91d4b607ULL;
+    c->want_status = 1;
+    c->offset = 8;
+    c->length = (int32_t)sizeof data;
+    c->data = data;
+}
+
+/* A transfer missing two ranges. */
+static void fill_mesh_transfer_missing(void *out)
+{
+    static int64_t offsets[] = {0, 16};
+    static int64_t lengths[] = {8, 4};
+    meshtopo_mesh_transfer_t *t = out;
+    t->utime = 1700000000060000;
+    t->request_id = 48;
+    t->status = MESHTOPO_STATUS_CODE_T_OK;
+    t->error = "";
+    t->total_size = 20;
+    t->received_bytes = 8;
+    t->listed_until = 20;
+    t->num_missing = 2;
+    t->missing_offsets = offsets;
+    t->missing_lengths = lengths;
+}
+
+/* A chunk that contradicted its transfer, which is complete otherwise. */
+static void fill_mesh_transfer_refused(void *out)
+{
+    meshtopo_mesh_transfer_t *t = out;
+    t->utime = 1700000000070000;
+    t->request_id = 48;
+    t->status = MESHTOPO_STATUS_CODE_T_BAD_REQUEST;
+    t->error = "offset 24 + length 8 reaches past total_size 20";
+    t->total_size = 20;
+    t->received_bytes = 20;
+    t->complete = 1;
+    t->listed_until = 20;
 }
 
 static void fill_status_code(void *out)
@@ -476,6 +568,10 @@ const mt_msgs_sample mt_msgs_samples[] = {
     {"reply_report", &mt_msgs_type_reply, fill_reply_report},
     {"reply_list", &mt_msgs_type_reply, fill_reply_list},
     {"reply_error", &mt_msgs_type_reply, fill_reply_error},
+    {"reply_dihedral", &mt_msgs_type_reply, fill_reply_dihedral},
+    {"mesh_chunk", &mt_msgs_type_mesh_chunk, fill_mesh_chunk},
+    {"mesh_transfer_missing", &mt_msgs_type_mesh_transfer, fill_mesh_transfer_missing},
+    {"mesh_transfer_refused", &mt_msgs_type_mesh_transfer, fill_mesh_transfer_refused},
     {"status", &mt_msgs_type_status, fill_status},
     {"status_code", &mt_msgs_type_status_code, fill_status_code},
 };

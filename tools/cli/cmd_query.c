@@ -1,12 +1,15 @@
 /* `meshtopo query ID KIND IDS...`: one batch query to meshtopod (one-rings,
  * valences, face neighbours, edge faces, boundary loops, components, the
- * report, the defect lists) and its answer, one line per item (fans and
+ * report, the defect lists, dihedral angles, angle deficits, convexity) and
+ * its answer, one line per item (fans and
  * sides labelled) or one JSON object per item. The reply's offsets come from
  * the network and are checked before any array is indexed with them. */
 #include <inttypes.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "meshtopo/geometry.h"
 #include "meshtopo/report.h"
 #include "remote.h"
 
@@ -31,7 +34,24 @@ static const query_kind kinds[] = {
     {"components", MESHTOPO_QUERY_T_COMPONENTS, IDS_OPTIONAL, "face"},
     {"report", MESHTOPO_QUERY_T_REPORT, IDS_NONE, ""},
     {"defects", MESHTOPO_QUERY_T_DEFECTS, IDS_OPTIONAL, "kind"},
+    {"dihedral", MESHTOPO_QUERY_T_DIHEDRAL_ANGLES, IDS_NEEDED, "edge"},
+    {"deficit", MESHTOPO_QUERY_T_ANGLE_DEFICITS, IDS_NEEDED, "vertex"},
+    {"convexity", MESHTOPO_QUERY_T_CONVEXITY, IDS_NONE, "mesh"},
 };
+
+/* Kinds whose ids are vertex pairs naming edges. */
+static bool takes_pairs(int32_t kind)
+{
+    return kind == MESHTOPO_QUERY_T_EDGE_FACES || kind == MESHTOPO_QUERY_T_DIHEDRAL_ANGLES;
+}
+
+/* Real values a reply of this kind carries for num_items items. */
+static int32_t expected_reals(int32_t kind, int32_t num_items)
+{
+    if (kind == MESHTOPO_QUERY_T_DIHEDRAL_ANGLES || kind == MESHTOPO_QUERY_T_ANGLE_DEFICITS)
+        return num_items;
+    return kind == MESHTOPO_QUERY_T_CONVEXITY ? 1 : 0;
+}
 static const size_t num_kinds = sizeof kinds / sizeof kinds[0];
 
 static const mt_cli_option options[] = {
@@ -99,7 +119,7 @@ static const char *defect_name(int64_t kind)
  * kind lists every element (boundary loops, components or defects without ids). */
 static int64_t item_subject(const mt_id_list *ids, int32_t kind, int32_t i)
 {
-    if (kind == MESHTOPO_QUERY_T_EDGE_FACES) return ids->ids[2 * (size_t)i];
+    if (takes_pairs(kind)) return ids->ids[2 * (size_t)i];
     if ((size_t)i < ids->count) return ids->ids[i];
     return i;
 }
@@ -112,12 +132,61 @@ static void print_span(span s)
     for (int32_t k = 0; k < s.n; k++) printf(" %" PRId32, s.v[k]);
 }
 
+static const char *shape_name(int32_t shape)
+{
+    return shape >= 0 && shape <= MT_EDGE_DEGENERATE ? mt_edge_shape_name((mt_edge_shape)shape)
+                                                     : "unknown";
+}
+
+/* The rest of a geometry item's line (after its label); false for other kinds. */
+static bool print_geometry_text(const meshtopo_reply_t *r, int32_t kind, int32_t i, int32_t g0,
+                                int32_t g1)
+{
+    const double degrees = 180.0 / 3.14159265358979323846;
+    if (kind == MESHTOPO_QUERY_T_DIHEDRAL_ANGLES) {
+        span v = values_of(r, g0);
+        double angle = r->reals[i];
+        printf(" %s", v.n == 1 ? shape_name(v.v[0]) : "?");
+        if (isnan(angle))
+            printf(" (no dihedral angle)\n");
+        else
+            printf(", dihedral angle %.9g rad (%.6g deg)\n", angle, angle * degrees);
+        return true;
+    }
+    if (kind == MESHTOPO_QUERY_T_ANGLE_DEFICITS) {
+        printf(" angle deficit %.9g rad%s\n", r->reals[i],
+               r->group_boundary[g0] ? " (boundary: pi minus the corner angles)" : "");
+        return true;
+    }
+    if (kind != MESHTOPO_QUERY_T_CONVEXITY) return false;
+    span head = values_of(r, g0), edges = g1 > g0 + 1 ? values_of(r, g0 + 1) : (span){NULL, 0};
+    if (head.n != 4) {
+        printf(" malformed answer\n");
+        return true;
+    }
+    char reasons[256];
+    mt_convexity_describe((uint32_t)head.v[1], reasons, sizeof reasons);
+    printf(" %s", head.v[0] ? "convex" : "not convex");
+    if (!head.v[0]) printf(" (%s)", reasons);
+    printf(", volume %.9g", r->reals[0]);
+    if (head.v[3]) printf(", %" PRId32 " degenerate faces", head.v[3]);
+    if (head.v[2]) {
+        printf(", %" PRId32 " reflex edges:", head.v[2]);
+        for (int32_t k = 0; k + 1 < edges.n; k += 2)
+            printf(" %" PRId32 "-%" PRId32, edges.v[k], edges.v[k + 1]);
+    }
+    putchar('\n');
+    return true;
+}
+
 static void print_item_text(const meshtopo_reply_t *r, const query_kind *qk, const mt_id_list *ids,
                             int32_t i)
 {
     int64_t subject = item_subject(ids, qk->kind, i);
-    if (qk->kind == MESHTOPO_QUERY_T_EDGE_FACES)
+    if (takes_pairs(qk->kind))
         printf("edge %" PRId64 "-%" PRIu32 ":", subject, ids->ids[2 * (size_t)i + 1]);
+    else if (qk->kind == MESHTOPO_QUERY_T_CONVEXITY)
+        printf("mesh:");
     else if (qk->kind == MESHTOPO_QUERY_T_DEFECTS)
         printf("%s:", defect_name(subject));
     else
@@ -129,6 +198,7 @@ static void print_item_text(const meshtopo_reply_t *r, const query_kind *qk, con
         return;
     }
     int32_t g0 = r->item_offsets[i], g1 = r->item_offsets[i + 1];
+    if (print_geometry_text(r, qk->kind, i, g0, g1)) return;
     if (qk->kind == MESHTOPO_QUERY_T_VERTEX_RING && g0 == g1) printf(" isolated (no fans)");
     for (int32_t g = g0; g < g1; g++) {
         span v = values_of(r, g), v2 = values2_of(r, g);
@@ -187,12 +257,58 @@ static void write_span(mt_json *j, span s)
     mt_json_array_end(j);
 }
 
+/* The fields of a geometry item; false for other kinds. */
+static bool write_geometry_json(mt_json *j, const meshtopo_reply_t *r, int32_t kind, int32_t i,
+                                int32_t g0, int32_t g1)
+{
+    if (kind == MESHTOPO_QUERY_T_DIHEDRAL_ANGLES) {
+        if (g1 > g0) {
+            span v = values_of(r, g0);
+            mt_json_key(j, "shape");
+            mt_json_string(j, v.n == 1 ? shape_name(v.v[0]) : "unknown");
+        }
+        mt_json_key(j, "dihedral_angle");
+        mt_json_double(j, r->reals[i]);
+        return true;
+    }
+    if (kind == MESHTOPO_QUERY_T_ANGLE_DEFICITS) {
+        mt_json_key(j, "angle_deficit");
+        mt_json_double(j, r->reals[i]);
+        mt_json_key(j, "boundary");
+        mt_json_bool(j, g1 > g0 && r->group_boundary[g0] != 0);
+        return true;
+    }
+    if (kind != MESHTOPO_QUERY_T_CONVEXITY) return false;
+    span head = g1 > g0 ? values_of(r, g0) : (span){NULL, 0};
+    span edges = g1 > g0 + 1 ? values_of(r, g0 + 1) : (span){NULL, 0};
+    char reasons[256];
+    mt_json_key(j, "convex");
+    mt_json_bool(j, head.n == 4 && head.v[0] != 0);
+    mt_json_key(j, "reasons");
+    mt_convexity_describe(head.n == 4 ? (uint32_t)head.v[1] : 0, reasons, sizeof reasons);
+    mt_json_string(j, reasons);
+    mt_json_key(j, "degenerate_faces");
+    mt_json_int(j, head.n == 4 ? head.v[3] : 0);
+    mt_json_key(j, "reflex_edges");
+    mt_json_array_begin(j);
+    for (int32_t k = 0; k + 1 < edges.n; k += 2) {
+        mt_json_array_begin(j);
+        mt_json_int(j, edges.v[k]);
+        mt_json_int(j, edges.v[k + 1]);
+        mt_json_array_end(j);
+    }
+    mt_json_array_end(j);
+    mt_json_key(j, "volume");
+    mt_json_double(j, r->reals[0]);
+    return true;
+}
+
 static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_kind *qk,
                             const mt_id_list *ids, int32_t i)
 {
     int64_t subject = item_subject(ids, qk->kind, i);
     mt_json_object_begin(j);
-    if (qk->kind == MESHTOPO_QUERY_T_EDGE_FACES) {
+    if (takes_pairs(qk->kind)) {
         mt_json_key(j, "edge");
         mt_json_array_begin(j);
         mt_json_int(j, subject);
@@ -203,13 +319,17 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
         mt_json_string(j, defect_name(subject));
         mt_json_key(j, "kind_id");
         mt_json_int(j, subject);
-    } else {
+    } else if (qk->kind != MESHTOPO_QUERY_T_CONVEXITY) {
         mt_json_key(j, qk->of);
         mt_json_int(j, subject);
     }
     mt_json_key(j, "status");
     mt_json_string(j, mt_client_code_name(r->item_status[i]));
     int32_t g0 = r->item_offsets[i], g1 = r->item_offsets[i + 1];
+    if (write_geometry_json(j, r, qk->kind, i, g0, g1)) {
+        mt_json_object_end(j);
+        return;
+    }
     switch (qk->kind) {
         case MESHTOPO_QUERY_T_VERTEX_RING:
             mt_json_key(j, "fans");
@@ -353,7 +473,8 @@ static int run_query(const mt_cli_args *args)
     if (!qk) {
         mt_cli_error("query",
                      "unknown kind '%s' (ring, valence, face-neighbors, edge-faces, "
-                     "boundary-loops, components, report, defects)",
+                     "boundary-loops, components, report, defects, dihedral, deficit, "
+                     "convexity)",
                      args->positionals[1]);
         return MT_CLI_EXIT_USAGE;
     }
@@ -371,13 +492,13 @@ static int run_query(const mt_cli_args *args)
     if (code != MT_CLI_EXIT_OK) return code;
     if (qk->ids == IDS_NEEDED && ids.count == 0) {
         mt_cli_error("query", "%s needs %s ids", qk->name,
-                     qk->kind == MESHTOPO_QUERY_T_EDGE_FACES ? "vertex pair" : qk->of);
+                     takes_pairs(qk->kind) ? "vertex pair" : qk->of);
         code = MT_CLI_EXIT_USAGE;
     } else if (qk->ids == IDS_NONE && ids.count > 0) {
         mt_cli_error("query", "%s takes no ids", qk->name);
         code = MT_CLI_EXIT_USAGE;
-    } else if (qk->kind == MESHTOPO_QUERY_T_EDGE_FACES && ids.count % 2 != 0) {
-        mt_cli_error("query", "edge-faces takes vertex pairs: an even number of ids, got %zu",
+    } else if (takes_pairs(qk->kind) && ids.count % 2 != 0) {
+        mt_cli_error("query", "%s takes vertex pairs: an even number of ids, got %zu", qk->name,
                      ids.count);
         code = MT_CLI_EXIT_USAGE;
     }
@@ -401,10 +522,11 @@ static int run_query(const mt_cli_args *args)
         code = mt_cli_call_failed("query", mesh_id, &remote, st, reply.mesh_id != NULL, &diag);
     } else if (!reply_consistent(&reply) ||
                (qk->kind == MESHTOPO_QUERY_T_REPORT && reply.num_reports != 1) ||
-               (qk->kind == MESHTOPO_QUERY_T_EDGE_FACES &&
-                (size_t)reply.num_items * 2 != ids.count) ||
-               (ids.count > 0 && qk->kind != MESHTOPO_QUERY_T_EDGE_FACES &&
-                (size_t)reply.num_items != ids.count)) {
+               (takes_pairs(qk->kind) && (size_t)reply.num_items * 2 != ids.count) ||
+               (ids.count > 0 && !takes_pairs(qk->kind) &&
+                (size_t)reply.num_items != ids.count) ||
+               reply.num_reals != expected_reals(qk->kind, reply.num_items) ||
+               (qk->kind == MESHTOPO_QUERY_T_CONVEXITY && reply.num_items != 1)) {
         mt_cli_error("query", "mesh '%s': the reply's items and offsets do not fit together",
                      mesh_id);
         code = MT_CLI_EXIT_REFUSED;
@@ -439,12 +561,20 @@ const mt_cli_command mt_cli_cmd_query = {
         "  components      face ids (none = every face): the component of each face\n"
         "  report          no ids: the topology report\n"
         "  defects         defect kinds 0-7 (none = every kind): the defects of each kind\n"
+        "  dihedral        vertex pairs (a b ...): how edge a-b bends (convex, flat, reflex,\n"
+        "                  or why it has no angle) and its interior dihedral angle\n"
+        "  deficit         vertex ids: the angle deficit (2 pi minus the corner angles; pi\n"
+        "                  minus them on the boundary)\n"
+        "  convexity       no ids: whether the mesh bounds a convex polytope, why not, its\n"
+        "                  reflex edges and enclosed volume\n"
         "An item the build left out (a rejected face, an edge no face has) prints\n"
         "\"not found\". --json prints {mesh_id, version, kind, items: [an object per item]}\n"
         "({..., report} for report).\n"
         "\n"
+        "The geometry kinds (dihedral, deficit, convexity) need a mesh sent with positions.\n"
+        "\n"
         "exit codes: 0 answered, 2 usage error, 5 meshtopod refused the query (unknown mesh\n"
-        "or version, id out of range, ...), 6 no answer from meshtopod.\n",
+        "or version, id out of range, no positions, ...), 6 no answer from meshtopod.\n",
     .options = options,
     .num_options = sizeof options / sizeof options[0],
     .min_positionals = 2,

@@ -4,6 +4,7 @@
 #include "json_writer.h"
 
 #include <inttypes.h>
+#include <math.h>
 #include <string.h>
 
 void mt_json_init(mt_json *j, FILE *out)
@@ -104,6 +105,16 @@ void mt_json_int(mt_json *j, int64_t value)
 void mt_json_uint(mt_json *j, uint64_t value)
 {
     if (value_prefix(j)) fprintf(j->out, "%" PRIu64, value);
+}
+
+void mt_json_double(mt_json *j, double value)
+{
+    /* JSON has no NaN or infinity: those become null. */
+    if (!value_prefix(j)) return;
+    if (isfinite(value))
+        fprintf(j->out, "%.17g", value);
+    else
+        fputs("null", j->out);
 }
 
 void mt_json_bool(mt_json *j, bool value)

@@ -34,6 +34,9 @@ void mt_json_key(mt_json *j, const char *key);
 
 void mt_json_int(mt_json *j, int64_t value);
 void mt_json_uint(mt_json *j, uint64_t value);
+/* A number with the digits to read back the same double; NaN and infinities
+ * are written as null. */
+void mt_json_double(mt_json *j, double value);
 void mt_json_bool(mt_json *j, bool value);
 void mt_json_null(mt_json *j);
 void mt_json_string(mt_json *j, const char *value);

@@ -22,7 +22,8 @@
     X(MESHTOPO_STATUS_CODE_T_BUILD_FAILED, "BUILD_FAILED", MT_ERR_CORRUPT)      \
     X(MESHTOPO_STATUS_CODE_T_DEFECT_REFUSED, "DEFECT_REFUSED", MT_ERR_DEFECT)   \
     X(MESHTOPO_STATUS_CODE_T_BUSY, "BUSY", MT_ERR_IO)                           \
-    X(MESHTOPO_STATUS_CODE_T_INTERNAL, "INTERNAL", MT_ERR_IO)
+    X(MESHTOPO_STATUS_CODE_T_INTERNAL, "INTERNAL", MT_ERR_IO)                   \
+    X(MESHTOPO_STATUS_CODE_T_NO_GEOMETRY, "NO_GEOMETRY", MT_ERR_NO_GEOMETRY)
 
 mt_status mt_client_status_of_code(int32_t code)
 {
@@ -104,7 +105,7 @@ static mt_status check_query(const char *mesh_id, int32_t version, int32_t kind,
     if (version < 0)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "version %d is negative (0 = latest)",
                                (int)version);
-    if (kind < MESHTOPO_QUERY_T_VERTEX_RING || kind > MESHTOPO_QUERY_T_LIST_MESHES)
+    if (kind < MESHTOPO_QUERY_T_VERTEX_RING || kind > MESHTOPO_QUERY_T_CONVEXITY)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "query kind %d is not one of query_t's",
                                (int)kind);
     if (num_ids > 0 && !ids)

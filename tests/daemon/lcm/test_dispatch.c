@@ -1,6 +1,7 @@
 /* meshtopod's dispatch over in-process LCM (memq://): submissions are built,
  * stored and acknowledged; every query kind answers what the core library
- * answers, computed here with the core API independently of daemon/query.c;
+ * answers, computed here with the core API independently of daemon/query.c
+ * (geometry kinds included);
  * every kind of bad message gets an error reply naming the problem while the
  * daemon keeps serving; a retried request id is answered from the cache. */
 #include <inttypes.h>
@@ -843,6 +844,164 @@ static void test_bad_queries(void)
     fixture_free(&fx);
 }
 
+/* ---- geometry kinds ---- */
+
+/* The daemon's DIHEDRAL_ANGLES, ANGLE_DEFICITS and CONVEXITY answers for
+ * `list` equal what meshtopo/geometry.h answers on the same mesh built here:
+ * every side of every face as an edge (plus one pair that is no edge), every
+ * vertex, and the whole mesh. Doubles must be equal bit for bit: the same
+ * code computes them on the same input. */
+static void check_geometry(fixture *fx, const char *id, const mt_face_list *list, bool convex)
+{
+    const double tol = MESHTOPO_QUERY_T_GEOMETRY_TOLERANCE;
+    mt_mesh *mesh = NULL;
+    CHECK_OK(mt_mesh_build(list, NULL, &mesh, NULL));
+    CHECK_OK(mt_mesh_validate(mesh, NULL));
+    if (submit_ok(fx, id, list) == 0) {
+        mt_mesh_destroy(mesh);
+        return;
+    }
+    /* Edges: the sides of every face, then a pair no face joins. */
+    int32_t *pairs = malloc((2 * list->num_indices + 2) * sizeof *pairs);
+    int32_t n = 0;
+    uint64_t offset = 0;
+    for (uint32_t f = 0; f < list->num_faces; f++) {
+        uint32_t size = list->face_sizes[f];
+        for (uint32_t k = 0; k < size; k++) {
+            pairs[n++] = (int32_t)list->face_indices[offset + k];
+            pairs[n++] = (int32_t)list->face_indices[offset + (k + 1) % size];
+        }
+        offset += size;
+    }
+    int32_t lonely_a = -1, lonely_b = -1;
+    for (uint32_t a = 0; a < list->num_verts && lonely_a < 0; a++)
+        for (uint32_t b = a + 1; b < list->num_verts && lonely_a < 0; b++) {
+            size_t count = 0;
+            if (mt_edge_faces(mesh, a, b, NULL, 0, &count) == MT_ERR_NOT_FOUND)
+                lonely_a = (int32_t)a, lonely_b = (int32_t)b;
+        }
+    CHECK(lonely_a >= 0);
+    pairs[n++] = lonely_a;
+    pairs[n++] = lonely_b;
+
+    meshtopo_reply_t r;
+    if (query(fx, id, 0, MESHTOPO_QUERY_T_DIHEDRAL_ANGLES, pairs, n, &r) == 0) {
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.num_items, n / 2);
+        CHECK_EQ(r.num_reals, n / 2);
+        for (int32_t i = 0; i < r.num_items && r.num_reals == r.num_items; i++) {
+            uint32_t a = (uint32_t)pairs[2 * i], b = (uint32_t)pairs[2 * i + 1];
+            mt_edge_shape shape;
+            mt_status s = mt_edge_convexity(mesh, a, b, tol, &shape, NULL);
+            if (s == MT_ERR_NOT_FOUND) {
+                CHECK_EQ(r.item_status[i], MESHTOPO_STATUS_CODE_T_NOT_FOUND);
+                CHECK(isnan(r.reals[i]));
+                continue;
+            }
+            CHECK_OK(s);
+            CHECK_EQ(r.item_status[i], MESHTOPO_STATUS_CODE_T_OK);
+            int32_t g = r.item_offsets[i];
+            CHECK_EQ(r.item_offsets[i + 1], g + 1);
+            CHECK_EQ(r.value_offsets[g + 1] - r.value_offsets[g], 1);
+            CHECK_EQ(r.values[r.value_offsets[g]], (int32_t)shape);
+            if (shape <= MT_EDGE_REFLEX) {
+                double angle = 0.0;
+                CHECK_OK(mt_edge_dihedral_angle(mesh, a, b, &angle, NULL));
+                if (memcmp(&angle, &r.reals[i], sizeof angle) != 0)
+                    mt_test_fail(__FILE__, __LINE__,
+                                 "edge %u-%u: angle %.17g over the wire, %.17g here", a, b,
+                                 r.reals[i], angle);
+            } else {
+                CHECK(isnan(r.reals[i]));
+            }
+        }
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    free(pairs);
+
+    int32_t *verts = malloc(list->num_verts * sizeof *verts);
+    for (uint32_t v = 0; v < list->num_verts; v++) verts[v] = (int32_t)v;
+    if (query(fx, id, 0, MESHTOPO_QUERY_T_ANGLE_DEFICITS, verts, (int32_t)list->num_verts, &r) ==
+        0) {
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.num_items, (int32_t)list->num_verts);
+        CHECK_EQ(r.num_reals, (int32_t)list->num_verts);
+        for (int32_t i = 0; i < r.num_items && r.num_reals == r.num_items; i++) {
+            double deficit = 0.0;
+            bool boundary = false;
+            CHECK_OK(mt_vert_angle_deficit(mesh, (uint32_t)i, &deficit, &boundary, NULL));
+            CHECK(memcmp(&deficit, &r.reals[i], sizeof deficit) == 0);
+            CHECK_EQ(r.group_boundary[r.item_offsets[i]] != 0, boundary);
+        }
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    free(verts);
+
+    mt_convexity c;
+    uint32_t reflex[256];
+    CHECK_OK(mt_mesh_convexity(mesh, tol, &c, reflex, 128, NULL));
+    CHECK_EQ(c.convex, convex);
+    if (query(fx, id, 0, MESHTOPO_QUERY_T_CONVEXITY, NULL, 0, &r) == 0) {
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.num_items, 1);
+        CHECK_EQ(r.num_groups, 2);
+        CHECK_EQ(r.num_reals, 1);
+        if (r.num_groups == 2 && r.num_reals == 1) {
+            CHECK_EQ(r.value_offsets[1], 4);
+            CHECK_EQ(r.values[0], c.convex ? 1 : 0);
+            CHECK_EQ(r.values[1], (int32_t)c.reasons);
+            CHECK_EQ(r.values[2], (int32_t)c.num_reflex);
+            CHECK_EQ(r.values[3], (int32_t)c.num_degenerate);
+            CHECK_EQ(r.value_offsets[2] - r.value_offsets[1], 2 * (int32_t)c.num_reflex);
+            for (size_t k = 0; k < 2 * c.num_reflex && r.value_offsets[2] == r.num_values; k++)
+                CHECK_EQ(r.values[4 + k], (int32_t)reflex[k]);
+            CHECK(memcmp(&c.volume, &r.reals[0], sizeof c.volume) == 0);
+        }
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    mt_mesh_destroy(mesh);
+}
+
+static void test_geometry_kinds(void)
+{
+    fixture fx;
+    fixture_init(&fx);
+    mt_face_list ico, grid;
+    CHECK_OK(mt_gen_platonic(MT_ICOSAHEDRON, &ico));
+    check_geometry(&fx, "icosahedron", &ico, true);
+    /* Vertex 0 pushed towards the centre: its edges turn reflex. */
+    for (int k = 0; k < 3; k++) ico.positions[k] *= 0.2;
+    check_geometry(&fx, "dented", &ico, false);
+    CHECK_OK(mt_gen_grid(3, 2, true, &grid));
+    check_geometry(&fx, "grid", &grid, false); /* open: boundary edges have no angle */
+
+    /* A mesh without positions: NO_GEOMETRY for every geometry kind. */
+    free(grid.positions);
+    grid.positions = NULL;
+    CHECK_EQ(submit_ok(&fx, "bare", &grid), 1);
+    int32_t ids[] = {0, 1, 2};
+    check_query_error(&fx, "bare", 0, MESHTOPO_QUERY_T_DIHEDRAL_ANGLES, ids, 2,
+                      MESHTOPO_STATUS_CODE_T_NO_GEOMETRY, "positions", __LINE__);
+    check_query_error(&fx, "bare", 0, MESHTOPO_QUERY_T_ANGLE_DEFICITS, ids, 3,
+                      MESHTOPO_STATUS_CODE_T_NO_GEOMETRY, "positions", __LINE__);
+    check_query_error(&fx, "bare", 0, MESHTOPO_QUERY_T_CONVEXITY, NULL, 0,
+                      MESHTOPO_STATUS_CODE_T_NO_GEOMETRY, "positions", __LINE__);
+    /* Bad requests. */
+    check_query_error(&fx, "grid", 0, MESHTOPO_QUERY_T_DIHEDRAL_ANGLES, ids, 3,
+                      MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "odd", __LINE__);
+    check_query_error(&fx, "grid", 0, MESHTOPO_QUERY_T_CONVEXITY, ids, 1,
+                      MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "takes no ids", __LINE__);
+    int32_t far[] = {0, 1000};
+    check_query_error(&fx, "grid", 0, MESHTOPO_QUERY_T_ANGLE_DEFICITS, far, 2,
+                      MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "ids[1] = 1000", __LINE__);
+    check_query_error(&fx, "grid", 0, MESHTOPO_QUERY_T_DIHEDRAL_ANGLES, far, 2,
+                      MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "ids[1] = 1000", __LINE__);
+    check_still_serving(&fx, "grid");
+    mt_face_list_free(&ico);
+    mt_face_list_free(&grid);
+    fixture_free(&fx);
+}
+
 static void test_nan_positions(void)
 {
     fixture fx;
@@ -964,6 +1123,7 @@ static const mt_test_case cases[] = {
     {"bad_too_large", test_bad_too_large},
     {"bad_mesh_ids", test_bad_mesh_ids},
     {"bad_queries", test_bad_queries},
+    {"geometry_kinds", test_geometry_kinds},
     {"nan_positions", test_nan_positions},
     {"duplicate_request", test_duplicate_request},
     {"heartbeat", test_heartbeat},

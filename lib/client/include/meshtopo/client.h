@@ -120,8 +120,8 @@ void mt_client_get_stats(mt_client *client, mt_client_stats *out_stats);
 /* The mt_status of a status_code_t value: OK -> MT_OK, BAD_REQUEST ->
  * INVALID_ARG, UNDECODABLE -> PARSE, UNKNOWN_MESH and NOT_FOUND -> NOT_FOUND,
  * UNKNOWN_KIND -> UNSUPPORTED, OUT_OF_RANGE -> OUT_OF_RANGE, TOO_LARGE ->
- * TOO_LARGE, BUILD_FAILED -> CORRUPT, DEFECT_REFUSED -> DEFECT, BUSY and
- * INTERNAL and unknown codes -> IO. */
+ * TOO_LARGE, BUILD_FAILED -> CORRUPT, DEFECT_REFUSED -> DEFECT, NO_GEOMETRY
+ * -> NO_GEOMETRY, BUSY and INTERNAL and unknown codes -> IO. */
 mt_status mt_client_status_of_code(int32_t code);
 
 /* Name of a status_code_t value ("UNKNOWN_MESH"); "UNKNOWN_CODE" for a value
