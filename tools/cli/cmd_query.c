@@ -523,8 +523,7 @@ static int run_query(const mt_cli_args *args)
     } else if (!reply_consistent(&reply) ||
                (qk->kind == MESHTOPO_QUERY_T_REPORT && reply.num_reports != 1) ||
                (takes_pairs(qk->kind) && (size_t)reply.num_items * 2 != ids.count) ||
-               (ids.count > 0 && !takes_pairs(qk->kind) &&
-                (size_t)reply.num_items != ids.count) ||
+               (ids.count > 0 && !takes_pairs(qk->kind) && (size_t)reply.num_items != ids.count) ||
                reply.num_reals != expected_reals(qk->kind, reply.num_items) ||
                (qk->kind == MESHTOPO_QUERY_T_CONVEXITY && reply.num_items != 1)) {
         mt_cli_error("query", "mesh '%s': the reply's items and offsets do not fit together",
