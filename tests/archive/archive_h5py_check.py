@@ -93,6 +93,31 @@ def main():
                    "face_vertex_indices as submitted, rejected faces too")
             expect(np.array_equal(m["positions"][()], np.array(verts).reshape(-1, 3)),
                    "positions as submitted")
+            # The half-edge arrays (format 2) read without meshtopo: the ring of
+            # each kept face, from face_halfedge along next, passes through the
+            # face's vertices in order (tail of h = head of its twin h ^ 1).
+            expect(int(m.attrs["format_version"]) == 2, "format_version 2")
+            h = m["halfedge"]
+            for key in ("head", "next", "face", "face_halfedge", "vertex_halfedge",
+                        "copy_original", "copies_sorted", "bundle_offsets", "bundle_edges",
+                        "bundled_sorted", "bundled_bundle", "vertex_component"):
+                expect(key in h and h[key].dtype == np.uint32, f"halfedge/{key} is uint32")
+            head, nxt, hface = h["head"][()], h["next"][()], h["face"][()]
+            fhe, orig = h["face_halfedge"][()], h["copy_original"][()]
+            expect(len(head) == int(h.attrs["num_half_edges"]), "halfedge/head length")
+
+            def caller(v):
+                return int(v) if v < len(verts) else int(orig[v - len(verts)])
+
+            rings_ok = True
+            for fi in kept:
+                e, ring = int(fhe[fi]), []
+                for _ in range(len(faces[fi])):
+                    rings_ok = rings_ok and int(hface[e]) == fi
+                    ring.append(caller(head[e ^ 1]))
+                    e = int(nxt[e])
+                rings_ok = rings_ok and ring == faces[fi] and e == int(fhe[fi])
+            expect(rings_ok, "each kept face's half-edge ring is its vertex list")
             r = m["report"]
             expect(int(r.attrs["num_faces"]) == len(faces), "report num_faces")
             expect(int(r.attrs["num_faces_valid"]) == len(kept), "report num_faces_valid")

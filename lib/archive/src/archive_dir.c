@@ -212,6 +212,23 @@ static uint32_t latest_version(const mt_archive *archive, const char *mesh_id)
     return best;
 }
 
+mt_status mt__archive_resolve(const mt_archive *archive, const char *mesh_id, uint32_t version,
+                              char *name, mt_diag *diag)
+{
+    mt_status st = mt_archive_id_check(mesh_id, diag);
+    if (st != MT_OK) return st;
+    if (version == 0) version = latest_version(archive, mesh_id);
+    if (version == 0)
+        return mt__archive_fail(diag, MT_ERR_NOT_FOUND, "%s: mesh '%s' is not archived",
+                                archive->dir, mesh_id);
+    mt_archive_file_name(mesh_id, version, name, MT_ARCHIVE_FILE_NAME_MAX + 1);
+    if (!mt_archive_contains(archive, mesh_id, version))
+        return mt__archive_fail(diag, MT_ERR_NOT_FOUND,
+                                "%s: version %u of mesh '%s' is not archived (no file %s)",
+                                archive->dir, version, mesh_id, name);
+    return MT_OK;
+}
+
 mt_status mt_archive_load(const mt_archive *archive, const char *mesh_id, uint32_t version,
                           mt_archive_record *out, mt_diag *diag)
 {
@@ -219,19 +236,27 @@ mt_status mt_archive_load(const mt_archive *archive, const char *mesh_id, uint32
     if (out) memset(out, 0, sizeof *out);
     if (!archive || !out)
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_load: NULL argument");
-    mt_status st = mt_archive_id_check(mesh_id, diag);
-    if (st != MT_OK) return st;
-    if (version == 0) version = latest_version(archive, mesh_id);
-    if (version == 0)
-        return mt__archive_fail(diag, MT_ERR_NOT_FOUND, "%s: mesh '%s' is not archived",
-                                archive->dir, mesh_id);
     char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
-    mt_archive_file_name(mesh_id, version, name, sizeof name);
-    if (!mt_archive_contains(archive, mesh_id, version))
-        return mt__archive_fail(diag, MT_ERR_NOT_FOUND,
-                                "%s: version %u of mesh '%s' is not archived (no file %s)",
-                                archive->dir, version, mesh_id, name);
+    mt_status st = mt__archive_resolve(archive, mesh_id, version, name, diag);
+    if (st != MT_OK) return st;
     return mt_archive_load_file(archive, name, out, diag);
+}
+
+mt_status mt_archive_load_mesh(const mt_archive *archive, const char *mesh_id, uint32_t version,
+                               bool with_faces, mt_archive_record *out_record, mt_mesh **out_mesh,
+                               mt_archive_load_info *out_info, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    if (out_record) memset(out_record, 0, sizeof *out_record);
+    if (out_mesh) *out_mesh = NULL;
+    if (out_info) memset(out_info, 0, sizeof *out_info);
+    if (!archive || !out_mesh)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_load_mesh: NULL argument");
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    mt_status st = mt__archive_resolve(archive, mesh_id, version, name, diag);
+    if (st != MT_OK) return st;
+    return mt_archive_load_mesh_file(archive, name, with_faces, out_record, out_mesh, out_info,
+                                     diag);
 }
 
 mt_status mt_archive_remove(mt_archive *archive, const char *mesh_id, uint32_t version,

@@ -58,22 +58,85 @@ mt_status mt__h5_write_attr_string(hid_t obj, const char *name, const char *valu
     return st;
 }
 
-mt_status mt__h5_write_dataset(hid_t loc, const char *name, hid_t ftype, hid_t mtype, int rank,
-                               const hsize_t *dims, const void *data, const char *file,
-                               mt_diag *diag)
+/* The creation property list of a dataset of `elements` elements of
+ * elem_size bytes: contiguous (H5P_DEFAULT) unless layout asks for deflate
+ * and the dataset is large enough for filters to pay (4 KiB); then chunks of
+ * about MT__H5_CHUNK_BYTES with shuffle and deflate. -1 on failure. */
+static hid_t dataset_dcpl(int rank, const hsize_t *dims, size_t elem_size,
+                          const mt__h5_layout *layout)
+{
+    hsize_t elements = 1;
+    for (int i = 0; i < rank; i++) elements *= dims[i];
+    if (!layout || !layout->deflate || elements * elem_size < 4096) return H5P_DEFAULT;
+    hsize_t row_bytes = elem_size * (rank == 2 ? dims[1] : 1);
+    hsize_t chunk[2] = {MT__H5_CHUNK_BYTES / row_bytes, rank == 2 ? dims[1] : 1};
+    if (chunk[0] < 1) chunk[0] = 1;
+    if (chunk[0] > dims[0]) chunk[0] = dims[0];
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    if (dcpl < 0) return -1;
+    if (H5Pset_chunk(dcpl, rank, chunk) < 0 || H5Pset_shuffle(dcpl) < 0 ||
+        H5Pset_deflate(dcpl, layout->level ? layout->level : 1) < 0) {
+        H5Pclose(dcpl);
+        return -1;
+    }
+    return dcpl;
+}
+
+mt_status mt__h5_write_dataset_layout(hid_t loc, const char *name, hid_t ftype, hid_t mtype,
+                                      int rank, const hsize_t *dims, const void *data,
+                                      const mt__h5_layout *layout, const char *file, mt_diag *diag)
 {
     mt_status st = MT_OK;
     hsize_t elements = 1;
     for (int i = 0; i < rank; i++) elements *= dims[i];
-    hid_t space = H5Screate_simple(rank, dims, NULL);
+    hid_t dcpl = dataset_dcpl(rank, dims, H5Tget_size(ftype), layout);
+    hid_t space = dcpl < 0 ? -1 : H5Screate_simple(rank, dims, NULL);
     hid_t dset =
-        space < 0 ? -1 : H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+        space < 0 ? -1 : H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (dset < 0 ||
         (elements > 0 && H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
         st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot write dataset %s", file, name);
     if (dset >= 0) H5Dclose(dset);
     if (space >= 0) H5Sclose(space);
+    if (dcpl >= 0 && dcpl != H5P_DEFAULT) H5Pclose(dcpl);
     return st;
+}
+
+hid_t mt__h5_create_dataset(hid_t loc, const char *name, hid_t ftype, hsize_t rows,
+                            const mt__h5_layout *layout, const char *file, mt_diag *diag)
+{
+    hsize_t dims[1] = {rows};
+    hid_t dcpl = dataset_dcpl(1, dims, H5Tget_size(ftype), layout);
+    hid_t space = dcpl < 0 ? -1 : H5Screate_simple(1, dims, NULL);
+    hid_t dset =
+        space < 0 ? -1 : H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    if (dset < 0) mt__archive_fail(diag, MT_ERR_IO, "%s: cannot create dataset %s", file, name);
+    if (space >= 0) H5Sclose(space);
+    if (dcpl >= 0 && dcpl != H5P_DEFAULT) H5Pclose(dcpl);
+    return dset;
+}
+
+mt_status mt__h5_write_rows(hid_t dset, hid_t mtype, hsize_t first, hsize_t count, const void *data,
+                            const char *file, const char *name, mt_diag *diag)
+{
+    if (count == 0) return MT_OK;
+    hid_t fspace = H5Dget_space(dset);
+    hid_t mspace = H5Screate_simple(1, &count, NULL);
+    bool ok = fspace >= 0 && mspace >= 0 &&
+              H5Sselect_hyperslab(fspace, H5S_SELECT_SET, &first, NULL, &count, NULL) >= 0 &&
+              H5Dwrite(dset, mtype, mspace, fspace, H5P_DEFAULT, data) >= 0;
+    if (mspace >= 0) H5Sclose(mspace);
+    if (fspace >= 0) H5Sclose(fspace);
+    return ok ? MT_OK
+              : mt__archive_fail(diag, MT_ERR_IO, "%s: cannot write rows %llu.. of dataset %s",
+                                 file, (unsigned long long)first, name);
+}
+
+mt_status mt__h5_write_dataset(hid_t loc, const char *name, hid_t ftype, hid_t mtype, int rank,
+                               const hsize_t *dims, const void *data, const char *file,
+                               mt_diag *diag)
+{
+    return mt__h5_write_dataset_layout(loc, name, ftype, mtype, rank, dims, data, NULL, file, diag);
 }
 
 /* Opens attribute `name` of obj holding exactly one element; *out_type is
@@ -211,11 +274,14 @@ static const char *kind_name(mt__h5_kind kind, size_t elem_size)
     return "?";
 }
 
-mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
-                              mt__h5_kind kind, size_t elem_size, hid_t mtype, void **out_data,
+/* Opens dataset `name` and checks rank, shape, type, the row limit and
+ * that the stored bytes can back the claimed size. On MT_OK *out_dset is
+ * open (close with H5Dclose) and *out_rows its first dimension. */
+static mt_status open_checked(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
+                              mt__h5_kind kind, size_t elem_size, hid_t *out_dset,
                               uint64_t *out_rows, mt_diag *diag)
 {
-    *out_data = NULL;
+    *out_dset = -1;
     *out_rows = 0;
     if (H5Lexists(loc, name, H5P_DEFAULT) <= 0)
         return mt__archive_fail(diag, MT_ERR_PARSE, "%s: dataset %s is missing", file, name);
@@ -258,13 +324,38 @@ mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int
         uint64_t stored = H5Dget_storage_size(dset);
         int filters = H5Pget_nfilters(dcpl);
         uint64_t backed = filters > 0 ? stored * 1100 + 4096 : stored;
-        size_t msize = H5Tget_size(mtype);
-        if (needed > backed) {
+        if (needed > backed)
             st = mt__archive_fail(diag, MT_ERR_TOO_LARGE,
                                   "%s: dataset %s claims %llu elements but stores only %llu bytes",
                                   file, name, (unsigned long long)elements,
                                   (unsigned long long)stored);
-        } else if (msize == 0 || elements > SIZE_MAX / msize) {
+    }
+    if (dcpl >= 0) H5Pclose(dcpl);
+    if (type >= 0) H5Tclose(type);
+    if (space >= 0) H5Sclose(space);
+    if (st != MT_OK) {
+        if (dset >= 0) H5Dclose(dset);
+        return st;
+    }
+    *out_dset = dset;
+    *out_rows = dims[0];
+    return MT_OK;
+}
+
+mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
+                              mt__h5_kind kind, size_t elem_size, hid_t mtype, void **out_data,
+                              uint64_t *out_rows, mt_diag *diag)
+{
+    *out_data = NULL;
+    *out_rows = 0;
+    hid_t dset;
+    uint64_t rows;
+    mt_status st = open_checked(loc, name, file, rank, cols, kind, elem_size, &dset, &rows, diag);
+    if (st != MT_OK) return st;
+    uint64_t elements = rows * (rank == 2 ? cols : 1);
+    size_t msize = H5Tget_size(mtype);
+    if (elements > 0) {
+        if (msize == 0 || elements > SIZE_MAX / msize) {
             st =
                 mt__archive_fail(diag, MT_ERR_TOO_LARGE, "%s: dataset %s is too large", file, name);
         } else if (!(*out_data = malloc((size_t)elements * msize))) {
@@ -275,14 +366,39 @@ mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int
         }
     }
     if (st == MT_OK) {
-        *out_rows = dims[0];
+        *out_rows = rows;
     } else {
         free(*out_data);
         *out_data = NULL;
     }
-    if (dcpl >= 0) H5Pclose(dcpl);
-    if (type >= 0) H5Tclose(type);
-    if (space >= 0) H5Sclose(space);
-    if (dset >= 0) H5Dclose(dset);
+    H5Dclose(dset);
+    return st;
+}
+
+mt_status mt__h5_dataset_rows(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
+                              mt__h5_kind kind, size_t elem_size, uint64_t *out_rows, mt_diag *diag)
+{
+    hid_t dset;
+    mt_status st =
+        open_checked(loc, name, file, rank, cols, kind, elem_size, &dset, out_rows, diag);
+    if (st == MT_OK) H5Dclose(dset);
+    return st;
+}
+
+mt_status mt__h5_read_dataset_into(hid_t loc, const char *name, const char *file, int rank,
+                                   hsize_t cols, mt__h5_kind kind, size_t elem_size, hid_t mtype,
+                                   void *buf, uint64_t rows, mt_diag *diag)
+{
+    hid_t dset;
+    uint64_t found;
+    mt_status st = open_checked(loc, name, file, rank, cols, kind, elem_size, &dset, &found, diag);
+    if (st != MT_OK) return st;
+    if (found != rows)
+        st = mt__archive_fail(diag, MT_ERR_PARSE,
+                              "%s: dataset %s has %llu rows, the counts say %llu", file, name,
+                              (unsigned long long)found, (unsigned long long)rows);
+    else if (rows > 0 && H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
+        st = mt__archive_fail(diag, MT_ERR_IO, "%s: dataset %s cannot be read", file, name);
+    H5Dclose(dset);
     return st;
 }

@@ -12,6 +12,7 @@
 #include <hdf5.h>
 
 #include "meshtopo/archive.h"
+#include "meshtopo/mesh_parts.h"
 
 struct mt_archive {
     char *dir;
@@ -65,6 +66,33 @@ mt_status mt__h5_write_dataset(hid_t loc, const char *name, hid_t ftype, hid_t m
                                const hsize_t *dims, const void *data, const char *file,
                                mt_diag *diag);
 
+/* How large datasets are stored: contiguous, or chunked with shuffle and
+ * deflate (mt_archive_write_options). */
+typedef struct mt__h5_layout {
+    bool deflate;
+    unsigned level; /* deflate level 1..9; 0 means 1 */
+} mt__h5_layout;
+
+/* Bytes per chunk of a deflated dataset (HDF5's default chunk cache holds
+ * one such chunk per dataset). */
+#define MT__H5_CHUNK_BYTES (1u << 20)
+
+/* mt__h5_write_dataset with a layout (NULL = contiguous). Datasets under
+ * 4 KiB stay contiguous whatever the layout. */
+mt_status mt__h5_write_dataset_layout(hid_t loc, const char *name, hid_t ftype, hid_t mtype,
+                                      int rank, const hsize_t *dims, const void *data,
+                                      const mt__h5_layout *layout, const char *file, mt_diag *diag);
+
+/* Creates a 1-D dataset of `rows` rows with the layout (NULL = contiguous)
+ * for mt__h5_write_rows; -1 (diag filled) on failure. */
+hid_t mt__h5_create_dataset(hid_t loc, const char *name, hid_t ftype, hsize_t rows,
+                            const mt__h5_layout *layout, const char *file, mt_diag *diag);
+
+/* Writes rows first .. first + count of a 1-D dataset from memory of type
+ * mtype. `name` is for the message. */
+mt_status mt__h5_write_rows(hid_t dset, hid_t mtype, hsize_t first, hsize_t count, const void *data,
+                            const char *file, const char *name, mt_diag *diag);
+
 /* Kind of element a read expects: integers of a given size and signedness,
  * floats, or a compound whose members HDF5 matches by name (elem_size is
  * then not checked; a missing member makes the read fail). */
@@ -88,6 +116,18 @@ mt_status mt__h5_read_attr_string(hid_t obj, const char *name, const char *file,
 mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
                               mt__h5_kind kind, size_t elem_size, hid_t mtype, void **out_data,
                               uint64_t *out_rows, mt_diag *diag);
+
+/* The first dimension of a dataset, with the checks of mt__h5_read_dataset
+ * but nothing read. */
+mt_status mt__h5_dataset_rows(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
+                              mt__h5_kind kind, size_t elem_size, uint64_t *out_rows,
+                              mt_diag *diag);
+
+/* Reads a whole dataset into buf, which holds `rows` rows: any other row
+ * count is MT_ERR_PARSE ("has N rows, the counts say M"). */
+mt_status mt__h5_read_dataset_into(hid_t loc, const char *name, const char *file, int rank,
+                                   hsize_t cols, mt__h5_kind kind, size_t elem_size, hid_t mtype,
+                                   void *buf, uint64_t rows, mt_diag *diag);
 
 /* ---- The topology report in a file (archive_report.c) ---- */
 
@@ -131,6 +171,45 @@ mt_status mt__report_read(hid_t group, const char *file, mt_report *out, mt_diag
  * *out_bytes (may be NULL) is its size. */
 mt_status mt__archive_h5_open(const mt_archive *archive, const char *file_name, hid_t *out_file,
                               uint64_t *out_bytes, mt_diag *diag);
+
+/* Opens group `name` of loc; -1 (diag filled: MT_ERR_PARSE) when missing
+ * or unreadable. */
+hid_t mt__archive_group_open(hid_t loc, const char *name, const char *file, mt_diag *diag);
+
+/* Reads the provenance attributes of /meshtopo (group g) into r (mesh_id,
+ * source, version, utime, content_hash, format_version) and checks that
+ * they give file_name. */
+mt_status mt__archive_read_provenance(hid_t g, const char *file_name, mt_archive_record *r,
+                                      mt_diag *diag);
+
+/* Reads and decodes the face list datasets of /meshtopo (group g). */
+mt_status mt__archive_read_faces(hid_t g, const char *file_name, mt_face_list *out, mt_diag *diag);
+
+/* ---- The half-edge arrays in a file (archive_halfedge.c), format 2 ---- */
+
+/* Writes group /meshtopo/halfedge (under g = /meshtopo) from the mesh's
+ * arrays (mt_mesh_get_parts); positions are /meshtopo/positions already. */
+mt_status mt__halfedge_write(hid_t g, const mt_mesh *mesh, const mt__h5_layout *layout,
+                             const char *file, mt_diag *diag);
+
+/* Restores the mesh of /meshtopo/halfedge and /meshtopo/positions (g =
+ * /meshtopo) with `report`: the counts come from the group's attributes
+ * and /meshtopo's num_verts and num_faces, every dataset's length is
+ * checked against them, the arrays are read straight into the pending
+ * mesh (mt_mesh_restore_begin) and mt_mesh_restore_finish validates them.
+ * Messages name the file and the dataset or the invariant broken. */
+mt_status mt__halfedge_restore(hid_t g, const char *file, const mt_report *report,
+                               mt_mesh **out_mesh, mt_diag *diag);
+
+/* Whether two meshes' arrays are identical; otherwise writes the first
+ * difference into buf ("he_next[17]: 4 != 5"). */
+bool mt__parts_equal(const mt_mesh_parts *a, const mt_mesh_parts *b, char *buf, size_t size);
+
+/* The file name of version `version` (0 = the highest archived) of mesh_id
+ * into name (MT_ARCHIVE_FILE_NAME_MAX + 1 bytes); MT_ERR_NOT_FOUND when
+ * there is no such file, MT_ERR_INVALID_ARG for a bad id. */
+mt_status mt__archive_resolve(const mt_archive *archive, const char *mesh_id, uint32_t version,
+                              char *name, mt_diag *diag);
 
 /* Reads what mt_archive_list shows of one file into *e (file_name is set
  * by the caller). */

@@ -41,8 +41,8 @@ mt_status mt__archive_h5_open(const mt_archive *archive, const char *file_name, 
     return st;
 }
 
-/* Opens group `name` of the file; a missing one is a parse error. */
-static hid_t group_open(hid_t loc, const char *name, const char *file, mt_diag *diag)
+/* Opens group `name` of loc; a missing one is a parse error. */
+hid_t mt__archive_group_open(hid_t loc, const char *name, const char *file, mt_diag *diag)
 {
     if (H5Lexists(loc, name, H5P_DEFAULT) <= 0) {
         mt__archive_fail(diag, MT_ERR_PARSE, "%s: group %s is missing", file, name);
@@ -54,17 +54,19 @@ static hid_t group_open(hid_t loc, const char *name, const char *file, mt_diag *
 }
 
 /* Provenance attributes of /meshtopo; checks that they give this file's name. */
-static mt_status read_provenance(hid_t g, const char *file_name, mt_archive_record *r,
-                                 mt_diag *diag)
+mt_status mt__archive_read_provenance(hid_t g, const char *file_name, mt_archive_record *r,
+                                      mt_diag *diag)
 {
     int64_t format_version = 0, utime = 0;
     uint64_t version = 0, hash = 0;
     mt_status st = mt__h5_read_attr_i64(g, "format_version", file_name, &format_version, diag);
-    if (st == MT_OK && format_version != MT_ARCHIVE_FORMAT_VERSION)
+    if (st == MT_OK && (format_version < MT_ARCHIVE_FORMAT_VERSION_MIN ||
+                        format_version > MT_ARCHIVE_FORMAT_VERSION))
         st = mt__archive_fail(diag, MT_ERR_UNSUPPORTED,
                               "%s: attribute meshtopo/format_version is %lld; this meshtopo reads "
-                              "format %d",
-                              file_name, (long long)format_version, MT_ARCHIVE_FORMAT_VERSION);
+                              "formats %d to %d",
+                              file_name, (long long)format_version, MT_ARCHIVE_FORMAT_VERSION_MIN,
+                              MT_ARCHIVE_FORMAT_VERSION);
     if (st == MT_OK)
         st = mt__h5_read_attr_string(g, "mesh_id", file_name, MT_ARCHIVE_ID_MAX, &r->mesh_id, diag);
     if (st == MT_OK) {
@@ -98,7 +100,7 @@ static mt_status read_provenance(hid_t g, const char *file_name, mt_archive_reco
 }
 
 /* The face list datasets of /meshtopo, decoded. */
-static mt_status read_faces(hid_t g, const char *file_name, mt_face_list *out, mt_diag *diag)
+mt_status mt__archive_read_faces(hid_t g, const char *file_name, mt_face_list *out, mt_diag *diag)
 {
     mt_archive_face_arrays a;
     memset(&a, 0, sizeof a);
@@ -153,11 +155,11 @@ mt_status mt_archive_load_file(const mt_archive *archive, const char *file_name,
     memset(&r, 0, sizeof r);
     r.file_name = mt__archive_strdup(file_name);
     if (!r.file_name) st = mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
-    hid_t g = st == MT_OK ? group_open(file, "meshtopo", file_name, diag) : -1;
+    hid_t g = st == MT_OK ? mt__archive_group_open(file, "meshtopo", file_name, diag) : -1;
     if (st == MT_OK && g < 0) st = MT_ERR_PARSE;
-    if (st == MT_OK) st = read_provenance(g, file_name, &r, diag);
-    if (st == MT_OK) st = read_faces(g, file_name, &r.faces, diag);
-    hid_t rg = st == MT_OK ? group_open(g, "report", file_name, diag) : -1;
+    if (st == MT_OK) st = mt__archive_read_provenance(g, file_name, &r, diag);
+    if (st == MT_OK) st = mt__archive_read_faces(g, file_name, &r.faces, diag);
+    hid_t rg = st == MT_OK ? mt__archive_group_open(g, "report", file_name, diag) : -1;
     if (st == MT_OK && rg < 0) st = MT_ERR_PARSE;
     if (st == MT_OK) st = mt__report_read(rg, file_name, &r.report, diag);
     if (st == MT_OK &&
@@ -200,10 +202,10 @@ mt_status mt__archive_read_entry(const mt_archive *archive, const char *file_nam
     memset(&r, 0, sizeof r);
     mt_report rep;
     uint64_t num_defects = 0;
-    hid_t g = group_open(file, "meshtopo", file_name, diag);
+    hid_t g = mt__archive_group_open(file, "meshtopo", file_name, diag);
     if (g < 0) st = MT_ERR_PARSE;
-    if (st == MT_OK) st = read_provenance(g, file_name, &r, diag);
-    hid_t rg = st == MT_OK ? group_open(g, "report", file_name, diag) : -1;
+    if (st == MT_OK) st = mt__archive_read_provenance(g, file_name, &r, diag);
+    hid_t rg = st == MT_OK ? mt__archive_group_open(g, "report", file_name, diag) : -1;
     if (st == MT_OK && rg < 0) st = MT_ERR_PARSE;
     if (st == MT_OK) st = mt__report_read_scalars(rg, file_name, &rep, &num_defects, diag);
     if (rg >= 0) H5Gclose(rg);

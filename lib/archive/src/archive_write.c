@@ -2,7 +2,9 @@
  * (/VTKHDF), the face list exactly as submitted with provenance and the
  * topology report (/meshtopo), all into a temporary file that is flushed,
  * closed, fsynced and then linked into place (see write_durably for why
- * each step is needed). Layout: contiguous datasets, no compression. */
+ * each step is needed), and (format 2) the half-edge arrays
+ * (archive_halfedge.c). Layout: contiguous datasets by default, or chunked
+ * with shuffle + deflate (mt_archive_write_options). */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdatomic.h>
@@ -17,60 +19,120 @@
 /* Distinguishes the temporary files of one process. */
 static atomic_uint tmp_counter;
 
-/* The VTKHDF view of the faces the build kept (rejected faces would make a
- * viewer read out of bounds): arrays in VTKHDF's types. */
+/* The VTKHDF cells are the faces the build kept (rejected faces would make
+ * a viewer read out of bounds), in VTKHDF's types. They are converted and
+ * written in blocks through one small buffer rather than made whole in
+ * memory: a large mesh's cells would be tens of megabytes of fresh memory
+ * to fault in, fill and free on every write. */
+typedef enum cells_column {
+    COLUMN_CONNECTIVITY,
+    COLUMN_OFFSETS,
+    COLUMN_TYPES,
+    COLUMN_FACE_IDS
+} cells_column;
+
+/* Rows per block: 4 MiB of int64, a whole number of 1 MiB chunks for each
+ * column's element size. */
+#define BLOCK_ROWS (1u << 19)
+
 typedef struct vtk_cells {
-    double *points; /* num_verts x 3 */
-    int64_t *connectivity;
-    int64_t *offsets; /* cells + 1 */
-    uint8_t *types;
-    int64_t *face_ids; /* original face id of each cell */
     uint64_t cells, ids;
+    const uint32_t *face_he; /* the mesh's: MT_NONE for a rejected face */
+    const mt_face_list *list;
+    void *buffer; /* BLOCK_ROWS * 8 bytes */
 } vtk_cells;
 
-static void vtk_cells_free(vtk_cells *v)
-{
-    free(v->points);
-    free(v->connectivity);
-    free(v->offsets);
-    free(v->types);
-    free(v->face_ids);
-}
-
-static mt_status vtk_cells_make(const mt_face_list *list, const mt_mesh *mesh, vtk_cells *out,
-                                mt_diag *diag)
+static void vtk_cells_count(const mt_face_list *list, const mt_mesh *mesh, vtk_cells *out)
 {
     memset(out, 0, sizeof *out);
     mt_mesh_view view;
     mt_mesh_get_view(mesh, &view);
+    out->face_he = view.face_he;
+    out->list = list;
     for (uint32_t f = 0; f < list->num_faces; f++)
         if (view.face_he[f] != MT_NONE) {
             out->cells++;
             out->ids += list->face_sizes[f];
         }
-    out->points = calloc(3 * (size_t)list->num_verts + 1, sizeof(double));
-    out->connectivity = malloc((size_t)(out->ids + 1) * sizeof(int64_t));
-    out->offsets = malloc((size_t)(out->cells + 1) * sizeof(int64_t));
-    out->types = malloc((size_t)out->cells + 1);
-    out->face_ids = malloc((size_t)(out->cells + 1) * sizeof(int64_t));
-    if (!out->points || !out->connectivity || !out->offsets || !out->types || !out->face_ids) {
-        vtk_cells_free(out);
-        return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory making the VTKHDF cells");
+}
+
+/* Values of one column gathered in the block buffer and written a block at
+ * a time. */
+typedef struct column_writer {
+    hid_t dset, mtype;
+    bool bytes; /* uint8 values, else int64 */
+    void *buffer;
+    size_t fill, block;
+    uint64_t written;
+    const char *file, *dname;
+    mt_status st;
+} column_writer;
+
+static void column_flush(column_writer *w, mt_diag *diag)
+{
+    if (w->st == MT_OK)
+        w->st = mt__h5_write_rows(w->dset, w->mtype, w->written, w->fill, w->buffer, w->file,
+                                  w->dname, diag);
+    w->written += w->fill;
+    w->fill = 0;
+}
+
+static void column_push(column_writer *w, int64_t value, mt_diag *diag)
+{
+    if (w->bytes)
+        ((uint8_t *)w->buffer)[w->fill++] = (uint8_t)value;
+    else
+        ((int64_t *)w->buffer)[w->fill++] = value;
+    if (w->fill == w->block) column_flush(w, diag);
+}
+
+/* Writes one column of the cells: Connectivity (ids rows), Offsets (cells
+ * + 1), Types (cells, VTK_TRIANGLE 5, VTK_QUAD 9, VTK_POLYGON 7) or the
+ * original face ids (cells). */
+static mt_status write_cells_column(hid_t loc, const char *dname, cells_column column,
+                                    const vtk_cells *v, const mt__h5_layout *layout,
+                                    const char *name, mt_diag *diag)
+{
+    column_writer w;
+    memset(&w, 0, sizeof w);
+    w.bytes = column == COLUMN_TYPES;
+    w.mtype = w.bytes ? H5T_NATIVE_UINT8 : H5T_NATIVE_INT64;
+    w.buffer = v->buffer;
+    w.block = w.bytes ? 8 * (size_t)BLOCK_ROWS : BLOCK_ROWS;
+    w.file = name;
+    w.dname = dname;
+    const uint64_t rows = column == COLUMN_CONNECTIVITY ? v->ids
+                          : column == COLUMN_OFFSETS    ? v->cells + 1
+                                                        : v->cells;
+    w.dset = mt__h5_create_dataset(loc, dname, w.bytes ? H5T_STD_U8LE : H5T_STD_I64LE, rows, layout,
+                                   name, diag);
+    if (w.dset < 0) return MT_ERR_IO;
+    const mt_face_list *list = v->list;
+    uint64_t start = 0, pos = 0;
+    if (column == COLUMN_OFFSETS) column_push(&w, 0, diag);
+    for (uint32_t f = 0; w.st == MT_OK && f < list->num_faces; start += list->face_sizes[f], f++) {
+        if (v->face_he[f] == MT_NONE) continue;
+        const uint32_t n = list->face_sizes[f];
+        switch (column) {
+            case COLUMN_CONNECTIVITY:
+                for (uint32_t k = 0; k < n; k++)
+                    column_push(&w, list->face_indices[start + k], diag);
+                break;
+            case COLUMN_OFFSETS:
+                pos += n;
+                column_push(&w, (int64_t)pos, diag);
+                break;
+            case COLUMN_TYPES:
+                column_push(&w, n == 3 ? 5 : n == 4 ? 9 : 7, diag);
+                break;
+            case COLUMN_FACE_IDS:
+                column_push(&w, f, diag);
+                break;
+        }
     }
-    if (list->positions)
-        memcpy(out->points, list->positions, 3 * (size_t)list->num_verts * sizeof(double));
-    uint64_t cell = 0, pos = 0, start = 0;
-    out->offsets[0] = 0;
-    for (uint32_t f = 0; f < list->num_faces; start += list->face_sizes[f], f++) {
-        if (view.face_he[f] == MT_NONE) continue;
-        uint32_t n = list->face_sizes[f];
-        for (uint32_t k = 0; k < n; k++) out->connectivity[pos + k] = list->face_indices[start + k];
-        pos += n;
-        out->types[cell] = n == 3 ? 5 : n == 4 ? 9 : 7; /* VTK_TRIANGLE, VTK_QUAD, VTK_POLYGON */
-        out->face_ids[cell] = f;
-        out->offsets[++cell] = (int64_t)pos;
-    }
-    return MT_OK;
+    column_flush(&w, diag);
+    H5Dclose(w.dset);
+    return w.st;
 }
 
 static hid_t group_create(hid_t loc, const char *name, const char *file, mt_diag *diag)
@@ -80,38 +142,37 @@ static hid_t group_create(hid_t loc, const char *name, const char *file, mt_diag
     return g;
 }
 
-static mt_status write_vtkhdf(hid_t file, const vtk_cells *v, uint32_t num_verts, const char *name,
-                              mt_diag *diag)
+static mt_status write_vtkhdf(hid_t file, const vtk_cells *v, uint32_t num_verts,
+                              const mt__h5_layout *layout, const char *name, mt_diag *diag)
 {
     hid_t g = group_create(file, "VTKHDF", name, diag);
     if (g < 0) return MT_ERR_IO;
     static const int64_t version[2] = {1, 0};
     int64_t counts[3] = {num_verts, (int64_t)v->cells, (int64_t)v->ids};
-    hsize_t one[1] = {1}, pts[2] = {num_verts, 3}, conn[1] = {v->ids}, offs[1] = {v->cells + 1},
-            cells[1] = {v->cells};
+    hsize_t one[1] = {1}, pts[2] = {num_verts, 3};
     mt_status st = mt__h5_write_attr_ints(g, "Version", H5T_STD_I64LE, version, 2, name, diag);
     if (st == MT_OK) st = mt__h5_write_attr_string(g, "Type", "UnstructuredGrid", name, diag);
     const char *count_names[3] = {"NumberOfPoints", "NumberOfCells", "NumberOfConnectivityIds"};
     for (int i = 0; st == MT_OK && i < 3; i++)
         st = mt__h5_write_dataset(g, count_names[i], H5T_STD_I64LE, H5T_NATIVE_INT64, 1, one,
                                   &counts[i], name, diag);
+    /* Points are the positions (zeros for a mesh without geometry). */
+    double *zeros = NULL;
+    if (st == MT_OK && !v->list->positions &&
+        !(zeros = calloc(3 * (size_t)num_verts + 1, sizeof(double))))
+        st = mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
     if (st == MT_OK)
-        st = mt__h5_write_dataset(g, "Points", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, pts, v->points,
-                                  name, diag);
+        st = mt__h5_write_dataset_layout(g, "Points", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, pts,
+                                         zeros ? zeros : v->list->positions, layout, name, diag);
+    free(zeros);
     if (st == MT_OK)
-        st = mt__h5_write_dataset(g, "Connectivity", H5T_STD_I64LE, H5T_NATIVE_INT64, 1, conn,
-                                  v->connectivity, name, diag);
-    if (st == MT_OK)
-        st = mt__h5_write_dataset(g, "Offsets", H5T_STD_I64LE, H5T_NATIVE_INT64, 1, offs,
-                                  v->offsets, name, diag);
-    if (st == MT_OK)
-        st = mt__h5_write_dataset(g, "Types", H5T_STD_U8LE, H5T_NATIVE_UINT8, 1, cells, v->types,
-                                  name, diag);
+        st = write_cells_column(g, "Connectivity", COLUMN_CONNECTIVITY, v, layout, name, diag);
+    if (st == MT_OK) st = write_cells_column(g, "Offsets", COLUMN_OFFSETS, v, layout, name, diag);
+    if (st == MT_OK) st = write_cells_column(g, "Types", COLUMN_TYPES, v, layout, name, diag);
     hid_t cd = st == MT_OK ? group_create(g, "CellData", name, diag) : -1;
     if (st == MT_OK && cd < 0) st = MT_ERR_IO;
     if (st == MT_OK)
-        st = mt__h5_write_dataset(cd, "original_face_id", H5T_STD_I64LE, H5T_NATIVE_INT64, 1, cells,
-                                  v->face_ids, name, diag);
+        st = write_cells_column(cd, "original_face_id", COLUMN_FACE_IDS, v, layout, name, diag);
     hid_t pd = st == MT_OK ? group_create(g, "PointData", name, diag) : -1;
     if (st == MT_OK && pd < 0) st = MT_ERR_IO;
     if (pd >= 0) H5Gclose(pd);
@@ -121,7 +182,8 @@ static mt_status write_vtkhdf(hid_t file, const vtk_cells *v, uint32_t num_verts
 }
 
 static mt_status write_meshtopo(hid_t file, const mt_archive_meta *meta, const mt_face_list *list,
-                                const mt_mesh *mesh, const char *name, mt_diag *diag)
+                                const mt_mesh *mesh, const mt__h5_layout *layout, const char *name,
+                                mt_diag *diag)
 {
     hid_t g = group_create(file, "meshtopo", name, diag);
     if (g < 0) return MT_ERR_IO;
@@ -132,7 +194,8 @@ static mt_status write_meshtopo(hid_t file, const mt_archive_meta *meta, const m
         g, "description",
         "meshtopo archive of one mesh version: the face list exactly as submitted "
         "(positions, face_vertex_counts, face_vertex_indices; rejected faces included), "
-        "provenance attributes and the build's topology report (group report). /VTKHDF "
+        "provenance attributes, the build's topology report (group report) and the "
+        "half-edge arrays (group halfedge) that a reload restores without a rebuild. /VTKHDF "
         "holds the faces the build kept; its CellData/original_face_id maps cells back.",
         name, diag);
     if (st == MT_OK)
@@ -169,15 +232,16 @@ static mt_status write_meshtopo(hid_t file, const mt_archive_meta *meta, const m
     /* int32 as in mesh_t: the uint32 entries are written with an int32 memory
      * type (same bits, no conversion), so an index read as -1 shows as -1. */
     if (st == MT_OK)
-        st = mt__h5_write_dataset(g, "face_vertex_counts", H5T_STD_I32LE, H5T_NATIVE_INT32, 1,
-                                  counts, list->face_sizes, name, diag);
+        st = mt__h5_write_dataset_layout(g, "face_vertex_counts", H5T_STD_I32LE, H5T_NATIVE_INT32,
+                                         1, counts, list->face_sizes, layout, name, diag);
     if (st == MT_OK)
-        st = mt__h5_write_dataset(g, "face_vertex_indices", H5T_STD_I32LE, H5T_NATIVE_INT32, 1,
-                                  indices, list->face_indices, name, diag);
+        st = mt__h5_write_dataset_layout(g, "face_vertex_indices", H5T_STD_I32LE, H5T_NATIVE_INT32,
+                                         1, indices, list->face_indices, layout, name, diag);
     hid_t rg = st == MT_OK ? group_create(g, "report", name, diag) : -1;
     if (st == MT_OK && rg < 0) st = MT_ERR_IO;
     if (st == MT_OK) st = mt__report_write(rg, mt_mesh_report(mesh), name, diag);
     if (rg >= 0) H5Gclose(rg);
+    if (st == MT_OK) st = mt__halfedge_write(g, mesh, layout, name, diag);
     H5Gclose(g);
     return st;
 }
@@ -211,7 +275,8 @@ static int fsync_path(const char *path, int flags)
  * between 4 and the unlink, both names of one complete file. */
 static mt_status write_durably(const mt_archive *archive, const char *final_name,
                                const mt_archive_meta *meta, const mt_face_list *list,
-                               const mt_mesh *mesh, mt_archive_write_stats *stats, mt_diag *diag)
+                               const mt_mesh *mesh, const mt__h5_layout *layout,
+                               mt_archive_write_stats *stats, mt_diag *diag)
 {
     char tmp_name[64];
     snprintf(tmp_name, sizeof tmp_name, MT__ARCHIVE_TMP_PREFIX "%ld-%u.part", (long)getpid(),
@@ -224,8 +289,10 @@ static mt_status write_durably(const mt_archive *archive, const char *final_name
         return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
     }
     vtk_cells cells;
-    mt_status st = vtk_cells_make(list, mesh, &cells, diag);
     double t0 = mt__archive_now_ms();
+    vtk_cells_count(list, mesh, &cells);
+    cells.buffer = malloc((size_t)BLOCK_ROWS * 8);
+    mt_status st = cells.buffer ? MT_OK : mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
     hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
     hid_t file = -1;
     if (st == MT_OK) {
@@ -233,14 +300,14 @@ static mt_status write_durably(const mt_archive *archive, const char *final_name
         file = fapl < 0 ? -1 : H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
         if (file < 0) st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot create the file", tmp);
     }
-    if (st == MT_OK) st = write_vtkhdf(file, &cells, list->num_verts, tmp, diag);
-    if (st == MT_OK) st = write_meshtopo(file, meta, list, mesh, tmp, diag);
+    if (st == MT_OK) st = write_vtkhdf(file, &cells, list->num_verts, layout, tmp, diag);
+    if (st == MT_OK) st = write_meshtopo(file, meta, list, mesh, layout, tmp, diag);
     if (st == MT_OK && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
         st = mt__archive_fail(diag, MT_ERR_IO, "%s: H5Fflush failed", tmp);
     if (file >= 0 && H5Fclose(file) < 0 && st == MT_OK)
         st = mt__archive_fail(diag, MT_ERR_IO, "%s: H5Fclose failed", tmp);
     if (fapl >= 0) H5Pclose(fapl);
-    vtk_cells_free(&cells);
+    free(cells.buffer);
     double t1 = mt__archive_now_ms();
     if (st == MT_OK && fsync_path(tmp, 0) != 0)
         st = mt__archive_fail(diag, MT_ERR_IO, "%s: fsync failed: %s", tmp, strerror(errno));
@@ -273,11 +340,29 @@ mt_status mt_archive_write(mt_archive *archive, const mt_archive_meta *meta,
                            const mt_face_list *list, const mt_mesh *mesh,
                            mt_archive_write_stats *out_stats, mt_diag *diag)
 {
+    return mt_archive_write_with(archive, meta, list, mesh, NULL, out_stats, diag);
+}
+
+mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta,
+                                const mt_face_list *list, const mt_mesh *mesh,
+                                const mt_archive_write_options *options,
+                                mt_archive_write_stats *out_stats, mt_diag *diag)
+{
     mt_diag_clear(diag);
     mt__h5_quiet();
     if (out_stats) memset(out_stats, 0, sizeof *out_stats);
     if (!archive || !meta || !list || !mesh)
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_write: NULL argument");
+    mt__h5_layout layout = {false, 1};
+    if (options) {
+        if ((unsigned)options->compression > (unsigned)MT_ARCHIVE_COMPRESSION_DEFLATE ||
+            options->deflate_level > 9)
+            return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
+                                    "mt_archive_write: unknown compression %d or deflate level %u",
+                                    (int)options->compression, options->deflate_level);
+        layout.deflate = options->compression == MT_ARCHIVE_COMPRESSION_DEFLATE;
+        layout.level = options->deflate_level ? options->deflate_level : 1;
+    }
     if (archive->read_only)
         return mt__archive_fail(diag, MT_ERR_UNSUPPORTED, "%s: archive opened read-only",
                                 archive->dir);
@@ -300,5 +385,5 @@ mt_status mt_archive_write(mt_archive *archive, const mt_archive_meta *meta,
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
                                 "%s/%s: version %u of mesh '%s' is already archived", archive->dir,
                                 name, meta->version, meta->mesh_id);
-    return write_durably(archive, name, meta, list, mesh, out_stats, diag);
+    return write_durably(archive, name, meta, list, mesh, &layout, out_stats, diag);
 }

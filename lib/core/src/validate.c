@@ -138,7 +138,9 @@ static mt_status check_ranges(const mt_mesh *m, mt_diag *diag)
             return mt__fail(diag, MT_ERR_CORRUPT, 0, "bundle 0 starts at %u, not 0",
                             m->bundle_offsets[0]);
         for (uint32_t b = 0; b < m->num_bundles; b++)
-            if (m->bundle_offsets[b + 1] < m->bundle_offsets[b] + 2)
+            /* Written as a difference: offsets[b] + 2 could wrap around. */
+            if (m->bundle_offsets[b + 1] < m->bundle_offsets[b] ||
+                m->bundle_offsets[b + 1] - m->bundle_offsets[b] < 2)
                 return mt__fail(diag, MT_ERR_CORRUPT, b,
                                 "bundle %u: offsets %u..%u hold fewer than 2 edges", b,
                                 m->bundle_offsets[b], m->bundle_offsets[b + 1]);

@@ -2,7 +2,8 @@
  * mesh version, written crash-safely (temporary name, flush, fsync, rename,
  * directory fsync). Each file is a VTKHDF 1.0 UnstructuredGrid (VTK 9.1's
  * vtkHDFReader and ParaView open it) plus a /meshtopo group holding the face
- * list exactly as submitted, provenance and the build's topology report.
+ * list exactly as submitted, provenance, the build's topology report and
+ * (format 2) the half-edge arrays, so that a reload skips the rebuild.
  * Every value read back from a file is checked before use. */
 #ifndef MESHTOPO_ARCHIVE_H
 #define MESHTOPO_ARCHIVE_H
@@ -20,8 +21,14 @@
 extern "C" {
 #endif
 
-/* Version of the /meshtopo group's layout (attribute format_version). */
-#define MT_ARCHIVE_FORMAT_VERSION 1
+/* Version of the /meshtopo group's layout (attribute format_version)
+ * written by this meshtopo. 2 added /meshtopo/halfedge (the half-edge
+ * arrays); files of version 1 lack it and still load, by a rebuild from
+ * their face list. */
+#define MT_ARCHIVE_FORMAT_VERSION 2
+
+/* Oldest format version read. */
+#define MT_ARCHIVE_FORMAT_VERSION_MIN 1
 
 /* Longest mesh id in bytes (the daemon's limit). */
 #define MT_ARCHIVE_ID_MAX 255
@@ -105,6 +112,35 @@ mt_status mt_archive_write(mt_archive *archive, const mt_archive_meta *meta,
                            const mt_face_list *list, const mt_mesh *mesh,
                            mt_archive_write_stats *out_stats, mt_diag *diag);
 
+/* How mt_archive_write_with stores the large datasets. */
+typedef enum mt_archive_compression {
+    /* The default: contiguous, uncompressed. Measured on 1M-triangle grids
+     * (meshtopo-bench archive, 111 MB per file), shuffle + deflate level 1
+     * makes a scan-like mesh's file 2.2x smaller (a generated grid's 73x)
+     * but its write 3x (grid) to 13x (scan-like) slower and its reload
+     * slower too; an archive write sits before the acknowledgement of a
+     * submission and a reload before the first query. */
+    MT_ARCHIVE_COMPRESSION_DEFAULT = 0,
+    MT_ARCHIVE_COMPRESSION_NONE,    /* contiguous datasets, no filters */
+    MT_ARCHIVE_COMPRESSION_DEFLATE, /* 1 MiB chunks, shuffle + deflate */
+} mt_archive_compression;
+
+/* Options for mt_archive_write_with; a zeroed struct (or NULL) gives the
+ * defaults. */
+typedef struct mt_archive_write_options {
+    mt_archive_compression compression;
+    /* Deflate level 1..9 with MT_ARCHIVE_COMPRESSION_DEFLATE; 0 means 1. */
+    uint32_t deflate_level;
+} mt_archive_write_options;
+
+/* mt_archive_write with options (NULL = defaults). Datasets under 4 KiB
+ * are stored contiguously whatever the compression. MT_ERR_INVALID_ARG for
+ * an unknown compression or a level above 9. */
+mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta,
+                                const mt_face_list *list, const mt_mesh *mesh,
+                                const mt_archive_write_options *options,
+                                mt_archive_write_stats *out_stats, mt_diag *diag);
+
 /* Whether version `version` of mesh_id has a file in the archive. */
 bool mt_archive_contains(const mt_archive *archive, const char *mesh_id, uint32_t version);
 
@@ -175,14 +211,50 @@ mt_status mt_archive_load_file(const mt_archive *archive, const char *file_name,
 /* Frees a record and zeroes it. NULL-safe. */
 void mt_archive_record_free(mt_archive_record *record);
 
-/* Rebuilds the half-edge mesh of a record from its stored face list (the
- * archive keeps no half-edge arrays; a build is linear time), validates it
- * and compares its report with the stored one. On MT_OK *out_mesh is the
+/* Rebuilds the half-edge mesh of a record from its stored face list,
+ * validates it and compares its report with the stored one (what
+ * mt_archive_load_mesh falls back to; verify checks every file this way). On MT_OK *out_mesh is the
  * mesh (free with mt_mesh_destroy). MT_ERR_CORRUPT when the reports differ
  * (diag names the first differing field) or validation fails; build errors
  * as mt_mesh_build. out_mesh may be NULL to check only. */
 mt_status mt_archive_record_build(const mt_archive_record *record, mt_mesh **out_mesh,
                                   mt_diag *diag);
+
+/* How mt_archive_load_mesh made its mesh. */
+typedef struct mt_archive_load_info {
+    /* true: restored from /meshtopo/halfedge without a rebuild; false:
+     * rebuilt from the face list (a version 1 file, or stored arrays that
+     * failed to read or validate). */
+    bool restored;
+    /* Why the stored arrays were not used, naming the file and the problem
+     * (status MT_OK when restored or when the file predates them). */
+    mt_diag fallback;
+    double read_ms; /* HDF5 reads of attributes, report and face list */
+    double mesh_ms; /* arrays read into the mesh and validated, or the rebuild */
+} mt_archive_load_info;
+
+/* Reloads one archived version as a queryable mesh: reads provenance, the
+ * stored report and, in a format 2 file, the half-edge arrays and
+ * positions, and makes the mesh with mt_mesh_restore (which validates the
+ * untrusted arrays) instead of rebuilding it. When a version 1 file has no
+ * arrays, or the arrays cannot be read or fail validation, it falls back to
+ * mt_archive_record_build (a rebuild from the face list compared with the
+ * stored report) and says why in out_info->fallback; only if that fails too
+ * does the call fail (its status, with diag naming the file and both
+ * problems). with_faces also reads the face list into out_record->faces
+ * (otherwise left empty unless the fallback needed it). out_record may be
+ * NULL; otherwise it is filled as mt_archive_load_file fills it (free with
+ * mt_archive_record_free). On MT_OK *out_mesh is the mesh (mt_mesh_destroy);
+ * on failure it is NULL and out_record is zeroed. out_info may be NULL. */
+mt_status mt_archive_load_mesh(const mt_archive *archive, const char *mesh_id, uint32_t version,
+                               bool with_faces, mt_archive_record *out_record, mt_mesh **out_mesh,
+                               mt_archive_load_info *out_info, mt_diag *diag);
+
+/* The same for one file of the archive directory, by name. */
+mt_status mt_archive_load_mesh_file(const mt_archive *archive, const char *file_name,
+                                    bool with_faces, mt_archive_record *out_record,
+                                    mt_mesh **out_mesh, mt_archive_load_info *out_info,
+                                    mt_diag *diag);
 
 /* Compares two reports field by field. Returns true when equal; otherwise
  * writes the first difference ("boundary_loops: 2 != 3") into buf. */
@@ -201,7 +273,8 @@ typedef mt_status (*mt_archive_hash_fn)(void *ctx, const mt_face_list *faces, ui
 /* Verifies one file of the archive: readable, every shape and type right,
  * the name matching its mesh id and version, the VTKHDF datasets agreeing
  * with the stored face list, the content hash matching (when hash is not
- * NULL), and a rebuild giving the stored report. MT_OK or the first
+ * NULL), a rebuild giving the stored report, and (format 2) the stored
+ * half-edge arrays restoring, validating and equal to the rebuild's. MT_OK or the first
  * problem's status with diag naming the file and the problem. */
 mt_status mt_archive_verify_file(const mt_archive *archive, const char *file_name,
                                  mt_archive_hash_fn hash, void *hash_ctx, mt_diag *diag);

@@ -7,6 +7,7 @@
 #include "meshtopo/generate.h"
 #include "meshtopo/geometry.h"
 #include "meshtopo/mesh.h"
+#include "meshtopo/mesh_parts.h"
 #include "meshtopo/query.h"
 #include "meshtopo/report.h"
 #include "meshtopo/status.h"
