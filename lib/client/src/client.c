@@ -2,7 +2,10 @@
  * pending requests and the thread that handles LCM (lcm_get_fileno + poll),
  * resends a request whose attempt timed out (same request id) and completes
  * it after the last attempt. Replies are decoded only with mt_msgs_decode;
- * anything else on the reply channel is counted and dropped. */
+ * anything else on the reply channel is counted and dropped. A large answer
+ * arrives as reply_part_t pieces: reassembled here (reply_parts.c), its next
+ * windows and lost parts pulled with reply_pull_t, the query itself sent
+ * again only when the daemon stays silent for a whole timeout. */
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -14,12 +17,20 @@
 #include <unistd.h>
 
 #include "client_internal.h"
+#include "meshtopo/answer_hash.h"
 
 /* LCM keeps at most this many undelivered messages per subscription (30 by
  * default); replies to many asynchronous queries may arrive together. */
 #define MT__REPLY_QUEUE_CAPACITY 10000
 /* Retries published per pass of the client thread (the rest go next pass). */
 #define MT__MAX_DUE_PER_PASS 64
+/* Parts the daemon sends with a large answer before the first pull
+ * (msgs/reply_part_t.lcm). */
+#define MT__FIRST_PARTS 16
+/* Silence after a part before the missing ones are pulled again. */
+#define MT__PARTS_QUIET_MS 30
+/* Ranges listed in one reply_pull_t at most (msgs/reply_pull_t.lcm). */
+#define MT__PULL_RANGES_MAX 1024
 
 /* ---- Small helpers ------------------------------------------------------ */
 
@@ -129,6 +140,48 @@ static mt__pending *table_take(mt_client *client, int64_t request_id)
     return NULL;
 }
 
+/* Releases a request's partly received answer (mutex held). */
+static void drop_parts(mt_client *client, mt__pending *p)
+{
+    if (!p->parts) return;
+    client->parts_bytes -= p->parts->total;
+    mt__parts_free(p->parts);
+    p->parts = NULL;
+}
+
+/* A reply_pull_t asking for the next window of p's missing parts (mutex
+ * held); NULL when out of memory or nothing is missing. */
+static mt__msgbuf *pull_locked(mt_client *client, mt__pending *p)
+{
+    int64_t offsets[MT__PULL_RANGES_MAX], lengths[MT__PULL_RANGES_MAX];
+    size_t num_parts = 0;
+    size_t n = mt__parts_missing(p->parts, (size_t)client->window_chunks, MT__PULL_RANGES_MAX,
+                                 offsets, lengths, &num_parts);
+    if (n == 0) return NULL;
+    meshtopo_reply_pull_t pull;
+    memset(&pull, 0, sizeof pull);
+    pull.utime = mt__client_utime();
+    pull.request_id = p->request_id;
+    pull.reply_channel = client->reply_channel;
+    pull.total_size = (int64_t)p->parts->total;
+    pull.answer_hash = (int64_t)p->parts->hash;
+    pull.num_ranges = (int32_t)n;
+    pull.offsets = offsets;
+    pull.lengths = lengths;
+    int size = meshtopo_reply_pull_t_encoded_size(&pull);
+    mt__msgbuf *buf = mt__msgbuf_new(size);
+    if (!buf) return NULL;
+    if (meshtopo_reply_pull_t_encode(buf->data, 0, size, &pull) != size) {
+        mt__msgbuf_release(buf);
+        return NULL;
+    }
+    p->parts->window_parts = num_parts;
+    p->parts->window_have = 0;
+    client->stats.reply_pulls++;
+    client->stats.attempts++;
+    return buf;
+}
+
 /* Frees an asynchronous request that is out of the table. */
 static void pending_free(mt__pending *p)
 {
@@ -223,6 +276,24 @@ static void run_deadlines(mt_client *client)
         mt__pending **link = &client->buckets[b];
         while (*link) {
             mt__pending *p = *link;
+            if (p->parts && p->deadline_us <= now && num_due < MT__MAX_DUE_PER_PASS) {
+                if (now - p->parts->last_us < (int64_t)client->timeout_ms * 1000) {
+                    /* Parts stopped coming: pull what is missing again. */
+                    p->deadline_us = now + MT__PARTS_QUIET_MS * 1000;
+                    mt__msgbuf *pull = pull_locked(client, p);
+                    if (pull) {
+                        due[num_due].channel = client->query_channel;
+                        due[num_due].buf = pull;
+                        num_due++;
+                    }
+                    if (p->deadline_us < next) next = p->deadline_us;
+                    link = &p->next;
+                    continue;
+                }
+                /* Silent for a whole timeout (the daemon lost the answer?):
+                 * start over with the query itself. */
+                drop_parts(client, p);
+            }
             if (p->deadline_us <= now && p->attempts_left > 0 && num_due < MT__MAX_DUE_PER_PASS) {
                 p->attempts_left--;
                 p->deadline_us = now + (int64_t)client->timeout_ms * 1000;
@@ -236,6 +307,7 @@ static void run_deadlines(mt_client *client)
                 p->next = NULL;
                 client->num_pending--;
                 client->stats.timeouts++;
+                drop_parts(client, p);
                 p->status = mt__client_fail(
                     &p->diag, MT_ERR_IO,
                     "timeout: no reply to request %lld on %s after %d attempt%s of %d ms",
@@ -288,6 +360,7 @@ static void on_transfer_status(mt_client *client, meshtopo_mesh_transfer_t *msg)
     client->stats.replies++;
     if (msg->status != MESHTOPO_STATUS_CODE_T_OK) {
         table_take(client, p->request_id);
+        drop_parts(client, p);
         p->status = mt_client_status_of_code(msg->status);
         mt__client_fail(&p->diag, p->status, "%s: %s", mt_client_code_name(msg->status),
                         msg->error && msg->error[0] ? msg->error : "(no error text)");
@@ -313,15 +386,20 @@ static void on_transfer_status(mt_client *client, meshtopo_mesh_transfer_t *msg)
     pthread_mutex_unlock(&client->mutex);
 }
 
-/* The reply channel's handler: decode, match by request id, complete. */
-static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+static void on_part(mt_client *client, const void *data, size_t size);
+
+/* An answer received whole or reassembled: decode, match by request id,
+ * complete. */
+static void handle_answer(mt_client *client, const void *data, size_t size)
 {
-    mt_client *client = user;
-    size_t size = rbuf->data_size;
-    const mt_msgs_type *type = mt_msgs_type_of(rbuf->data, size);
+    const mt_msgs_type *type = mt_msgs_type_of(data, size);
+    if (type == &mt_msgs_type_reply_part) {
+        on_part(client, data, size);
+        return;
+    }
     if (type == &mt_msgs_type_mesh_transfer) {
         meshtopo_mesh_transfer_t msg;
-        if (mt_msgs_decode(type, rbuf->data, size, &msg, NULL, 0) != 0) {
+        if (mt_msgs_decode(type, data, size, &msg, NULL, 0) != 0) {
             pthread_mutex_lock(&client->mutex);
             client->stats.undecodable++;
             pthread_mutex_unlock(&client->mutex);
@@ -334,7 +412,7 @@ static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user
     mt__answer answer;
     char error[MT_MSGS_ERROR_SIZE];
     if ((type != &mt_msgs_type_reply && type != &mt_msgs_type_ack) ||
-        mt_msgs_decode(type, rbuf->data, size, &answer, error, sizeof error) != 0) {
+        mt_msgs_decode(type, data, size, &answer, error, sizeof error) != 0) {
         pthread_mutex_lock(&client->mutex);
         client->stats.undecodable++;
         pthread_mutex_unlock(&client->mutex);
@@ -358,6 +436,7 @@ static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user
         return;
     }
     client->stats.replies++;
+    drop_parts(client, p);
     p->answer = answer;
     p->has_answer = 1;
     p->status = mt_client_status_of_code(code);
@@ -369,6 +448,121 @@ static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user
     p = complete_locked(p);
     pthread_mutex_unlock(&client->mutex);
     if (p) call_back(p);
+}
+
+/* One reply_part_t: kept in its request's reassembly; the next window is
+ * pulled once the last one is in; a complete answer whose hash matches is
+ * handled like one received whole, one that does not is dropped and its
+ * query sent again. */
+static void on_part(mt_client *client, const void *data, size_t size)
+{
+    meshtopo_reply_part_t part;
+    if (mt_msgs_decode(&mt_msgs_type_reply_part, data, size, &part, NULL, 0) != 0) {
+        pthread_mutex_lock(&client->mutex);
+        client->stats.undecodable++;
+        pthread_mutex_unlock(&client->mutex);
+        return;
+    }
+    mt__msgbuf *send = NULL;
+    const char *send_channel = NULL;
+    uint8_t *answer = NULL;
+    size_t answer_size = 0;
+    mt__pending *failed = NULL;
+    int wake = 0;
+    int64_t now = mt__client_now_us();
+
+    pthread_mutex_lock(&client->mutex);
+    mt__pending *p = table_find(client, part.request_id);
+    if (!p) {
+        client->stats.unknown_replies++;
+        goto out;
+    }
+    if (!p->parts) {
+        mt__parts *parts = NULL;
+        /* The cap is checked before anything is allocated. */
+        mt_status s = part.total_size > 0 && (uint64_t)part.total_size >
+                                                 client->max_reply_bytes - client->parts_bytes
+                          ? MT_ERR_TOO_LARGE
+                          : mt__parts_create(&part, &parts);
+        if (s == MT_ERR_INVALID_ARG) {
+            client->stats.bad_parts++;
+            goto out;
+        }
+        if (s != MT_OK) {
+            table_take(client, p->request_id);
+            p->status = mt__client_fail(
+                &p->diag, s,
+                s == MT_ERR_TOO_LARGE
+                    ? "answer to request %lld is %lld bytes in parts: with the %llu bytes other "
+                      "partly received answers hold that exceeds max_reply_bytes (%llu)"
+                    : "answer to request %lld is %lld bytes in parts: no memory to reassemble "
+                      "it (%llu bytes held by others, limit %llu)",
+                (long long)p->request_id, (long long)part.total_size,
+                (unsigned long long)client->parts_bytes,
+                (unsigned long long)client->max_reply_bytes);
+            mt__parts_free(parts);
+            failed = complete_locked(p);
+            goto out;
+        }
+        p->parts = parts;
+        client->parts_bytes += parts->total;
+        parts->window_parts =
+            parts->num_parts < MT__FIRST_PARTS ? parts->num_parts : MT__FIRST_PARTS;
+    }
+    mt__part_result r = mt__parts_add(p->parts, &part);
+    if (r == MT__PART_OTHER || r == MT__PART_BAD) client->stats.bad_parts++;
+    if (r != MT__PART_ADDED) goto out;
+    client->stats.reply_parts++;
+    mt__parts *parts = p->parts;
+    parts->last_us = now;
+    parts->window_have++;
+    /* The daemon is alive: attempts start afresh, the quiet timer runs. */
+    p->attempts_left = client->attempts - 1;
+    p->deadline_us = now + MT__PARTS_QUIET_MS * 1000;
+    if (p->deadline_us < client->next_deadline_us) {
+        client->next_deadline_us = p->deadline_us;
+        wake = 1;
+    }
+    if (mt__parts_complete(parts)) {
+        const mt_msgs_type *type = mt_msgs_type_of(parts->data, (size_t)parts->total);
+        if (mt_msgs_answer_hash(parts->data, (size_t)parts->total) == parts->hash &&
+            (type == &mt_msgs_type_reply || type == &mt_msgs_type_ack)) {
+            answer = parts->data;
+            answer_size = (size_t)parts->total;
+            parts->data = NULL;
+            drop_parts(client, p);
+        } else { /* not the answer announced: start over */
+            client->stats.bad_parts++;
+            drop_parts(client, p);
+            send = p->buf;
+            send_channel = p->channel;
+            atomic_fetch_add(&send->refs, 1);
+            client->stats.attempts++;
+        }
+    } else if (parts->window_have >= parts->window_parts) {
+        send = pull_locked(client, p);
+        send_channel = client->query_channel;
+    }
+out:
+    pthread_mutex_unlock(&client->mutex);
+    meshtopo_reply_part_t_decode_cleanup(&part);
+    if (wake) wake_thread(client);
+    if (send) {
+        publish(client, send_channel, send);
+        mt__msgbuf_release(send);
+    }
+    if (failed) call_back(failed);
+    if (answer) {
+        handle_answer(client, answer, answer_size);
+        free(answer);
+    }
+}
+
+/* The reply channel's handler. */
+static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    handle_answer(user, rbuf->data, rbuf->data_size);
 }
 
 static void *client_thread(void *arg)
@@ -485,6 +679,8 @@ mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_di
         opts->window_chunks ? opts->window_chunks : MT_CLIENT_DEFAULT_WINDOW_CHUNKS;
     client->progress = opts->progress;
     client->progress_user = opts->progress_user;
+    client->max_reply_bytes =
+        opts->max_reply_bytes ? opts->max_reply_bytes : MT_CLIENT_DEFAULT_MAX_REPLY_BYTES;
     client->next_deadline_us = INT64_MAX;
     /* Ids start at a random point so a restarted node reusing a channel name
      * does not repeat recent ones; they stay positive. */
@@ -556,6 +752,7 @@ void mt_client_destroy(mt_client *client)
         while (client->buckets[b]) {
             mt__pending *p = client->buckets[b];
             client->buckets[b] = p->next;
+            drop_parts(client, p);
             p->status = mt__client_fail(&p->diag, MT_ERR_IO,
                                         "client destroyed before request %lld was answered",
                                         (long long)p->request_id);

@@ -35,6 +35,24 @@ typedef struct mt__transfer {
     int64_t missing_lengths[MT__TRANSFER_GAPS_MAX];
 } mt__transfer;
 
+/* A large answer being reassembled from reply_part_t pieces (reply_parts.c). */
+typedef struct mt__parts {
+    uint64_t total, hash; /* of the answer, from its first part */
+    uint32_t part_size;
+    size_t num_parts, num_have;
+    uint8_t *have;                    /* per part */
+    uint8_t *data;                    /* total bytes */
+    int64_t last_us;                  /* monotonic time of the last new part */
+    size_t window_parts, window_have; /* parts asked for by the last pull, and of them arrived */
+} mt__parts;
+
+typedef enum mt__part_result {
+    MT__PART_ADDED,
+    MT__PART_DUPLICATE,
+    MT__PART_OTHER, /* another answer: total_size, answer_hash or part_size differ */
+    MT__PART_BAD    /* offset or length break the layout */
+} mt__part_result;
+
 typedef struct mt__pending {
     int64_t request_id;
     struct mt__pending *next;     /* in its bucket of the table */
@@ -54,6 +72,8 @@ typedef struct mt__pending {
 
     /* A chunked submission: statuses land here and signal cond. */
     mt__transfer *transfer;
+    /* A large answer arriving in parts (NULL until its first part). */
+    mt__parts *parts;
 
     /* Synchronous: the waiter sleeps on cond. Asynchronous: callback != NULL. */
     pthread_cond_t cond;
@@ -78,6 +98,8 @@ struct mt_client {
     int window_chunks; /* chunks sent per status round trip */
     mt_client_progress_fn progress;
     void *progress_user;
+    uint64_t max_reply_bytes; /* held by partly received answers, all together */
+    uint64_t parts_bytes;     /* held now */
 
     pthread_t thread;
     int thread_started;
@@ -127,6 +149,19 @@ mt_status mt__client_start(mt_client *client, mt__pending *p);
 mt_status mt__client_submit_chunked(mt_client *client, const meshtopo_mesh_t *m,
                                     const uint8_t *encoded, size_t size, size_t tail,
                                     uint64_t content_hash, mt__pending *p, mt_diag *diag);
+
+/* Reassembly of large answers (reply_parts.c). mt__parts_create checks the
+ * first part's header (MT_ERR_INVALID_ARG when it is impossible) and
+ * allocates total_size bytes (MT_ERR_NOMEM); it does not add the part. */
+mt_status mt__parts_create(const meshtopo_reply_part_t *part, mt__parts **out_parts);
+void mt__parts_free(mt__parts *parts);
+mt__part_result mt__parts_add(mt__parts *parts, const meshtopo_reply_part_t *part);
+int mt__parts_complete(const mt__parts *parts);
+/* The first missing parts (at most max_parts), as at most max_ranges merged
+ * byte ranges into out_offsets / out_lengths. Returns the number of ranges;
+ * *out_num_parts (may be NULL) gets the number of parts they cover. */
+size_t mt__parts_missing(const mt__parts *parts, size_t max_parts, size_t max_ranges,
+                         int64_t *out_offsets, int64_t *out_lengths, size_t *out_num_parts);
 
 /* Waits until the synchronous request p completes (it is then out of the
  * table) and releases its buffer. */

@@ -37,6 +37,9 @@ typedef struct mt_client mt_client;
 #define MT_CLIENT_MAX_CHUNK_BYTES 59000
 /* Chunks sent before waiting for the daemon's transfer status. */
 #define MT_CLIENT_DEFAULT_WINDOW_CHUNKS 16
+/* Bytes all partly received large answers (reply_part_t pieces) may hold
+ * together, by default. */
+#define MT_CLIENT_DEFAULT_MAX_REPLY_BYTES (256u << 20)
 
 /* Progress of a chunked submission: bytes of the mesh's content the daemon
  * has confirmed, of `total`. Called on the submitting thread, after each
@@ -78,6 +81,12 @@ typedef struct mt_client_options {
     /* Called with the progress of chunked submissions; NULL = none. */
     mt_client_progress_fn progress;
     void *progress_user;
+    /* Large answers arrive as reply_part_t pieces (msgs/reply_part_t.lcm),
+     * reassembled here and pulled a window (window_chunks parts) at a time:
+     * the bytes all partly received answers may hold together; 0 =
+     * MT_CLIENT_DEFAULT_MAX_REPLY_BYTES. An answer that does not fit fails its
+     * call with MT_ERR_TOO_LARGE. */
+    uint64_t max_reply_bytes;
 } mt_client_options;
 
 /* Counters of one client (mt_client_get_stats). */
@@ -89,6 +98,9 @@ typedef struct mt_client_stats {
     uint64_t unknown_replies; /* well-formed replies for no waiting request */
     uint64_t undecodable;     /* bytes on the reply channel that did not decode */
     uint64_t publish_errors;  /* lcm_publish failures (the attempt then times out) */
+    uint64_t reply_parts;     /* reply_part_t pieces kept (duplicates not counted) */
+    uint64_t bad_parts;       /* pieces refused: layout broken, another answer, bad hash */
+    uint64_t reply_pulls;     /* reply_pull_t sent (next windows and lost parts) */
 } mt_client_stats;
 
 /* Creates a client: its own lcm_t (or opts->lcm), a private reply channel
@@ -179,6 +191,8 @@ mt_status mt_client_submit(mt_client *client, const char *mesh_id, const mt_face
 /* Sends one query (kind: MESHTOPO_QUERY_T_VERTEX_RING, ...; version 0 = the
  * latest) with a batch of element ids and waits for the reply. ids may be
  * NULL when num_ids is 0; ids are sent as the int32 of the same bits.
+ * A reply too large for one datagram arrives in parts that the client pulls,
+ * recovers when lost and reassembles (any size up to max_reply_bytes).
  * out_reply is always initialised: filled whenever a reply arrived (even with
  * an error status), zeroed otherwise; release it with mt_client_reply_free. */
 mt_status mt_client_query(mt_client *client, const char *mesh_id, int32_t version, int32_t kind,
