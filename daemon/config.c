@@ -15,7 +15,9 @@ typedef enum setting_kind {
     KIND_CHANNEL,
     KIND_U32,
     KIND_BYTES,
-    KIND_LEVEL
+    KIND_LEVEL,
+    KIND_ARCHIVE_MODE,
+    KIND_SWITCH /* a flag without a value (--preload); its variable takes 1/0, yes/no */
 } setting_kind;
 
 typedef struct setting {
@@ -59,6 +61,17 @@ static const setting settings[] = {
      10, 3600000, "a chunked submission without a chunk for this long is dropped"},
     {"log-level", "MESHTOPOD_LOG_LEVEL", KIND_LEVEL, FIELD(log_level), 0, 0,
      "error, warn, info or debug"},
+    {"archive", "MESHTOPOD_ARCHIVE", KIND_TEXT, TEXT_FIELD(archive_dir), 0, 0,
+     "directory archiving every built mesh (HDF5), served again after a restart"},
+    {"archive-mode", "MESHTOPOD_ARCHIVE_MODE", KIND_ARCHIVE_MODE, FIELD(archive_mode), 0, 0,
+     "sync (archived before the ack), async (after it) or off (write nothing)"},
+    {"archive-queue", "MESHTOPOD_ARCHIVE_QUEUE", KIND_U32, FIELD(archive_queue), 1, 1u << 20,
+     "meshes waiting for the async writer; builds wait for room beyond it"},
+    {"preload", "MESHTOPOD_PRELOAD", KIND_SWITCH, FIELD(preload), 0, 1,
+     "load every archived mesh at start (default: on its first query)"},
+    {"memory-budget", "MESHTOPOD_MEMORY_BUDGET", KIND_BYTES, FIELD(memory_budget), 0, UINT64_MAX,
+     "memory for meshes: least recently queried archived ones beyond it are dropped and "
+     "reloaded on demand, 0 = none (k, M, G)"},
 };
 
 #define NUM_SETTINGS (sizeof settings / sizeof settings[0])
@@ -77,6 +90,15 @@ static void set_defaults(mtd_config *c)
     c->max_transfer_bytes = 1ull << 30;
     c->transfer_timeout_ms = 10000;
     c->log_level = MTD_LOG_INFO;
+    c->archive_mode = MTD_ARCHIVE_SYNC;
+    c->archive_queue = 256;
+}
+
+static const char *const archive_mode_names[] = {"sync", "async", "off"};
+
+const char *mtd_archive_mode_name(mtd_archive_mode mode)
+{
+    return (unsigned)mode < 3 ? archive_mode_names[mode] : "?";
 }
 
 /* Fills diag with "ORIGIN 'VALUE': problem" and returns MT_ERR_INVALID_ARG. */
@@ -154,6 +176,22 @@ static mt_status apply(const setting *s, const char *value, const char *origin, 
             if (mtd_log_level_parse(value, (mtd_log_level *)(void *)field) != MT_OK)
                 return fail(diag, origin, value, "expected error, warn, info or debug");
             return MT_OK;
+        case KIND_ARCHIVE_MODE:
+            for (int m = 0; m < 3; m++)
+                if (strcmp(value, archive_mode_names[m]) == 0) {
+                    *(mtd_archive_mode *)(void *)field = (mtd_archive_mode)m;
+                    return MT_OK;
+                }
+            return fail(diag, origin, value, "expected sync, async or off");
+        case KIND_SWITCH:
+            if (strcmp(value, "1") == 0 || strcmp(value, "yes") == 0 || strcmp(value, "true") == 0)
+                *(uint32_t *)(void *)field = 1;
+            else if (strcmp(value, "0") == 0 || strcmp(value, "no") == 0 ||
+                     strcmp(value, "false") == 0)
+                *(uint32_t *)(void *)field = 0;
+            else
+                return fail(diag, origin, value, "expected 1, 0, yes, no, true or false");
+            return MT_OK;
         case KIND_U32:
         case KIND_BYTES:
             if (!parse_count(value, s->kind == KIND_BYTES, &n))
@@ -210,6 +248,7 @@ mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_ac
         const setting *s = find_flag(name, len);
         if (!s) return fail(diag, "option", arg, "unknown (see --help)");
         const char *value = eq ? eq + 1 : NULL;
+        if (!value && s->kind == KIND_SWITCH) value = "1";
         if (!value) {
             if (i + 1 >= argc) return fail(diag, "option", arg, "needs a value");
             value = argv[++i];
@@ -243,6 +282,14 @@ void mtd_config_usage(FILE *to)
                 snprintf(shown, sizeof shown, "%s",
                          mtd_log_level_name(*(const mtd_log_level *)(const void *)field));
                 break;
+            case KIND_ARCHIVE_MODE:
+                snprintf(shown, sizeof shown, "%s",
+                         mtd_archive_mode_name(*(const mtd_archive_mode *)(const void *)field));
+                break;
+            case KIND_SWITCH:
+                snprintf(shown, sizeof shown, "%s",
+                         *(const uint32_t *)(const void *)field ? "on" : "off");
+                break;
             case KIND_U32:
                 snprintf(shown, sizeof shown, "%u", *(const uint32_t *)(const void *)field);
                 break;
@@ -263,10 +310,13 @@ void mtd_config_log(const mtd_config *c)
             "lcm_url=%s prefix=%s name=%s workers=%u max_verts=%u max_faces=%u "
             "max_indices=%llu max_store_bytes=%llu max_versions=%u heartbeat_ms=%u "
             "max_transfer_bytes=%llu "
-            "transfer_timeout_ms=%u log_level=%s",
+            "transfer_timeout_ms=%u log_level=%s archive=%s archive_mode=%s archive_queue=%u "
+            "preload=%u memory_budget=%llu",
             c->lcm_url[0] ? c->lcm_url : "(lcm default)", c->channel_prefix, c->name, c->workers,
             c->max_verts, c->max_faces, (unsigned long long)c->max_indices,
             (unsigned long long)c->max_store_bytes, c->max_versions, c->heartbeat_ms,
             (unsigned long long)c->max_transfer_bytes, c->transfer_timeout_ms,
-            mtd_log_level_name(c->log_level));
+            mtd_log_level_name(c->log_level), c->archive_dir[0] ? c->archive_dir : "(none)",
+            mtd_archive_mode_name(c->archive_mode), c->archive_queue, c->preload,
+            (unsigned long long)c->memory_budget);
 }

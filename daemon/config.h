@@ -13,6 +13,13 @@
 
 #define MTD_CONFIG_TEXT_MAX 256
 
+/* What --archive-mode asks for (with --archive DIR). */
+typedef enum mtd_archive_mode {
+    MTD_ARCHIVE_SYNC = 0,  /* archived before the submission is acknowledged */
+    MTD_ARCHIVE_ASYNC = 1, /* acknowledged, then archived by a background writer */
+    MTD_ARCHIVE_OFF = 2,   /* nothing written; what DIR holds is still served */
+} mtd_archive_mode;
+
 typedef struct mtd_config {
     char lcm_url[MTD_CONFIG_TEXT_MAX]; /* "" = LCM's own default (LCM_DEFAULT_URL) */
     char channel_prefix[64];           /* channels are PREFIX + SUBMIT, QUERY, ... */
@@ -27,6 +34,11 @@ typedef struct mtd_config {
     uint64_t max_transfer_bytes;  /* memory held by unfinished chunked submissions */
     uint32_t transfer_timeout_ms; /* a transfer without a chunk for this long is dropped */
     mtd_log_level log_level;
+    char archive_dir[MTD_CONFIG_TEXT_MAX]; /* "" = no archive */
+    mtd_archive_mode archive_mode;
+    uint32_t archive_queue; /* versions the async writer may have waiting */
+    uint32_t preload;       /* 1: load every archived version at start */
+    uint64_t memory_budget; /* evict archived meshes beyond this, 0 = no budget */
 } mtd_config;
 
 /* What the command line asks for. */
@@ -44,6 +56,9 @@ mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_ac
 
 /* Writes the --help text: every flag, its variable, its default. */
 void mtd_config_usage(FILE *to);
+
+/* "sync", "async" or "off". */
+const char *mtd_archive_mode_name(mtd_archive_mode mode);
 
 /* Logs every setting at info level, one line (the "config" event). */
 void mtd_config_log(const mtd_config *config);

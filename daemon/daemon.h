@@ -30,9 +30,14 @@
 #define MTD_ERROR_MAX 512
 /* Missing ranges listed in one mesh_transfer_t (16 bytes each). */
 #define MTD_TRANSFER_GAPS_MAX 1024
+/* An encoded reply_t larger than this goes out as reply_part_t pieces. */
+#define MTD_SINGLE_MESSAGE_MAX 60000
 
 /* One unfinished chunked submission (transfer.c). */
 typedef struct mtd_transfer mtd_transfer;
+
+/* The archive, its catalog and its writer (archiver.c); NULL without one. */
+typedef struct mtd_archiver mtd_archiver;
 
 typedef struct mtd_daemon {
     mtd_config config;
@@ -40,6 +45,7 @@ typedef struct mtd_daemon {
     mtd_store *store;
     mtd_pool *pool;
     mtd_reqcache *cache;
+    mtd_archiver *archiver;
     lcm_subscription_t *submit_sub, *query_sub;
     char submit_channel[MTD_CHANNEL_MAX + 1];
     char query_channel[MTD_CHANNEL_MAX + 1];
@@ -107,6 +113,20 @@ bool mtd_peek_request_header(const void *data, size_t size, int64_t *out_request
  * request is new (now marked pending) and must be run; a finished one has
  * had its reply published again. */
 bool mtd_begin_request(mtd_daemon *daemon, const char *channel, int64_t request_id);
+
+/* ---- large answers (reply_parts.c) ---- */
+
+/* Publishes an encoded answer for request_id on channel: as it is, or, for a
+ * reply_t over MTD_SINGLE_MESSAGE_MAX bytes, as its first reply_part_t pieces
+ * (msgs/reply_part_t.lcm; the receiver pulls the rest from the request
+ * cache). Any thread. */
+void mtd_publish_answer(mtd_daemon *daemon, const char *channel, int64_t request_id,
+                        const void *data, size_t size);
+
+/* Handles one received reply_pull_t (bytes with its fingerprint): sends the
+ * parts it asks for from the request cache; unanswered when the cache holds
+ * no such answer. Runs on the LCM thread. */
+void mtd_reply_pull_handle(mtd_daemon *daemon, const void *data, size_t size);
 
 /* ---- submissions (submit.c) ---- */
 

@@ -5,8 +5,9 @@
  * Bytes that do not decode are still answered when their request header
  * (utime, request_id, reply_channel, common to mesh_t and query_t) can be
  * read, so a sender learns what was wrong. mesh_chunk_t, the pieces of a
- * large mesh on the same SUBMIT channel, goes to transfer.c. Also the
- * daemon's create/stop. */
+ * large mesh on the same SUBMIT channel, goes to transfer.c; reply_pull_t on
+ * the QUERY channel and answers too large for one datagram go to
+ * reply_parts.c. Also the daemon's create/stop. */
 #include "daemon.h"
 
 #include <inttypes.h>
@@ -16,6 +17,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "archiver.h"
 #include "log.h"
 
 /* LCM drops messages beyond this many waiting per subscription (default 30). */
@@ -58,8 +60,7 @@ void mtd_send_reply(mtd_daemon *d, const char *channel, int64_t request_id, bool
             mtd_log(MTD_LOG_WARN, "reqcache", "request_id=%" PRId64 " not remembered: %s",
                     request_id, mt_strerror(s));
     }
-    if (lcm_publish(d->lcm, channel, buf, (unsigned)size) != 0)
-        mtd_log(MTD_LOG_ERROR, "publish", "channel=%s type=%s bytes=%d", channel, type->name, size);
+    mtd_publish_answer(d, channel, request_id, buf, (size_t)size); /* in parts when large */
     free(buf);
 }
 
@@ -173,7 +174,7 @@ bool mtd_begin_request(mtd_daemon *d, const char *channel, int64_t request_id)
     if (state == MTD_REQUEST_DONE) {
         mtd_log(MTD_LOG_DEBUG, "duplicate", "request_id=%" PRId64 " channel=%s answered again",
                 request_id, channel);
-        lcm_publish(d->lcm, channel, mtd_reply_data(stored), (unsigned)mtd_reply_size(stored));
+        mtd_publish_answer(d, channel, request_id, mtd_reply_data(stored), mtd_reply_size(stored));
         mtd_reply_release(stored);
     }
     return false;
@@ -219,8 +220,12 @@ static void on_query(const lcm_recv_buf_t *rbuf, const char *channel, void *user
 {
     (void)channel;
     mtd_daemon *d = user;
-    atomic_fetch_add(&d->queries, 1);
     size_t size = rbuf->data_size;
+    if (mt_msgs_type_of(rbuf->data, size) == &mt_msgs_type_reply_pull) {
+        mtd_reply_pull_handle(d, rbuf->data, size); /* parts of a large answer, not a query */
+        return;
+    }
+    atomic_fetch_add(&d->queries, 1);
     if (mt_msgs_type_of(rbuf->data, size) != &mt_msgs_type_query) {
         answer_undecodable(
             d, false, rbuf->data, size,
@@ -307,6 +312,10 @@ mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **o
         mtd_daemon_destroy(d);
         return fail_nomem(diag, "worker pool");
     }
+    if ((s = mtd_archiver_start(d, diag)) != MT_OK) {
+        mtd_daemon_destroy(d);
+        return s;
+    }
     d->submit_sub = lcm_subscribe(lcm, d->submit_channel, on_submit, d);
     d->query_sub = lcm_subscribe(lcm, d->query_channel, on_query, d);
     if (!d->submit_sub || !d->query_sub) {
@@ -326,6 +335,7 @@ void mtd_daemon_stop(mtd_daemon *d)
     if (d->query_sub) lcm_unsubscribe(d->lcm, d->query_sub);
     d->submit_sub = d->query_sub = NULL;
     if (d->pool) mtd_pool_shutdown(d->pool, MTD_SHUTDOWN_CANCEL);
+    mtd_archiver_stop(d);
 }
 
 void mtd_daemon_destroy(mtd_daemon *d)
@@ -333,6 +343,7 @@ void mtd_daemon_destroy(mtd_daemon *d)
     if (!d) return;
     mtd_daemon_stop(d);
     mtd_pool_destroy(d->pool);
+    mtd_archiver_free(d);
     mtd_transfers_free(d);
     pthread_mutex_destroy(&d->transfer_lock);
     mtd_reqcache_destroy(d->cache);

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "archiver.h"
 #include "daemon.h"
 #include "log.h"
 
@@ -52,6 +53,7 @@ void mtd_heartbeat_publish(mtd_daemon *d)
     st.transfers_completed = atomic_load(&d->transfers_completed);
     st.transfers_expired = atomic_load(&d->transfers_expired);
     st.transfers_refused = atomic_load(&d->transfers_refused);
+    mtd_archiver_stats(d, &st);
 
     int size = meshtopo_status_t_encoded_size(&st);
     void *buf = size > 0 ? malloc((size_t)size) : NULL;

@@ -324,18 +324,28 @@ mt_status mtd_store_add(mtd_store *store, const char *id, mt_mesh *mesh, const m
         diag_set(diag, status, UINT64_MAX, "mesh '%s' has used every version number", id);
         goto fail;
     }
+    bool reserved = meta->reserved && meta->version != 0;
     if (version == 0) version = highest + 1;
-    if (version <= highest) {
+    if (reserved) {
+        if (slot && version_index(slot, version) != UINT32_MAX) {
+            status = MT_ERR_INVALID_ARG;
+            diag_set(diag, status, UINT64_MAX, "version %u of mesh '%s' is already held",
+                     (unsigned)version, id);
+            goto fail;
+        }
+    } else if (version <= highest) {
         status = MT_ERR_INVALID_ARG;
         diag_set(diag, status, UINT64_MAX,
                  "version %u of mesh '%s' requested, but the id already had version %u",
                  (unsigned)version, id, (unsigned)highest);
         goto fail;
     }
-    /* Versions held never exceed the limit, so one add drops at most one. */
+    /* Versions held never exceed the limit (a reserved add of an old version
+     * aside), so one add drops at most one: the oldest, when it is older. */
     uint32_t limit = store->options.max_versions_per_id;
+    bool drop = limit && held >= limit && slot->versions[0]->info.version < version;
     size_t freed_bytes = 0;
-    if (limit && held >= limit) freed_bytes = slot->versions[0]->info.memory_bytes;
+    if (drop) freed_bytes = slot->versions[0]->info.memory_bytes;
     size_t after = store->totals.memory_bytes - freed_bytes;
     if (store->options.max_bytes && (entry->info.memory_bytes > store->options.max_bytes ||
                                      after > store->options.max_bytes - entry->info.memory_bytes)) {
@@ -353,7 +363,7 @@ mt_status mtd_store_add(mtd_store *store, const char *id, mt_mesh *mesh, const m
             goto fail;
         }
     }
-    if (!(limit && held >= limit)) {
+    if (!drop) {
         status = slot_reserve(slot);
         if (status != MT_OK) {
             /* Only an existing slot gets here (slot_insert reserves room), so
@@ -364,7 +374,7 @@ mt_status mtd_store_add(mtd_store *store, const char *id, mt_mesh *mesh, const m
     }
 
     /* Commit: nothing below fails. */
-    if (limit && held >= limit) {
+    if (drop) {
         dropped = slot->versions[0];
         memmove(&slot->versions[0], &slot->versions[1],
                 (slot->num_versions - 1) * sizeof(mtd_mesh_entry *));
@@ -373,8 +383,13 @@ mt_status mtd_store_add(mtd_store *store, const char *id, mt_mesh *mesh, const m
         store->totals.memory_bytes -= dropped->info.memory_bytes;
     }
     entry->info.version = version;
-    slot->versions[slot->num_versions++] = entry;
-    slot->highest_version = version;
+    uint32_t pos = slot->num_versions;
+    while (pos > 0 && slot->versions[pos - 1]->info.version > version) pos--;
+    memmove(&slot->versions[pos + 1], &slot->versions[pos],
+            (slot->num_versions - pos) * sizeof(mtd_mesh_entry *));
+    slot->versions[pos] = entry;
+    slot->num_versions++;
+    if (version > slot->highest_version) slot->highest_version = version;
     if (slot->num_versions == 1) store->totals.ids++;
     store->totals.versions++;
     store->totals.memory_bytes += entry->info.memory_bytes;
@@ -391,6 +406,35 @@ fail:
     entry->mesh = NULL; /* the caller keeps the mesh */
     free(entry);
     return status;
+}
+
+mt_status mtd_store_reserve_version(mtd_store *store, const char *id, uint32_t version,
+                                    uint32_t *out_version, mt_diag *diag)
+{
+    if (out_version) *out_version = 0;
+    mt_status status = mtd_mesh_id_check(id, diag);
+    if (status != MT_OK) return status;
+    pthread_mutex_lock(&store->lock);
+    int found;
+    size_t at = slot_lower_bound(store, id, &found);
+    id_slot *slot = found ? store->slots[at] : slot_insert(store, at, id);
+    if (!slot) {
+        pthread_mutex_unlock(&store->lock);
+        diag_set(diag, MT_ERR_NOMEM, UINT64_MAX, "out of memory reserving a version of '%s'", id);
+        return MT_ERR_NOMEM;
+    }
+    if (version == 0 && slot->highest_version == UINT32_MAX) {
+        pthread_mutex_unlock(&store->lock);
+        diag_set(diag, MT_ERR_TOO_LARGE, UINT64_MAX, "mesh '%s' has used every version number", id);
+        return MT_ERR_TOO_LARGE;
+    }
+    if (version == 0) version = slot->highest_version + 1;
+    if (version > slot->highest_version) slot->highest_version = version;
+    uint32_t highest = slot->highest_version;
+    pthread_mutex_unlock(&store->lock);
+    if (out_version) *out_version = version == 0 ? highest : version;
+    if (diag) mt_diag_clear(diag);
+    return MT_OK;
 }
 
 mt_status mtd_store_acquire(mtd_store *store, const char *id, uint32_t version,

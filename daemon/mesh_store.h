@@ -7,6 +7,7 @@
 #ifndef MESHTOPOD_MESH_STORE_H
 #define MESHTOPOD_MESH_STORE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -81,6 +82,12 @@ typedef struct mtd_mesh_meta {
      * has had: used when reloading an archive, so numbers stay what clients
      * were told. */
     uint32_t version;
+    /* With a non-zero version: that version was reserved with
+     * mtd_store_reserve_version or is archived, so it may be at or below the
+     * id's highest; it must not be held. Versions beyond max_versions_per_id
+     * are then dropped only among those below it (a reloaded old version
+     * never pushes out newer ones). */
+    bool reserved;
 } mtd_mesh_meta;
 
 /* Adds a built mesh under id as a new version. On MT_OK the store owns mesh,
@@ -93,6 +100,14 @@ typedef struct mtd_mesh_meta {
  * id ran out of version numbers), MT_ERR_NOMEM. diag (NULL-safe) says which. */
 mt_status mtd_store_add(mtd_store *store, const char *id, mt_mesh *mesh, const mtd_mesh_meta *meta,
                         uint32_t *out_version, mtd_mesh_entry **out_entry, mt_diag *diag);
+
+/* Raises the highest version id has had to at least `version` (0: one more
+ * than now) and writes it to *out_version (may be NULL). Numbers reserved
+ * this way are never handed out by a plain add; the caller then adds that
+ * version with meta.reserved, or leaves a gap. MT_ERR_INVALID_ARG (bad id),
+ * MT_ERR_TOO_LARGE (no version numbers left), MT_ERR_NOMEM. */
+mt_status mtd_store_reserve_version(mtd_store *store, const char *id, uint32_t version,
+                                    uint32_t *out_version, mt_diag *diag);
 
 /* Acquires version `version` of id (0 = the latest held). On MT_OK the caller
  * holds *out_entry and must release it. MT_ERR_NOT_FOUND when the id or that

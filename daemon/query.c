@@ -13,14 +13,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "archiver.h"
 #include "daemon.h"
 #include "log.h"
 #include "meshtopo/geometry.h"
 #include "meshtopo/query.h"
 #include "meshtopo/report.h"
 
-/* A growable array of int32_t (int8_t ones are stored widened, then narrowed).
- */
+/* A growable array of int32_t (int8_t ones are stored widened, then narrowed). */
 typedef struct ivec {
     int32_t *v;
     size_t n, cap;
@@ -59,8 +59,7 @@ static void push(answer *a, ivec *vec, int32_t value)
         a->bytes += vec->cap * sizeof(int32_t);
         if (a->bytes > MTD_REPLY_MAX_BYTES) {
             fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE,
-                 "the answer exceeds the daemon's reply limit of %u bytes; ask for "
-                 "fewer ids",
+                 "the answer exceeds the daemon's reply limit of %u bytes; ask for fewer ids",
                  (unsigned)MTD_REPLY_MAX_BYTES);
             return;
         }
@@ -83,8 +82,7 @@ static void push_real(answer *a, double value)
         a->bytes += a->reals_cap * sizeof(double);
         if (a->bytes > MTD_REPLY_MAX_BYTES) {
             fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE,
-                 "the answer exceeds the daemon's reply limit of %u bytes; ask for "
-                 "fewer ids",
+                 "the answer exceeds the daemon's reply limit of %u bytes; ask for fewer ids",
                  (unsigned)MTD_REPLY_MAX_BYTES);
             return;
         }
@@ -360,8 +358,7 @@ static void answer_defects(answer *a, const mt_mesh *mesh, const int32_t *ids, i
     for (int32_t i = 0; i < n; i++) answer_defect_kind(a, report, (uint32_t)ids[i]);
 }
 
-/* ---- geometry (meshtopo/geometry.h) ----------------------------------------
- */
+/* ---- geometry (meshtopo/geometry.h) ---------------------------------------- */
 
 /* A geometry call's failure: NO_GEOMETRY for a mesh without positions. */
 static void fail_geometry(answer *a, mt_status s, const char *what, int32_t id)
@@ -584,7 +581,7 @@ static void list_meshes(mtd_daemon *d, answer *a, const char *mesh_id, meshtopo_
 {
     memset(out, 0, sizeof *out);
     mtd_store_listing *listing = NULL;
-    if (mtd_store_list(d->store, &listing) != MT_OK) {
+    if (mtd_archiver_list(d, &listing) != MT_OK) {
         fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory listing the meshes");
         return;
     }
@@ -625,6 +622,10 @@ static void list_meshes(mtd_daemon *d, answer *a, const char *mesh_id, meshtopo_
                 out->list_num_faces[k] = (int32_t)mt_mesh_num_faces(mesh);
                 out->list_num_defects[k] = (int64_t)mt_mesh_report(mesh)->num_defects;
                 mtd_entry_release(entry);
+            } else {
+                /* Archived, not in memory: the counts of the archive's catalog. */
+                mtd_archiver_counts(d, info->id, info->version, &out->list_num_verts[k],
+                                    &out->list_num_faces[k], &out->list_num_defects[k]);
             }
             if (!out->list_mesh_ids[k] || !out->list_sources[k])
                 fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory listing the meshes");
@@ -670,7 +671,12 @@ void mtd_query_handle(mtd_daemon *d, const meshtopo_query_t *q)
     mtd_mesh_entry *entry = NULL;
     if (a.status == MESHTOPO_STATUS_CODE_T_OK) {
         mt_diag diag;
-        mt_status s = mtd_store_acquire(d->store, q->mesh_id, (uint32_t)q->version, &entry, &diag);
+        bool deferred = false;
+        mt_status s = mtd_archiver_acquire(d, q, &entry, &deferred, &diag);
+        if (deferred) { /* loading from the archive; a worker answers */
+            answer_free(&a);
+            return;
+        }
         if (s == MT_ERR_INVALID_ARG)
             fail(&a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "mesh_id: %.400s", diag.message);
         else if (s == MT_ERR_NOT_FOUND && q->version)

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "archiver.h"
 #include "daemon.h"
 #include "log.h"
 #include "meshtopo/content_hash.h"
@@ -178,18 +179,14 @@ static void build_job(void *arg, bool cancelled)
         free_job(job);
         return;
     }
-    mtd_mesh_meta meta = {
-        .source = m->source, .utime = m->utime, .content_hash = job->content_hash};
+    /* Stored, and in sync archive mode archived, before it is acknowledged. */
     uint32_t version = 0;
     mtd_mesh_entry *entry = NULL;
-    s = mtd_store_add(d->store, m->mesh_id, mesh, &meta, &version, &entry, &diag);
-    if (s != MT_OK) {
+    int32_t code = mtd_archiver_store(d, m, &list, mesh, job->content_hash, &version, &entry, error,
+                                      sizeof error);
+    if (code != MESHTOPO_STATUS_CODE_T_OK) {
         mt_mesh_destroy(mesh);
-        snprintf(error, sizeof error, "not stored: %.400s", diag.message);
-        mtd_send_ack_error(d, m->reply_channel, m->request_id, m->mesh_id, true,
-                           s == MT_ERR_TOO_LARGE ? MESHTOPO_STATUS_CODE_T_TOO_LARGE
-                                                 : MESHTOPO_STATUS_CODE_T_INTERNAL,
-                           error);
+        mtd_send_ack_error(d, m->reply_channel, m->request_id, m->mesh_id, true, code, error);
         free_job(job);
         return;
     }

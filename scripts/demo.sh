@@ -3,7 +3,8 @@
 # needed, inspects three corpus meshes, a clean one, one with holes and a
 # non-manifold one, prints one report as JSON, then runs the LCM service in a
 # private network namespace (scripts/demo-network.sh): meshtopod started,
-# the three meshes submitted and queried over LCM, meshtopod stopped.
+# the three meshes submitted (and archived), queried over LCM, meshtopod
+# stopped, restarted on its archive and a reloaded mesh queried.
 #   scripts/demo.sh
 # MESHTOPO_BUILD_DIR=DIR uses an existing build instead (DIR/tools/meshtopo,
 # DIR/daemon/meshtopod);

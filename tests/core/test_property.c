@@ -1188,14 +1188,14 @@ static int check_case(const mt_face_list *in, const char *label, bool quiet, che
         mt_oracle po;
         if (st == MT_OK && mt_oracle_compute(&perm, &po)) {
             char sub[200];
-            snprintf(sub, sizeof sub, "%s, reference of the permuted list", label);
+            snprintf(sub, sizeof sub, "%.120s, reference of the permuted list", label);
             probe q = {sub, quiet, 0};
             compare_counts(&q, &po.report, &o.report);
             compare_component_multisets(&q, &po.report, &o.report);
             p.mismatches += q.mismatches;
             mt_mesh *m = check_build(&p, &perm, &po, threads, seed);
             if (m) {
-                snprintf(sub, sizeof sub, "%s, permuted build against the unpermuted reference",
+                snprintf(sub, sizeof sub, "%.120s, permuted build against the unpermuted reference",
                          label);
                 probe s = {sub, quiet, 0};
                 compare_counts(&s, mt_mesh_report(m), &o.report);

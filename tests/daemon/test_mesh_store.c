@@ -44,7 +44,7 @@ static uint32_t add_solid(mtd_store *store, const char *id, mt_platonic kind, co
 {
     mt_mesh *mesh = dt_build_platonic(kind);
     if (!mesh) return 0;
-    mtd_mesh_meta meta = {source, utime, 0x1000u + (uint64_t)kind, 0};
+    mtd_mesh_meta meta = {source, utime, 0x1000u + (uint64_t)kind, 0, false};
     uint32_t version = 0;
     mt_diag diag;
     mt_status s = mtd_store_add(store, id, mesh, &meta, &version, NULL, &diag);
@@ -140,7 +140,7 @@ static void test_store_versions_per_id(void)
     /* An explicit version (archive reload) must be above every earlier one. */
     mt_mesh *mesh = dt_build_platonic(MT_ICOSAHEDRON);
     if (!mesh) goto done;
-    mtd_mesh_meta meta = {"archive", 9, 0x1000u + MT_ICOSAHEDRON, 3};
+    mtd_mesh_meta meta = {"archive", 9, 0x1000u + MT_ICOSAHEDRON, 3, false};
     uint32_t version = 99;
     mt_diag diag;
     CHECK_STATUS(mtd_store_add(store, "a", mesh, &meta, &version, NULL, &diag), MT_ERR_INVALID_ARG);

@@ -76,7 +76,7 @@ static void *adder(void *arg)
         char id[8];
         id_name(id, (unsigned)rand_r(&seed));
         uint64_t stamp = (uint64_t)rand_r(&seed);
-        mtd_mesh_meta meta = {"adder", (int64_t)stamp, (stamp << 8) | (uint64_t)kind, 0};
+        mtd_mesh_meta meta = {"adder", (int64_t)stamp, (stamp << 8) | (uint64_t)kind, 0, false};
         if (mtd_store_add(sh->store, id, mesh, &meta, NULL, NULL, NULL) != MT_OK) {
             atomic_fetch_add(&sh->failures, 1);
             mt_mesh_destroy(mesh);

@@ -492,6 +492,14 @@ static void fill_status(void *out)
     s->transfers_completed = 2;
     s->transfers_expired = 1;
     s->transfers_refused = 1;
+    s->archive_versions = 3;
+    s->archive_writes = 2;
+    s->archive_errors = 1;
+    s->archive_loads = 1;
+    s->archive_evictions = 1;
+    s->archive_backlog = 1;
+    s->archive_bytes = 4567890;
+    s->memory_budget = 268435456;
 }
 
 /* ---- mesh_chunk_t and mesh_transfer_t --------------------------------------- */
@@ -547,6 +555,39 @@ static void fill_mesh_transfer_refused(void *out)
     t->listed_until = 20;
 }
 
+/* ---- reply_part_t and reply_pull_t ----------------------------------------- */
+
+/* The last, short part of a 20-byte answer sent in parts of 8 bytes. */
+static void fill_reply_part(void *out)
+{
+    static uint8_t data[] = {0x00, 0x00, 0x00, 0x07};
+    meshtopo_reply_part_t *p = out;
+    p->utime = 1700000000080000;
+    p->request_id = 49;
+    p->total_size = 20;
+    p->answer_hash = (int64_t)0x1b2c3d4e5f607182ULL;
+    p->part_size = 8;
+    p->offset = 16;
+    p->length = (int32_t)sizeof data;
+    p->data = data;
+}
+
+/* A pull for the first and the last part of that answer. */
+static void fill_reply_pull(void *out)
+{
+    static int64_t offsets[] = {0, 16};
+    static int64_t lengths[] = {8, 4};
+    meshtopo_reply_pull_t *p = out;
+    p->utime = 1700000000090000;
+    p->request_id = 49;
+    p->reply_channel = "MESHTOPO_REPLY_robot-7_4242_1";
+    p->total_size = 20;
+    p->answer_hash = (int64_t)0x1b2c3d4e5f607182ULL;
+    p->num_ranges = 2;
+    p->offsets = offsets;
+    p->lengths = lengths;
+}
+
 static void fill_status_code(void *out)
 {
     meshtopo_status_code_t *s = out;
@@ -572,6 +613,8 @@ const mt_msgs_sample mt_msgs_samples[] = {
     {"mesh_chunk", &mt_msgs_type_mesh_chunk, fill_mesh_chunk},
     {"mesh_transfer_missing", &mt_msgs_type_mesh_transfer, fill_mesh_transfer_missing},
     {"mesh_transfer_refused", &mt_msgs_type_mesh_transfer, fill_mesh_transfer_refused},
+    {"reply_part", &mt_msgs_type_reply_part, fill_reply_part},
+    {"reply_pull", &mt_msgs_type_reply_pull, fill_reply_pull},
     {"status", &mt_msgs_type_status, fill_status},
     {"status_code", &mt_msgs_type_status_code, fill_status_code},
 };

@@ -277,7 +277,7 @@ static void round_trip_status_code(void)
  * trips above exercise them all (a new field needs a sample value). */
 static void samples_set_every_field(void)
 {
-    CHECK_EQ(mt_msgs_num_types, 9);
+    CHECK_EQ(mt_msgs_num_types, 11);
     for (size_t t = 0; t < mt_msgs_num_types; t++) {
         const mt_msgs_type *type = mt_msgs_types[t];
         CHECK(type->struct_size <= sizeof(any_msg));

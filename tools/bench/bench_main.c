@@ -1,15 +1,23 @@
 /* The meshtopo-bench executable (also run as `meshtopo bench`):
  *   meshtopo-bench [build] [options]   the core build benchmark (bench.c)
- *   meshtopo-bench rtt [options]       query round trips to meshtopod (rtt.c) */
+ *   meshtopo-bench rtt [options]       query round trips to meshtopod (rtt.c)
+ *   meshtopo-bench transfer [options]  large submissions vs a raw LCM push (transfer.c)
+ *   meshtopo-bench archive [options]   archive write and reload vs bare HDF5 (archive.c) */
 #include <stdio.h>
 #include <string.h>
 
+#include "archive_bench.h"
 #include "bench.h"
 #include "rtt.h"
+#include "transfer.h"
 
 int main(int argc, char **argv)
 {
     if (argc > 1 && strcmp(argv[1], "rtt") == 0) return mt__bench_rtt_command(argc - 1, argv + 1);
+    if (argc > 1 && strcmp(argv[1], "transfer") == 0)
+        return mt__bench_transfer_command(argc - 1, argv + 1);
+    if (argc > 1 && strcmp(argv[1], "archive") == 0)
+        return mt__bench_archive_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "build") == 0) return mt__bench_command(argc - 1, argv + 1);
     return mt__bench_command(argc, argv);
 }

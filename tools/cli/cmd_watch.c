@@ -61,6 +61,14 @@ static void status_json(mt_json *j, const meshtopo_status_t *s)
     FIELD_INT(builds_queued);
     FIELD_STR(last_error);
     FIELD_INT(last_error_utime);
+    FIELD_INT(archive_versions);
+    FIELD_INT(archive_writes);
+    FIELD_INT(archive_errors);
+    FIELD_INT(archive_loads);
+    FIELD_INT(archive_evictions);
+    FIELD_INT(archive_backlog);
+    FIELD_INT(archive_bytes);
+    FIELD_INT(memory_budget);
 #undef FIELD_INT
 #undef FIELD_STR
     mt_json_object_end(j);
@@ -74,6 +82,11 @@ static void status_text(const char *channel, const meshtopo_status_t *s)
            channel, s->name, s->pid, (double)s->uptime_us / 1e6, s->meshes_held, s->versions_held,
            s->memory_bytes, s->submissions, s->builds, s->queries, s->errors, s->worker_threads,
            s->builds_in_progress, s->builds_queued);
+    if (s->archive_versions || s->archive_writes || s->archive_errors || s->memory_budget)
+        printf("; archive: %" PRId32 " versions (%" PRId64 " bytes), %" PRId64 " written, %" PRId64
+               " loaded, %" PRId64 " evicted, %" PRId32 " waiting, %" PRId64 " errors",
+               s->archive_versions, s->archive_bytes, s->archive_writes, s->archive_loads,
+               s->archive_evictions, s->archive_backlog, s->archive_errors);
     if (s->last_error[0]) printf("; last error: %s", s->last_error);
     putchar('\n');
 }

@@ -109,11 +109,86 @@ static void publish_bytes(fixture *fx, const char *channel, const void *data, si
     CHECK_EQ(lcm_publish(fx->lcm, channel, data, (unsigned)size), 0);
 }
 
+/* A large reply_t arriving as reply_part_t pieces (msgs/reply_part_t.lcm). */
+typedef struct parts_buf {
+    int64_t total, hash;
+    int32_t part_size;
+    size_t num_parts, num_have;
+    uint8_t *data, *have;
+} parts_buf;
+
+/* Moves the parts of request_id from the inbox into pb; once every part is
+ * in, the reassembled reply_t goes back into the inbox (pb is emptied). */
+static void take_parts(fixture *fx, int64_t request_id, parts_buf *pb)
+{
+    for (size_t i = fx->num_inbox; i-- > 0;) {
+        received *r = &fx->inbox[i];
+        meshtopo_reply_part_t part;
+        if (mt_msgs_type_of(r->data, r->size) != &mt_msgs_type_reply_part ||
+            mt_msgs_decode(&mt_msgs_type_reply_part, r->data, r->size, &part, NULL, 0) != 0)
+            continue;
+        if (part.request_id == request_id && part.part_size > 0 && part.total_size > 0) {
+            if (!pb->data) {
+                pb->total = part.total_size;
+                pb->hash = part.answer_hash;
+                pb->part_size = part.part_size;
+                pb->num_parts = (size_t)((part.total_size + part.part_size - 1) / part.part_size);
+                pb->data = malloc((size_t)part.total_size);
+                pb->have = calloc(pb->num_parts, 1);
+            }
+            size_t k = (size_t)(part.offset / pb->part_size);
+            CHECK(part.total_size == pb->total && part.answer_hash == pb->hash);
+            CHECK(part.offset % pb->part_size == 0 && k < pb->num_parts);
+            if (k < pb->num_parts && !pb->have[k] && part.offset + part.length <= pb->total) {
+                memcpy(pb->data + part.offset, part.data, (size_t)part.length);
+                pb->have[k] = 1;
+                pb->num_have++;
+            }
+            free(r->data);
+            fx->inbox[i] = fx->inbox[--fx->num_inbox];
+        }
+        meshtopo_reply_part_t_decode_cleanup(&part);
+    }
+    if (pb->data && pb->num_have == pb->num_parts && fx->num_inbox < MAX_RECEIVED) {
+        fx->inbox[fx->num_inbox++] = (received){pb->data, (size_t)pb->total};
+        free(pb->have);
+        memset(pb, 0, sizeof *pb);
+    }
+}
+
+/* Asks the daemon for the next parts pb lacks (reply_pull_t, 16 at most). */
+static void pull_parts(fixture *fx, int64_t request_id, const parts_buf *pb)
+{
+    int64_t offsets[16], lengths[16];
+    meshtopo_reply_pull_t pull;
+    memset(&pull, 0, sizeof pull);
+    pull.request_id = request_id;
+    pull.reply_channel = REPLY_CHANNEL;
+    pull.total_size = pb->total;
+    pull.answer_hash = pb->hash;
+    pull.offsets = offsets;
+    pull.lengths = lengths;
+    for (size_t k = 0; k < pb->num_parts && pull.num_ranges < 16; k++) {
+        if (pb->have[k]) continue;
+        offsets[pull.num_ranges] = (int64_t)k * pb->part_size;
+        lengths[pull.num_ranges++] = pb->part_size;
+    }
+    publish(fx, "MESHTOPO_QUERY", &mt_msgs_type_reply_pull, &pull);
+}
+
 /* Handles LCM until a message of `type` with request_id arrives (decoded into
- * out; release with type->decode_cleanup) or 20 s pass. Returns 0 when found. */
+ * out; release with type->decode_cleanup) or 20 s pass. Returns 0 when found.
+ * A reply_t sent in parts is reassembled (pulling the parts after the first). */
 static int wait_for(fixture *fx, const mt_msgs_type *type, int64_t request_id, void *out)
 {
-    for (int round = 0; round < 400; round++) {
+    parts_buf pb;
+    memset(&pb, 0, sizeof pb);
+    bool idle = false;
+    for (int round = 0; round < 4000; round++) {
+        if (type == &mt_msgs_type_reply) {
+            take_parts(fx, request_id, &pb);
+            if (pb.data && idle) pull_parts(fx, request_id, &pb);
+        }
         for (size_t i = 0; i < fx->num_inbox; i++) {
             received *r = &fx->inbox[i];
             if (mt_msgs_type_of(r->data, r->size) != type) continue;
@@ -128,12 +203,16 @@ static int wait_for(fixture *fx, const mt_msgs_type *type, int64_t request_id, v
             if (id == request_id) {
                 free(r->data);
                 fx->inbox[i] = fx->inbox[--fx->num_inbox];
+                free(pb.data);
+                free(pb.have);
                 return 0;
             }
             type->decode_cleanup(out);
         }
-        lcm_handle_timeout(fx->lcm, 50);
+        idle = lcm_handle_timeout(fx->lcm, 5) <= 0;
     }
+    free(pb.data);
+    free(pb.have);
     mt_test_fail(__FILE__, __LINE__, "no %s for request %" PRId64 " within 20 s", type->name,
                  request_id);
     return -1;

@@ -1,0 +1,749 @@
+/* meshtopod's archive: the catalog of archived versions (a sorted array by
+ * mesh id then version, one mutex), the writes (sync on the build worker,
+ * async through one writer thread and a bounded queue), the loads (preload at
+ * start, on demand on a worker) and the LRU eviction that keeps the store
+ * within --memory-budget. Only archived versions are ever evicted, so an
+ * eviction loses nothing: the next query loads the version again. */
+#include "archiver.h"
+
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "log.h"
+#include "meshtopo/archive.h"
+
+/* One archived version. */
+typedef struct cat_entry {
+    char *id;
+    char *source;
+    uint32_t version;
+    int64_t utime;
+    uint64_t content_hash;
+    uint64_t file_bytes;
+    int32_t num_verts, num_faces;
+    int64_t num_defects;
+    uint64_t last_used; /* the catalog's clock at the last query, 0 = never */
+    bool resident;      /* believed to be in the store (eviction candidates) */
+} cat_entry;
+
+/* One built version waiting for the async writer. */
+typedef struct write_job {
+    struct write_job *next;
+    mtd_mesh_entry *entry; /* a reference: the mesh, id, version, source */
+    mt_face_list list;     /* a copy of the submitted face list */
+} write_job;
+
+typedef struct mtd_archiver {
+    mt_archive *archive;
+    mtd_archive_mode mode;
+    uint64_t budget;
+
+    pthread_mutex_t lock; /* the catalog and the clock */
+    cat_entry *entries;   /* [count], by id then version */
+    size_t count, cap;
+    uint64_t clock;
+    uint64_t bytes; /* file_bytes of every entry */
+
+    pthread_mutex_t queue_lock; /* the writer's queue */
+    pthread_cond_t queue_filled, queue_drained;
+    write_job *head, *tail;
+    size_t queued, capacity;
+    bool writer_started, writer_stop;
+    pthread_t writer;
+
+    atomic_int_fast64_t writes, errors, loads, evictions;
+} mtd_archiver;
+
+/* The loads a worker runs for a deferred query. */
+typedef struct load_job {
+    mtd_daemon *daemon;
+    meshtopo_query_t *query;
+    uint32_t version;
+} load_job;
+
+/* Set while a worker answers a query whose version it has just loaded: that
+ * answer must not be deferred again. */
+static _Thread_local bool answering_loaded;
+
+static void note_error(mtd_daemon *d, const char *what, const char *message)
+{
+    mtd_log(MTD_LOG_ERROR, what, "error=%s", message);
+    atomic_fetch_add(&d->archiver->errors, 1);
+    pthread_mutex_lock(&d->error_lock);
+    snprintf(d->last_error, sizeof d->last_error, "%.40s: %.400s", what, message);
+    d->last_error_utime = mtd_now_utime();
+    pthread_mutex_unlock(&d->error_lock);
+}
+
+/* ---- the catalog (caller holds a->lock) ----------------------------------- */
+
+static int cat_cmp(const cat_entry *e, const char *id, uint32_t version)
+{
+    int c = strcmp(e->id, id);
+    if (c) return c;
+    return e->version < version ? -1 : e->version > version;
+}
+
+/* Index of the first entry >= (id, version); *out_found when equal. */
+static size_t cat_lower_bound(const mtd_archiver *a, const char *id, uint32_t version,
+                              bool *out_found)
+{
+    size_t lo = 0, hi = a->count;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (cat_cmp(&a->entries[mid], id, version) < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    *out_found = lo < a->count && cat_cmp(&a->entries[lo], id, version) == 0;
+    return lo;
+}
+
+static cat_entry *cat_find(mtd_archiver *a, const char *id, uint32_t version)
+{
+    bool found;
+    size_t at = cat_lower_bound(a, id, version, &found);
+    return found ? &a->entries[at] : NULL;
+}
+
+/* The highest archived version of id, 0 if none. */
+static uint32_t cat_highest(const mtd_archiver *a, const char *id)
+{
+    bool found;
+    size_t at = cat_lower_bound(a, id, UINT32_MAX, &found);
+    if (found) return UINT32_MAX;
+    return at > 0 && strcmp(a->entries[at - 1].id, id) == 0 ? a->entries[at - 1].version : 0;
+}
+
+/* Inserts a copy of *e (strings duplicated). false when out of memory. */
+static bool cat_insert(mtd_archiver *a, const cat_entry *e)
+{
+    bool found;
+    size_t at = cat_lower_bound(a, e->id, e->version, &found);
+    if (found) return true;
+    if (a->count == a->cap) {
+        size_t cap = a->cap ? 2 * a->cap : 64;
+        if (cap > SIZE_MAX / sizeof(cat_entry)) return false;
+        cat_entry *grown = realloc(a->entries, cap * sizeof *grown);
+        if (!grown) return false;
+        a->entries = grown;
+        a->cap = cap;
+    }
+    cat_entry copy = *e;
+    copy.id = strdup(e->id);
+    copy.source = strdup(e->source ? e->source : "");
+    if (!copy.id || !copy.source) {
+        free(copy.id);
+        free(copy.source);
+        return false;
+    }
+    memmove(&a->entries[at + 1], &a->entries[at], (a->count - at) * sizeof(cat_entry));
+    a->entries[at] = copy;
+    a->count++;
+    a->bytes += e->file_bytes;
+    return true;
+}
+
+/* ---- eviction ------------------------------------------------------------ */
+
+/* Drops the least recently used resident archived versions from the store
+ * until it holds no more than the budget. */
+static void enforce_budget(mtd_daemon *d)
+{
+    mtd_archiver *a = d->archiver;
+    if (!a || !a->budget) return;
+    for (;;) {
+        mtd_store_totals totals;
+        mtd_store_get_totals(d->store, &totals);
+        if (totals.memory_bytes <= a->budget) return;
+        char id[MTD_MESH_ID_MAX + 1];
+        uint32_t version = 0;
+        pthread_mutex_lock(&a->lock);
+        cat_entry *victim = NULL;
+        for (size_t i = 0; i < a->count; i++)
+            if (a->entries[i].resident && (!victim || a->entries[i].last_used < victim->last_used))
+                victim = &a->entries[i];
+        if (victim) {
+            victim->resident = false;
+            snprintf(id, sizeof id, "%s", victim->id);
+            version = victim->version;
+        }
+        pthread_mutex_unlock(&a->lock);
+        if (!victim) return; /* nothing archived is in memory: the rest stays */
+        if (mtd_store_remove(d->store, id, version, NULL) == MT_OK) {
+            atomic_fetch_add(&a->evictions, 1);
+            mtd_log(MTD_LOG_DEBUG, "evicted", "mesh_id=%s version=%" PRIu32, id, version);
+        }
+    }
+}
+
+/* Marks (id, version) as just used and in memory. */
+static void touch(mtd_archiver *a, const char *id, uint32_t version)
+{
+    pthread_mutex_lock(&a->lock);
+    cat_entry *e = cat_find(a, id, version);
+    if (e) {
+        e->last_used = ++a->clock;
+        e->resident = true;
+    }
+    pthread_mutex_unlock(&a->lock);
+}
+
+/* ---- writing ------------------------------------------------------------- */
+
+/* Archives one stored version and adds it to the catalog. */
+static mt_status write_version(mtd_daemon *d, const mtd_mesh_info *info, const mt_face_list *list,
+                               const mt_mesh *mesh, bool resident, mt_diag *diag)
+{
+    mtd_archiver *a = d->archiver;
+    mt_archive_meta meta = {.mesh_id = info->id,
+                            .version = info->version,
+                            .utime = info->utime,
+                            .source = info->source,
+                            .content_hash = info->content_hash};
+    mt_archive_write_stats stats;
+    memset(&stats, 0, sizeof stats);
+    mt_status s = mt_archive_write(a->archive, &meta, list, mesh, &stats, diag);
+    if (s != MT_OK) return s;
+    atomic_fetch_add(&a->writes, 1);
+    mtd_log(MTD_LOG_DEBUG, "archived",
+            "mesh_id=%s version=%" PRIu32 " bytes=%" PRIu64 " write_ms=%.2f fsync_ms=%.2f",
+            info->id, info->version, stats.file_bytes, stats.write_ms, stats.fsync_ms);
+    cat_entry e = {.id = (char *)info->id,
+                   .source = (char *)info->source,
+                   .version = info->version,
+                   .utime = info->utime,
+                   .content_hash = info->content_hash,
+                   .file_bytes = stats.file_bytes,
+                   .num_verts = (int32_t)mt_mesh_num_verts(mesh),
+                   .num_faces = (int32_t)mt_mesh_num_faces(mesh),
+                   .num_defects = (int64_t)mt_mesh_report(mesh)->num_defects,
+                   .resident = resident};
+    pthread_mutex_lock(&a->lock);
+    e.last_used = ++a->clock;
+    bool ok = cat_insert(a, &e);
+    pthread_mutex_unlock(&a->lock);
+    if (!ok) mtd_log(MTD_LOG_WARN, "archived", "out of memory cataloguing %s", info->id);
+    return MT_OK;
+}
+
+static void *writer_main(void *arg)
+{
+    mtd_daemon *d = arg;
+    mtd_archiver *a = d->archiver;
+    for (;;) {
+        pthread_mutex_lock(&a->queue_lock);
+        while (!a->head && !a->writer_stop) pthread_cond_wait(&a->queue_filled, &a->queue_lock);
+        write_job *job = a->head;
+        if (job) {
+            a->head = job->next;
+            if (!a->head) a->tail = NULL;
+        }
+        pthread_mutex_unlock(&a->queue_lock);
+        if (!job) return NULL; /* stopping and the queue is empty */
+        const mtd_mesh_info *info = mtd_entry_info(job->entry);
+        mt_diag diag;
+        if (write_version(d, info, &job->list, mtd_entry_mesh(job->entry), true, &diag) != MT_OK) {
+            char text[MTD_ERROR_MAX];
+            snprintf(text, sizeof text, "mesh '%.255s' version %" PRIu32 ": %.200s", info->id,
+                     info->version, diag.message);
+            note_error(d, "archive_write", text);
+        }
+        mtd_entry_release(job->entry);
+        mt_face_list_free(&job->list);
+        free(job);
+        pthread_mutex_lock(&a->queue_lock);
+        a->queued--;
+        pthread_cond_broadcast(&a->queue_drained);
+        pthread_mutex_unlock(&a->queue_lock);
+        enforce_budget(d);
+    }
+}
+
+/* Queues a stored version for the writer, waiting for room. */
+static mt_status enqueue_write(mtd_daemon *d, mtd_mesh_entry *entry, const mt_face_list *list,
+                               mt_diag *diag)
+{
+    mtd_archiver *a = d->archiver;
+    write_job *job = calloc(1, sizeof *job);
+    if (!job) return MT_ERR_NOMEM;
+    mt_status s =
+        mt_face_list_alloc(&job->list, list->num_verts, list->num_faces, list->num_indices, diag);
+    if (s != MT_OK) {
+        free(job);
+        return s;
+    }
+    if (list->positions)
+        memcpy(job->list.positions, list->positions, 3 * sizeof(double) * list->num_verts);
+    else {
+        free(job->list.positions);
+        job->list.positions = NULL;
+    }
+    memcpy(job->list.face_sizes, list->face_sizes, sizeof(uint32_t) * list->num_faces);
+    memcpy(job->list.face_indices, list->face_indices, sizeof(uint32_t) * list->num_indices);
+    job->entry = mtd_entry_retain(entry);
+    pthread_mutex_lock(&a->queue_lock);
+    while (a->queued >= a->capacity && !a->writer_stop)
+        pthread_cond_wait(&a->queue_drained, &a->queue_lock);
+    a->queued++;
+    if (a->tail)
+        a->tail->next = job;
+    else
+        a->head = job;
+    a->tail = job;
+    pthread_cond_signal(&a->queue_filled);
+    pthread_mutex_unlock(&a->queue_lock);
+    return MT_OK;
+}
+
+int32_t mtd_archiver_store(mtd_daemon *d, const meshtopo_mesh_t *m, const mt_face_list *list,
+                           mt_mesh *mesh, uint64_t content_hash, uint32_t *out_version,
+                           mtd_mesh_entry **out_entry, char *error, size_t size)
+{
+    mtd_archiver *a = d->archiver;
+    mtd_mesh_meta meta = {.source = m->source, .utime = m->utime, .content_hash = content_hash};
+    mt_diag diag;
+    bool sync = a && a->mode == MTD_ARCHIVE_SYNC;
+    if (sync) {
+        /* Write first, under a reserved number: the store sees the version
+         * only once it is durable. A failed write leaves a gap. */
+        mt_status s = mtd_store_reserve_version(d->store, m->mesh_id, 0, &meta.version, &diag);
+        if (s != MT_OK) {
+            snprintf(error, size, "not stored: %.400s", diag.message);
+            return s == MT_ERR_TOO_LARGE ? MESHTOPO_STATUS_CODE_T_TOO_LARGE
+                                         : MESHTOPO_STATUS_CODE_T_INTERNAL;
+        }
+        meta.reserved = true;
+        mtd_mesh_info info = {.id = m->mesh_id,
+                              .version = meta.version,
+                              .source = m->source,
+                              .utime = m->utime,
+                              .content_hash = content_hash};
+        s = write_version(d, &info, list, mesh, false, &diag);
+        if (s != MT_OK) {
+            snprintf(error, size, "not archived, so not stored: %.400s", diag.message);
+            note_error(d, "archive_write", error);
+            return MESHTOPO_STATUS_CODE_T_ARCHIVE_FAILED;
+        }
+    }
+    mt_status s = mtd_store_add(d->store, m->mesh_id, mesh, &meta, out_version, out_entry, &diag);
+    if (s != MT_OK) {
+        snprintf(error, size, "not stored: %.400s", diag.message);
+        if (sync) {
+            /* Not acknowledged, so not kept: a restart must not serve it. */
+            mt_diag ignored;
+            mt_archive_remove(a->archive, m->mesh_id, meta.version, &ignored);
+            pthread_mutex_lock(&a->lock);
+            bool found;
+            size_t at = cat_lower_bound(a, m->mesh_id, meta.version, &found);
+            if (found) {
+                a->bytes -= a->entries[at].file_bytes;
+                free(a->entries[at].id);
+                free(a->entries[at].source);
+                memmove(&a->entries[at], &a->entries[at + 1],
+                        (a->count - at - 1) * sizeof(cat_entry));
+                a->count--;
+            }
+            pthread_mutex_unlock(&a->lock);
+        }
+        return s == MT_ERR_TOO_LARGE ? MESHTOPO_STATUS_CODE_T_TOO_LARGE
+                                     : MESHTOPO_STATUS_CODE_T_INTERNAL;
+    }
+    if (sync) touch(a, m->mesh_id, *out_version);
+    if (a && a->mode == MTD_ARCHIVE_ASYNC && enqueue_write(d, *out_entry, list, &diag) != MT_OK) {
+        char text[MTD_ERROR_MAX];
+        snprintf(text, sizeof text, "mesh '%.255s' version %" PRIu32 " not queued: out of memory",
+                 m->mesh_id, *out_version);
+        note_error(d, "archive_write", text);
+    }
+    enforce_budget(d);
+    return MESHTOPO_STATUS_CODE_T_OK;
+}
+
+/* ---- loading ------------------------------------------------------------- */
+
+/* Loads version `version` of id into the store (reserved: its number was
+ * handed out before). MT_OK also when it is there already. */
+static mt_status load_version(mtd_daemon *d, const char *id, uint32_t version, mt_diag *diag)
+{
+    mtd_archiver *a = d->archiver;
+    mtd_mesh_entry *held = NULL;
+    if (mtd_store_acquire(d->store, id, version, &held, NULL) == MT_OK) {
+        mtd_entry_release(held);
+        return MT_OK;
+    }
+    /* The stored half-edge arrays, validated, without a rebuild; a file
+     * without them (or with damaged ones) is rebuilt from its face list. */
+    mt_archive_record record;
+    mt_mesh *mesh = NULL;
+    mt_archive_load_info info;
+    mt_status s = mt_archive_load_mesh(a->archive, id, version, false, &record, &mesh, &info, diag);
+    if (s != MT_OK) return s;
+    if (info.fallback.status != MT_OK)
+        mtd_log(MTD_LOG_WARN, "archive_rebuilt", "mesh_id=%s version=%" PRIu32 " reason=%s", id,
+                version, info.fallback.message);
+    mtd_mesh_meta meta = {.source = record.source,
+                          .utime = record.utime,
+                          .content_hash = record.content_hash,
+                          .version = version,
+                          .reserved = true};
+    s = mtd_store_add(d->store, id, mesh, &meta, NULL, NULL, diag);
+    if (s != MT_OK) {
+        mt_mesh_destroy(mesh);
+        /* A concurrent load of the same version got there first. */
+        if (mtd_store_acquire(d->store, id, version, &held, NULL) == MT_OK) {
+            mtd_entry_release(held);
+            s = MT_OK;
+        }
+    } else {
+        atomic_fetch_add(&a->loads, 1);
+        mtd_log(MTD_LOG_DEBUG, "loaded", "mesh_id=%s version=%" PRIu32, id, version);
+    }
+    mt_archive_record_free(&record);
+    return s;
+}
+
+static void load_job_free(load_job *job)
+{
+    meshtopo_query_t_destroy(job->query);
+    free(job);
+}
+
+static void load_job_run(void *arg, bool cancelled)
+{
+    load_job *job = arg;
+    mtd_daemon *d = job->daemon;
+    const meshtopo_query_t *q = job->query;
+    if (cancelled) {
+        mtd_reqcache_abandon(d->cache, q->reply_channel, q->request_id);
+        mtd_send_reply_error(d, q->reply_channel, q->request_id, q->mesh_id, q->kind, false,
+                             MESHTOPO_STATUS_CODE_T_BUSY,
+                             "the daemon is shutting down; the mesh was not loaded");
+        load_job_free(job);
+        return;
+    }
+    mt_diag diag;
+    mt_status s = load_version(d, q->mesh_id, job->version, &diag);
+    if (s != MT_OK) {
+        char text[MTD_ERROR_MAX];
+        snprintf(text, sizeof text, "mesh '%.200s' version %" PRIu32 " cannot be loaded: %.250s",
+                 q->mesh_id, job->version, diag.message);
+        note_error(d, "archive_load", text);
+        mtd_send_reply_error(d, q->reply_channel, q->request_id, q->mesh_id, q->kind, true,
+                             MESHTOPO_STATUS_CODE_T_ARCHIVE_FAILED, text);
+        load_job_free(job);
+        return;
+    }
+    answering_loaded = true;
+    mtd_query_handle(d, q);
+    answering_loaded = false;
+    load_job_free(job);
+    enforce_budget(d);
+}
+
+mt_status mtd_archiver_acquire(mtd_daemon *d, const meshtopo_query_t *q, mtd_mesh_entry **out_entry,
+                               bool *out_deferred, mt_diag *diag)
+{
+    *out_deferred = false;
+    mtd_archiver *a = d->archiver;
+    if (!a) return mtd_store_acquire(d->store, q->mesh_id, (uint32_t)q->version, out_entry, diag);
+    uint32_t version = (uint32_t)q->version;
+    if (version == 0 && mtd_mesh_id_check(q->mesh_id, NULL) == MT_OK) {
+        pthread_mutex_lock(&a->lock);
+        uint32_t archived = cat_highest(a, q->mesh_id);
+        pthread_mutex_unlock(&a->lock);
+        mtd_mesh_entry *latest = NULL;
+        if (mtd_store_acquire(d->store, q->mesh_id, 0, &latest, NULL) == MT_OK &&
+            mtd_entry_info(latest)->version >= archived) {
+            touch(a, q->mesh_id, mtd_entry_info(latest)->version);
+            *out_entry = latest;
+            if (diag) mt_diag_clear(diag);
+            return MT_OK;
+        }
+        mtd_entry_release(latest);
+        version = archived; /* still 0 when nothing is archived either */
+    }
+    mt_status s = mtd_store_acquire(d->store, q->mesh_id, version, out_entry, diag);
+    if (s == MT_OK) {
+        touch(a, q->mesh_id, mtd_entry_info(*out_entry)->version);
+        return s;
+    }
+    if (s != MT_ERR_NOT_FOUND || version == 0 || answering_loaded) return s;
+    pthread_mutex_lock(&a->lock);
+    bool archived = cat_find(a, q->mesh_id, version) != NULL;
+    pthread_mutex_unlock(&a->lock);
+    if (!archived) return s;
+    load_job *job = calloc(1, sizeof *job);
+    meshtopo_query_t *copy = job ? meshtopo_query_t_copy(q) : NULL;
+    if (!copy) {
+        free(job);
+        return MT_ERR_NOMEM;
+    }
+    job->daemon = d;
+    job->query = copy;
+    job->version = version;
+    if (mtd_pool_submit(d->pool, load_job_run, job) != MTD_SUBMIT_OK) {
+        load_job_free(job);
+        return MT_ERR_NOT_FOUND; /* the caller answers */
+    }
+    *out_deferred = true;
+    return MT_ERR_NOT_FOUND;
+}
+
+/* ---- listing and stats --------------------------------------------------- */
+
+/* One row of the merged listing. */
+typedef struct list_row {
+    const char *id;
+    mtd_mesh_info info;
+} list_row;
+
+static int row_cmp(const void *pa, const void *pb)
+{
+    const list_row *x = pa, *y = pb;
+    int c = strcmp(x->id, y->id);
+    if (c) return c;
+    return x->info.version < y->info.version ? -1 : x->info.version > y->info.version;
+}
+
+mt_status mtd_archiver_list(mtd_daemon *d, mtd_store_listing **out_listing)
+{
+    *out_listing = NULL;
+    mtd_store_listing *held = NULL;
+    mt_status s = mtd_store_list(d->store, &held);
+    mtd_archiver *a = d->archiver;
+    if (s != MT_OK || !a) {
+        *out_listing = held;
+        return s;
+    }
+    pthread_mutex_lock(&a->lock);
+    size_t n = held->totals.versions + a->count;
+    list_row *rows = calloc(n + 1, sizeof *rows);
+    if (!rows) {
+        pthread_mutex_unlock(&a->lock);
+        mtd_store_listing_free(held);
+        return MT_ERR_NOMEM;
+    }
+    size_t k = 0;
+    for (size_t i = 0; i < held->num_ids; i++)
+        for (uint32_t v = 0; v < held->ids[i].num_versions; v++)
+            rows[k++] = (list_row){held->ids[i].id, held->ids[i].versions[v]};
+    for (size_t i = 0; i < a->count; i++) {
+        const cat_entry *e = &a->entries[i];
+        rows[k++] = (list_row){e->id,
+                               {.id = e->id,
+                                .version = e->version,
+                                .source = e->source,
+                                .utime = e->utime,
+                                .content_hash = e->content_hash}};
+    }
+    /* Stable order with held rows first among equals is not needed: keep the
+     * held row (it has memory_bytes) by preferring a non-zero memory_bytes. */
+    qsort(rows, k, sizeof *rows, row_cmp);
+    size_t m = 0, ids = 0, bytes = sizeof(mtd_store_listing);
+    for (size_t i = 0; i < k; i++) {
+        if (m > 0 && row_cmp(&rows[m - 1], &rows[i]) == 0) {
+            if (rows[i].info.memory_bytes) rows[m - 1] = rows[i];
+            continue;
+        }
+        if (m == 0 || strcmp(rows[m - 1].id, rows[i].id) != 0) {
+            ids++;
+            bytes += strlen(rows[i].id) + 1;
+        }
+        bytes += strlen(rows[i].info.source) + 1;
+        rows[m++] = rows[i];
+    }
+    bytes += ids * sizeof(mtd_listed_id) + m * sizeof(mtd_mesh_info);
+    mtd_store_listing *out = malloc(bytes);
+    if (out) {
+        out->num_ids = ids;
+        out->ids = (mtd_listed_id *)(out + 1);
+        out->totals = held->totals;
+        mtd_mesh_info *info = (mtd_mesh_info *)(out->ids + ids);
+        char *text = (char *)(info + m);
+        size_t row = SIZE_MAX;
+        const char *id = NULL;
+        for (size_t i = 0; i < m; i++) {
+            if (!id || strcmp(id, rows[i].id) != 0) {
+                size_t len = strlen(rows[i].id) + 1;
+                memcpy(text, rows[i].id, len);
+                id = text;
+                text += len;
+                row = row == SIZE_MAX ? 0 : row + 1;
+                out->ids[row] = (mtd_listed_id){id, 0, info};
+            }
+            *info = rows[i].info;
+            info->id = id;
+            size_t len = strlen(rows[i].info.source) + 1;
+            memcpy(text, rows[i].info.source, len);
+            info->source = text;
+            text += len;
+            info++;
+            out->ids[row].num_versions++;
+        }
+    }
+    pthread_mutex_unlock(&a->lock);
+    free(rows);
+    mtd_store_listing_free(held);
+    if (!out) return MT_ERR_NOMEM;
+    *out_listing = out;
+    return MT_OK;
+}
+
+bool mtd_archiver_counts(mtd_daemon *d, const char *mesh_id, uint32_t version, int32_t *out_verts,
+                         int32_t *out_faces, int64_t *out_defects)
+{
+    mtd_archiver *a = d->archiver;
+    if (!a) return false;
+    pthread_mutex_lock(&a->lock);
+    const cat_entry *e = cat_find(a, mesh_id, version);
+    if (e) {
+        *out_verts = e->num_verts;
+        *out_faces = e->num_faces;
+        *out_defects = e->num_defects;
+    }
+    pthread_mutex_unlock(&a->lock);
+    return e != NULL;
+}
+
+void mtd_archiver_stats(mtd_daemon *d, meshtopo_status_t *st)
+{
+    mtd_archiver *a = d->archiver;
+    st->memory_budget = (int64_t)d->config.memory_budget;
+    if (!a) return;
+    pthread_mutex_lock(&a->lock);
+    st->archive_versions = (int32_t)a->count;
+    st->archive_bytes = (int64_t)a->bytes;
+    pthread_mutex_unlock(&a->lock);
+    pthread_mutex_lock(&a->queue_lock);
+    st->archive_backlog = (int32_t)a->queued;
+    pthread_mutex_unlock(&a->queue_lock);
+    st->archive_writes = atomic_load(&a->writes);
+    st->archive_errors = atomic_load(&a->errors);
+    st->archive_loads = atomic_load(&a->loads);
+    st->archive_evictions = atomic_load(&a->evictions);
+}
+
+/* ---- start and stop ------------------------------------------------------ */
+
+mt_status mtd_archiver_start(mtd_daemon *d, mt_diag *diag)
+{
+    const mtd_config *c = &d->config;
+    if (!c->archive_dir[0]) {
+        if (c->memory_budget)
+            mtd_log(MTD_LOG_WARN, "archive",
+                    "--memory-budget without --archive: nothing can be evicted");
+        return MT_OK;
+    }
+    mtd_archiver *a = calloc(1, sizeof *a);
+    if (!a) return MT_ERR_NOMEM;
+    a->mode = c->archive_mode;
+    a->budget = c->memory_budget;
+    a->capacity = c->archive_queue ? c->archive_queue : 1;
+    pthread_mutex_init(&a->lock, NULL);
+    pthread_mutex_init(&a->queue_lock, NULL);
+    pthread_cond_init(&a->queue_filled, NULL);
+    pthread_cond_init(&a->queue_drained, NULL);
+    d->archiver = a;
+    mt_archive_options options = {.create = a->mode != MTD_ARCHIVE_OFF,
+                                  .read_only = a->mode == MTD_ARCHIVE_OFF};
+    mt_status s = mt_archive_open(c->archive_dir, &options, &a->archive, diag);
+    if (s != MT_OK) return s;
+    mt_archive_listing listing;
+    s = mt_archive_list(a->archive, &listing, diag);
+    if (s != MT_OK) return s;
+    size_t bad = 0;
+    for (size_t i = 0; i < listing.count; i++) {
+        const mt_archive_entry *e = &listing.entries[i];
+        if (e->status != MT_OK) {
+            bad++;
+            note_error(d, "archive_list", e->diag.message);
+            continue;
+        }
+        cat_entry ce = {.id = e->mesh_id,
+                        .source = e->source,
+                        .version = e->version,
+                        .utime = e->utime,
+                        .content_hash = e->content_hash,
+                        .file_bytes = e->file_bytes,
+                        .num_verts = (int32_t)e->summary.num_verts,
+                        .num_faces = (int32_t)e->summary.num_faces,
+                        .num_defects = (int64_t)e->summary.num_defects};
+        pthread_mutex_lock(&a->lock);
+        bool ok = cat_insert(a, &ce);
+        pthread_mutex_unlock(&a->lock);
+        if (!ok ||
+            mtd_store_reserve_version(d->store, e->mesh_id, e->version, NULL, diag) != MT_OK) {
+            mt_archive_listing_free(&listing);
+            return MT_ERR_NOMEM;
+        }
+    }
+    mt_archive_listing_free(&listing);
+    mtd_log(MTD_LOG_INFO, "archive",
+            "dir=%s mode=%s versions=%zu unreadable=%zu leftovers_removed=%zu bytes=%" PRIu64,
+            c->archive_dir, mtd_archive_mode_name(a->mode), a->count, bad,
+            mt_archive_leftovers_removed(a->archive), a->bytes);
+    if (c->preload) {
+        size_t loaded = 0;
+        for (size_t i = 0; i < a->count; i++) {
+            mtd_store_totals totals;
+            mtd_store_get_totals(d->store, &totals);
+            if (a->budget && totals.memory_bytes >= a->budget) break;
+            mt_diag load_diag;
+            if (load_version(d, a->entries[i].id, a->entries[i].version, &load_diag) != MT_OK) {
+                note_error(d, "archive_load", load_diag.message);
+                continue;
+            }
+            touch(a, a->entries[i].id, a->entries[i].version);
+            loaded++;
+        }
+        enforce_budget(d);
+        mtd_log(MTD_LOG_INFO, "preload", "loaded=%zu of %zu", loaded, a->count);
+    }
+    if (a->mode == MTD_ARCHIVE_ASYNC) {
+        if (pthread_create(&a->writer, NULL, writer_main, d) != 0) return MT_ERR_NOMEM;
+        a->writer_started = true;
+    }
+    return MT_OK;
+}
+
+void mtd_archiver_stop(mtd_daemon *d)
+{
+    mtd_archiver *a = d ? d->archiver : NULL;
+    if (!a) return;
+    pthread_mutex_lock(&a->queue_lock);
+    bool join = a->writer_started && !a->writer_stop;
+    a->writer_stop = true;
+    pthread_cond_broadcast(&a->queue_filled);
+    pthread_cond_broadcast(&a->queue_drained);
+    pthread_mutex_unlock(&a->queue_lock);
+    if (join) pthread_join(a->writer, NULL);
+}
+
+void mtd_archiver_free(mtd_daemon *d)
+{
+    mtd_archiver *a = d ? d->archiver : NULL;
+    if (!a) return;
+    mtd_archiver_stop(d);
+    for (write_job *job = a->head, *next; job; job = next) {
+        next = job->next;
+        mtd_entry_release(job->entry);
+        mt_face_list_free(&job->list);
+        free(job);
+    }
+    for (size_t i = 0; i < a->count; i++) {
+        free(a->entries[i].id);
+        free(a->entries[i].source);
+    }
+    free(a->entries);
+    mt_archive_close(a->archive);
+    pthread_cond_destroy(&a->queue_filled);
+    pthread_cond_destroy(&a->queue_drained);
+    pthread_mutex_destroy(&a->queue_lock);
+    pthread_mutex_destroy(&a->lock);
+    free(a);
+    d->archiver = NULL;
+}
