@@ -1,12 +1,16 @@
 /* The bandwidth floor measured in process: the time memcpy takes to stream
  * a case's input bytes (positions, face sizes, indices) and write as many
  * bytes as meshtopo's built structure holds (mt_mesh_memory_bytes), into
- * freshly allocated memory each repetition (malloc, first touch: page faults
- * included) or into one buffer touched before. No build can move less data,
+ * fresh memory each repetition (a new anonymous mapping, so every page is
+ * faulted in and zeroed by the kernel as a build's new arrays are; malloc
+ * would hand back the pages the previous repetition freed) or into one
+ * buffer touched before. No build can move less data,
  * so the ratio of a build to the floor says how far it is from the limit. */
+#define _DEFAULT_SOURCE /* MAP_ANONYMOUS */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #include "bench.h"
 #include "meshtopo/mesh.h"
@@ -94,7 +98,11 @@ static bool floor_rep(mt__bench_runner *runner, mt__bench_sample *out, mt__bench
     memset(out, 0, sizeof *out);
     double t0 = mt__bench_now_ms();
     unsigned char *dst = s->reused;
-    if (runner->fresh) dst = malloc(s->out_bytes);
+    if (runner->fresh) {
+        void *map = mmap(NULL, s->out_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
+                         -1, 0);
+        dst = map == MAP_FAILED ? NULL : map;
+    }
     if (!dst) {
         snprintf(result->message, sizeof result->message, "out of memory (%zu bytes)",
                  s->out_bytes);
@@ -104,7 +112,7 @@ static bool floor_rep(mt__bench_runner *runner, mt__bench_sample *out, mt__bench
     double t1 = mt__bench_now_ms();
     /* Keep the copy observable so it cannot be dropped. */
     out->seen.ring_sum = dst[s->out_bytes - 1];
-    if (runner->fresh) free(dst);
+    if (runner->fresh) munmap(dst, s->out_bytes);
     out->build_ms = t1 - t0;
     out->ring_ms = out->adj_ms = out->loops_ms = out->components_ms = NAN;
     out->heap_bytes = -1;

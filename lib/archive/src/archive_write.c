@@ -108,25 +108,38 @@ static mt_status write_cells_column(hid_t loc, const char *dname, cells_column c
                                    name, diag);
     if (w.dset < 0) return MT_ERR_IO;
     const mt_face_list *list = v->list;
+    const uint32_t *sizes = list->face_sizes, *indices = list->face_indices;
+    int64_t *out64 = v->buffer;
+    uint8_t *out8 = v->buffer;
     uint64_t start = 0, pos = 0;
     if (column == COLUMN_OFFSETS) column_push(&w, 0, diag);
-    for (uint32_t f = 0; w.st == MT_OK && f < list->num_faces; start += list->face_sizes[f], f++) {
+    /* One face's values go straight into the block (flushed first when they
+     * would not fit): this loop runs once per face side of the mesh, so it
+     * stays free of calls. Only a face with more sides than a block holds
+     * goes value by value. */
+    for (uint32_t f = 0; w.st == MT_OK && f < list->num_faces; start += sizes[f], f++) {
         if (v->face_he[f] == MT_NONE) continue;
-        const uint32_t n = list->face_sizes[f];
+        const uint32_t n = sizes[f];
+        const size_t count = column == COLUMN_CONNECTIVITY ? n : 1;
+        if (w.fill + count > w.block) column_flush(&w, diag);
         switch (column) {
             case COLUMN_CONNECTIVITY:
-                for (uint32_t k = 0; k < n; k++)
-                    column_push(&w, list->face_indices[start + k], diag);
+                if (n > w.block) {
+                    for (uint32_t k = 0; k < n; k++) column_push(&w, indices[start + k], diag);
+                    break;
+                }
+                for (uint32_t k = 0; k < n; k++) out64[w.fill + k] = indices[start + k];
+                w.fill += n;
                 break;
             case COLUMN_OFFSETS:
                 pos += n;
-                column_push(&w, (int64_t)pos, diag);
+                out64[w.fill++] = (int64_t)pos;
                 break;
             case COLUMN_TYPES:
-                column_push(&w, n == 3 ? 5 : n == 4 ? 9 : 7, diag);
+                out8[w.fill++] = n == 3 ? 5 : n == 4 ? 9 : 7;
                 break;
             case COLUMN_FACE_IDS:
-                column_push(&w, f, diag);
+                out64[w.fill++] = f;
                 break;
         }
     }
