@@ -57,18 +57,6 @@ static int usage(void)
     return 2;
 }
 
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *v, uint32_t n)
-{
-    qsort(v, n, sizeof *v, compare_double);
-    return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-}
-
 static uint64_t file_size(const char *path)
 {
     struct stat sb;
@@ -181,7 +169,7 @@ static bool run_layout(const options *o, mt_archive *archive, const mt_face_list
         }
         if (!o->keep) unlink(bare_path);
     }
-    for (int m = 0; m < M_COUNT; m++) res->median[m] = median(res->ms[m], o->reps);
+    for (int m = 0; m < M_COUNT; m++) res->median[m] = mt__bench_median_of(res->ms[m], o->reps);
     return true;
 }
 

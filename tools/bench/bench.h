@@ -129,6 +129,10 @@ struct mt__bench_runner {
  * `[build] [options]` or `all [options]`. Returns the process exit code. */
 int mt__bench_command(int argc, char **argv);
 
+/* bench_stats.c: both sort `values` in place; NaN for n == 0. */
+double mt__bench_median_of(double *values, uint32_t n);
+double mt__bench_quantile(double *values, uint32_t n, double q); /* nearest rank, q in [0, 1] */
+
 /* bench_clock.c */
 double mt__bench_now_ms(void);
 int64_t mt__bench_heap_bytes(void);

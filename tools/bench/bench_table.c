@@ -8,19 +8,6 @@
 
 #include "bench.h"
 
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median_of(double *values, uint32_t n)
-{
-    if (n == 0) return NAN;
-    qsort(values, n, sizeof *values, compare_double);
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 static double sample_metric(const mt__bench_sample *s, mt__bench_metric metric)
 {
     switch (metric) {
@@ -46,7 +33,7 @@ double mt__bench_median(const mt__bench_result *result, mt__bench_metric metric)
         double x = sample_metric(&result->samples[i], metric);
         if (!isnan(x)) values[n++] = x;
     }
-    return median_of(values, n);
+    return mt__bench_median_of(values, n);
 }
 
 /* Median heap growth of the build, NAN when unknown: mallinfo2 missing, or
@@ -58,7 +45,7 @@ static double median_heap(const mt__bench_result *result)
     for (uint32_t i = 0; i < result->num_samples; i++) {
         if (result->samples[i].heap_bytes > 0) values[n++] = (double)result->samples[i].heap_bytes;
     }
-    return median_of(values, n);
+    return mt__bench_median_of(values, n);
 }
 
 static bool measured(const mt__bench_result *r)

@@ -14,6 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "bench.h"
 #include "meshtopo/generate.h"
 #include "meshtopo/report.h"
 #include "rtt.h"
@@ -143,48 +144,6 @@ static int parse_options(int argc, char **argv, mt__rtt_options *o)
     return 0;
 }
 
-/* meshtopod next to this program (installed side by side), else the one in
- * the build tree. */
-static const char *find_daemon(const mt__rtt_options *o, char *buf, size_t size)
-{
-    if (o->daemon_path) return o->daemon_path;
-    ssize_t n = readlink("/proc/self/exe", buf, size - 1);
-    if (n > 0) {
-        buf[n] = '\0';
-        char *slash = strrchr(buf, '/');
-        if (slash && (size_t)(slash - buf) + sizeof "/meshtopod" <= size) {
-            strcpy(slash, "/meshtopod");
-            if (access(buf, X_OK) == 0) return buf;
-        }
-    }
-#ifdef MESHTOPO_BENCH_DAEMON_BUILD_PATH
-    if (access(MESHTOPO_BENCH_DAEMON_BUILD_PATH, X_OK) == 0)
-        return MESHTOPO_BENCH_DAEMON_BUILD_PATH;
-#endif
-    return "meshtopod";
-}
-
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The q-quantile (0..1) of values (sorted in place), nearest rank. */
-static double quantile(double *values, uint32_t n, double q)
-{
-    qsort(values, n, sizeof *values, compare_double);
-    uint32_t rank = (uint32_t)(q * (double)n + 0.999999);
-    if (rank < 1) rank = 1;
-    return values[rank - 1];
-}
-
-static double median(double *values, uint32_t n)
-{
-    qsort(values, n, sizeof *values, compare_double);
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 /* Latency figures of the run: per repetition, then medians. */
 typedef struct latency_figures {
     double raw_p50[MT__RTT_MAX_REPS], raw_p99[MT__RTT_MAX_REPS];
@@ -230,13 +189,13 @@ static bool measure_latency(const mt__rtt_options *o, const mt_mesh *local,
             if ((half == 0) == (r % 2 == 0)) {
                 ok = mt__rtt_pingpong(fig->query_bytes, fig->reply_bytes, o->round_trips, samples,
                                       err, err_size);
-                fig->raw_p50[r] = quantile(samples, o->round_trips, 0.50);
-                fig->raw_p99[r] = quantile(samples, o->round_trips, 0.99);
+                fig->raw_p50[r] = mt__bench_quantile(samples, o->round_trips, 0.50);
+                fig->raw_p99[r] = mt__bench_quantile(samples, o->round_trips, 0.99);
             } else {
                 ok = mt__rtt_query_latency(client, local, o->round_trips, o->seed + 100 + r,
                                            samples, &unused_q, &unused_r, err, err_size);
-                fig->query_p50[r] = quantile(samples, o->round_trips, 0.50);
-                fig->query_p99[r] = quantile(samples, o->round_trips, 0.99);
+                fig->query_p50[r] = mt__bench_quantile(samples, o->round_trips, 0.50);
+                fig->query_p99[r] = mt__bench_quantile(samples, o->round_trips, 0.99);
             }
         }
         fig->ratio_p50[r] = fig->query_p50[r] / fig->raw_p50[r];
@@ -349,14 +308,16 @@ static void report(const mt__rtt_options *o, latency_figures *lat, throughput_fi
              " triangles), %u round trips x %u reps, "
              "%.0f s throughput runs, private network namespace",
              o->grid, o->grid, num_faces, o->round_trips, n, o->seconds);
-    double ratio50 = median(lat->ratio_p50, n), ratio99 = median(lat->ratio_p99, n);
-    double single = median(tp->single, n), batched = median(tp->batched, n);
+    double ratio50 = mt__bench_median_of(lat->ratio_p50, n),
+           ratio99 = mt__bench_median_of(lat->ratio_p99, n);
+    double single = mt__bench_median_of(tp->single, n),
+           batched = mt__bench_median_of(tp->batched, n);
     table_row rows[] = {
-        {"p50 raw LCM ping-pong", median(lat->raw_p50, n), "us", "", false},
-        {"p50 one-ring query", median(lat->query_p50, n), "us", "", false},
+        {"p50 raw LCM ping-pong", mt__bench_median_of(lat->raw_p50, n), "us", "", false},
+        {"p50 one-ring query", mt__bench_median_of(lat->query_p50, n), "us", "", false},
         {"p50 ratio query / raw", ratio50, "x", "<= 1.5x", ratio50 <= TARGET_P50_RATIO},
-        {"p99 raw LCM ping-pong", median(lat->raw_p99, n), "us", "", false},
-        {"p99 one-ring query", median(lat->query_p99, n), "us", "", false},
+        {"p99 raw LCM ping-pong", mt__bench_median_of(lat->raw_p99, n), "us", "", false},
+        {"p99 one-ring query", mt__bench_median_of(lat->query_p99, n), "us", "", false},
         {"p99 ratio query / raw", ratio99, "x", "<= 3x", ratio99 <= TARGET_P99_RATIO},
         {single_name, single, "/s", ">= 20,000/s", single >= TARGET_SINGLE_PER_S},
         {batch_name, batched, "/s", ">= 2,000,000/s", batched >= TARGET_BATCH_PER_S},
@@ -406,7 +367,7 @@ int mt__bench_rtt_command(int argc, char **argv)
     }
 
     char daemon_buf[PATH_MAX];
-    const char *daemon_path = find_daemon(&o, daemon_buf, sizeof daemon_buf);
+    const char *daemon_path = mt__rtt_daemon_find(o.daemon_path, daemon_buf, sizeof daemon_buf);
     mt__rtt_daemon daemon;
     mt__rtt_echo echo = {0};
     latency_figures lat;

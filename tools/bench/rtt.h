@@ -61,6 +61,11 @@ typedef struct mt__rtt_daemon {
     char log_path[256];
 } mt__rtt_daemon;
 
+/* The meshtopod to start: `given` when not NULL, else the one next to this
+ * program (installed side by side), else the build tree's, else "meshtopod"
+ * on PATH. buf holds the path found. */
+const char *mt__rtt_daemon_find(const char *given, char *buf, size_t size);
+
 /* Starts meshtopod on MT__RTT_LCM_URL and waits for its first heartbeat. */
 bool mt__rtt_daemon_start(const char *path, mt__rtt_daemon *out, char *err, size_t err_size);
 

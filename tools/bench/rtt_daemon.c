@@ -109,6 +109,25 @@ bool mt__rtt_daemon_stop(mt__rtt_daemon *daemon, char *err, size_t err_size)
     return clean;
 }
 
+const char *mt__rtt_daemon_find(const char *given, char *buf, size_t size)
+{
+    if (given) return given;
+    ssize_t n = readlink("/proc/self/exe", buf, size - 1);
+    if (n > 0) {
+        buf[n] = '\0';
+        char *slash = strrchr(buf, '/');
+        if (slash && (size_t)(slash - buf) + sizeof "/meshtopod" <= size) {
+            strcpy(slash, "/meshtopod");
+            if (access(buf, X_OK) == 0) return buf;
+        }
+    }
+#ifdef MESHTOPO_BENCH_DAEMON_BUILD_PATH
+    if (access(MESHTOPO_BENCH_DAEMON_BUILD_PATH, X_OK) == 0)
+        return MESHTOPO_BENCH_DAEMON_BUILD_PATH;
+#endif
+    return "meshtopod";
+}
+
 mt_client *mt__rtt_client_new(const char *source)
 {
     mt_client_options opts;

@@ -18,6 +18,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench.h"
 #include "meshtopo/generate.h"
 #include "rtt.h"
 #include "transfer.h"
@@ -132,38 +133,12 @@ static int parse_options(int argc, char **argv, options *o)
     return 0;
 }
 
-/* meshtopod next to this program, else the one in the build tree. */
-static const char *find_daemon(const options *o, char *buf, size_t size)
-{
-    if (o->daemon_path) return o->daemon_path;
-    ssize_t n = readlink("/proc/self/exe", buf, size - 1);
-    if (n > 0) {
-        buf[n] = '\0';
-        char *slash = strrchr(buf, '/');
-        if (slash && (size_t)(slash - buf) + sizeof "/meshtopod" <= size) {
-            strcpy(slash, "/meshtopod");
-            if (access(buf, X_OK) == 0) return buf;
-        }
-    }
-#ifdef MESHTOPO_BENCH_DAEMON_BUILD_PATH
-    if (access(MESHTOPO_BENCH_DAEMON_BUILD_PATH, X_OK) == 0)
-        return MESHTOPO_BENCH_DAEMON_BUILD_PATH;
-#endif
-    return "meshtopod";
-}
-
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
+/* The median of n values, leaving them in their order. */
 static double median(const double *values, uint32_t n)
 {
     double sorted[MAX_REPS];
     memcpy(sorted, values, n * sizeof *values);
-    qsort(sorted, n, sizeof *sorted, compare_double);
-    return n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    return mt__bench_median_of(sorted, n);
 }
 
 static double seconds_since(const struct timespec *t0)
@@ -416,7 +391,7 @@ int mt__bench_transfer_command(int argc, char **argv)
         return 1;
     }
     char daemon_buf[PATH_MAX];
-    const char *daemon_path = find_daemon(&o, daemon_buf, sizeof daemon_buf);
+    const char *daemon_path = mt__rtt_daemon_find(o.daemon_path, daemon_buf, sizeof daemon_buf);
     fprintf(stderr, "meshtopo-bench transfer: starting %s in a private network namespace\n",
             daemon_path);
     figures f;
