@@ -99,8 +99,8 @@ static bool floor_rep(mt__bench_runner *runner, mt__bench_sample *out, mt__bench
     double t0 = mt__bench_now_ms();
     unsigned char *dst = s->reused;
     if (runner->fresh) {
-        void *map = mmap(NULL, s->out_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
-                         -1, 0);
+        void *map =
+            mmap(NULL, s->out_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
         dst = map == MAP_FAILED ? NULL : map;
     }
     if (!dst) {
