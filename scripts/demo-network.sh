@@ -15,9 +15,10 @@ meshtopod=$build/daemon/meshtopod
 [ -x "$meshtopod" ] || { echo "demo: $meshtopod was not built" >&2; exit 1; }
 [ "${MESHTOPO_NETNS:-}" = 1 ] || { echo "demo: run me through tests/netns/netns-run" >&2; exit 1; }
 
-# LCM keeps the kernel's default UDP receive buffer (about 200 KiB), smaller
-# than a whole mesh of a few MB; ask for 4 MiB (the kernel caps it at
-# net.core.rmem_max). Large meshes travel in chunks in a later release.
+# Meshes and answers larger than one datagram travel in acknowledged chunks;
+# a larger UDP receive buffer than the kernel's default (about 200 KiB) lets
+# a window of them arrive without drops (the kernel caps it at
+# net.core.rmem_max).
 export MESHTOPO_LCM_URL="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
 log=$(mktemp /tmp/meshtopod-demo.XXXXXX)
 archive=$(mktemp -d /tmp/meshtopo-demo-archive.XXXXXX)
