@@ -109,6 +109,13 @@ static mt_status write_cells_column(hid_t loc, const char *dname, cells_column c
     if (w.dset < 0) return MT_ERR_IO;
     const mt_face_list *list = v->list;
     const uint32_t *sizes = list->face_sizes, *indices = list->face_indices;
+    /* Every face kept (the usual case): the connectivity is the face list's
+     * indices, widened to int64 by HDF5's own conversion in one write. */
+    if (column == COLUMN_CONNECTIVITY && v->cells == list->num_faces) {
+        w.st = mt__h5_write_rows(w.dset, H5T_NATIVE_UINT32, 0, rows, indices, name, dname, diag);
+        H5Dclose(w.dset);
+        return w.st;
+    }
     int64_t *out64 = v->buffer;
     uint8_t *out8 = v->buffer;
     uint64_t start = 0, pos = 0;
