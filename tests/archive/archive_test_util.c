@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "harness.h"
+#include "meshtopo/io.h"
 #include "meshtopo/validate.h"
 
 bool at_tmpdir(char *buf, size_t size)
@@ -111,4 +112,33 @@ bool at_copy_file(const char *from, const char *to, long truncate_to)
     bool ok = buf && at_write_bytes(to, buf, n);
     free(buf);
     return ok;
+}
+
+int at_for_each_corpus_mesh(void (*fn)(const char *name, const mt_face_list *list, void *ctx),
+                            void *ctx)
+{
+    const char *corpus = mt_test_corpus_dir();
+    DIR *d = opendir(corpus);
+    CHECK(d != NULL);
+    if (!d) return 0;
+    int meshes = 0;
+    struct dirent *ent;
+    while ((ent = readdir(d)) != NULL) {
+        const char *n = ent->d_name;
+        size_t len = strlen(n);
+        bool off = len > 4 && strcmp(n + len - 4, ".off") == 0;
+        bool gz = len > 7 && strcmp(n + len - 7, ".off.gz") == 0;
+        if (!off && !gz) continue;
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", corpus, n);
+        mt_face_list list;
+        mt_status st = mt_read_file(path, MT_FORMAT_AUTO, &list, NULL);
+        CHECK_OK(st);
+        if (st != MT_OK) continue;
+        fn(n, &list, ctx);
+        mt_face_list_free(&list);
+        meshes++;
+    }
+    closedir(d);
+    return meshes;
 }

@@ -30,6 +30,12 @@ bool at_face_lists_equal(const mt_face_list *a, const mt_face_list *b);
  * signature mt_archive_verify_file takes. */
 mt_status at_hash(void *ctx, const mt_face_list *faces, uint64_t *out_hash, mt_diag *diag);
 
+/* Reads every .off and .off.gz mesh of the corpus and calls fn(name, list,
+ * ctx) for each (the list is freed after the call). A file that does not
+ * read is a test failure. Returns how many meshes were visited. */
+int at_for_each_corpus_mesh(void (*fn)(const char *name, const mt_face_list *list, void *ctx),
+                            void *ctx);
+
 /* Writes `size` bytes to path; false on failure. */
 bool at_write_bytes(const char *path, const void *data, size_t size);
 

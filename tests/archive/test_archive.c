@@ -138,35 +138,18 @@ static void test_round_trip_generated(void)
     at_rmdir(dir);
 }
 
+/* The corpus file name as mesh id: its '.' is escaped. */
+static void round_trip_named(const char *name, const mt_face_list *list, void *archive)
+{
+    round_trip(archive, name, list);
+}
+
 static void test_round_trip_corpus(void)
 {
     char dir[512];
     mt_archive *archive = open_fresh(dir, sizeof dir);
     if (!archive) return;
-    const char *corpus = mt_test_corpus_dir();
-    DIR *d = opendir(corpus);
-    CHECK(d != NULL);
-    if (!d) return;
-    int meshes = 0;
-    struct dirent *ent;
-    while ((ent = readdir(d)) != NULL) {
-        const char *n = ent->d_name;
-        size_t len = strlen(n);
-        bool off = len > 4 && strcmp(n + len - 4, ".off") == 0;
-        bool gz = len > 7 && strcmp(n + len - 7, ".off.gz") == 0;
-        if (!off && !gz) continue;
-        char path[1024];
-        snprintf(path, sizeof path, "%s/%s", corpus, n);
-        mt_face_list list;
-        mt_diag diag;
-        mt_status st = mt_read_file(path, MT_FORMAT_AUTO, &list, &diag);
-        CHECK_OK(st);
-        if (st != MT_OK) continue;
-        round_trip(archive, n, &list); /* the file name as id: '.' is escaped */
-        mt_face_list_free(&list);
-        meshes++;
-    }
-    closedir(d);
+    int meshes = at_for_each_corpus_mesh(round_trip_named, archive);
     CHECK(meshes >= 20);
     mt_archive_listing listing;
     CHECK_OK(mt_archive_list(archive, &listing, NULL));

@@ -4,7 +4,6 @@
  * deflated); format 1 files (no arrays) still load by a rebuild; stored
  * arrays damaged in the file are reported naming the file and fall back to
  * the rebuild, and verify names them; the compression option. */
-#include <dirent.h>
 #include <hdf5.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,7 +13,6 @@
 #include "archive_test_util.h"
 #include "harness.h"
 #include "meshtopo/core.h"
-#include "meshtopo/io.h"
 #include "restore_check.h"
 
 static mt_archive *open_fresh(char *dir, size_t size)
@@ -109,34 +107,17 @@ static void test_reload_restores_generated(void)
     at_rmdir(dir);
 }
 
+static void reload_named(const char *name, const mt_face_list *list, void *archive)
+{
+    archive_and_reload(archive, name, list);
+}
+
 static void test_reload_restores_corpus(void)
 {
     char dir[512];
     mt_archive *archive = open_fresh(dir, sizeof dir);
     if (!archive) return;
-    const char *corpus = mt_test_corpus_dir();
-    DIR *d = opendir(corpus);
-    CHECK(d != NULL);
-    if (!d) return;
-    int meshes = 0;
-    struct dirent *ent;
-    while ((ent = readdir(d)) != NULL) {
-        const char *n = ent->d_name;
-        size_t len = strlen(n);
-        bool off = len > 4 && strcmp(n + len - 4, ".off") == 0;
-        bool gz = len > 7 && strcmp(n + len - 7, ".off.gz") == 0;
-        if (!off && !gz) continue;
-        char path[1024];
-        snprintf(path, sizeof path, "%s/%s", corpus, n);
-        mt_face_list list;
-        mt_status st = mt_read_file(path, MT_FORMAT_AUTO, &list, NULL);
-        CHECK_OK(st);
-        if (st != MT_OK) continue;
-        archive_and_reload(archive, n, &list);
-        mt_face_list_free(&list);
-        meshes++;
-    }
-    closedir(d);
+    int meshes = at_for_each_corpus_mesh(reload_named, archive);
     CHECK(meshes >= 20);
     mt_archive_close(archive);
     at_rmdir(dir);

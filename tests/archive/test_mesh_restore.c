@@ -4,15 +4,14 @@
  * not close, indices out of range, a twin mismatch, wrapping bundle
  * offsets, random corruption) are refused with a message and never read
  * out of bounds. */
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "archive_test_util.h"
 #include "harness.h"
 #include "meshtopo/archive.h"
 #include "meshtopo/core.h"
-#include "meshtopo/io.h"
 #include "restore_check.h"
 
 /* Builds, restores from the built mesh's parts, and checks the restored
@@ -95,31 +94,15 @@ static void test_restore_round_trip_generated(void)
     restore_round_trip(&empty, "empty");
 }
 
+static void restore_named(const char *name, const mt_face_list *list, void *ctx)
+{
+    (void)ctx;
+    restore_round_trip(list, name);
+}
+
 static void test_restore_round_trip_corpus(void)
 {
-    const char *corpus = mt_test_corpus_dir();
-    DIR *d = opendir(corpus);
-    CHECK(d != NULL);
-    if (!d) return;
-    int meshes = 0;
-    struct dirent *ent;
-    while ((ent = readdir(d)) != NULL) {
-        const char *n = ent->d_name;
-        size_t len = strlen(n);
-        bool off = len > 4 && strcmp(n + len - 4, ".off") == 0;
-        bool gz = len > 7 && strcmp(n + len - 7, ".off.gz") == 0;
-        if (!off && !gz) continue;
-        char path[1024];
-        snprintf(path, sizeof path, "%s/%s", corpus, n);
-        mt_face_list list;
-        mt_status st = mt_read_file(path, MT_FORMAT_AUTO, &list, NULL);
-        CHECK_OK(st);
-        if (st != MT_OK) continue;
-        restore_round_trip(&list, n);
-        mt_face_list_free(&list);
-        meshes++;
-    }
-    closedir(d);
+    int meshes = at_for_each_corpus_mesh(restore_named, NULL);
     CHECK(meshes >= 20);
 }
 

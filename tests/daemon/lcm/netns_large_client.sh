@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# daemon.netns_parts_*, run inside netns-run (with --loss for the lossy
-# variant): starts meshtopod, lets meshtopod_parts_client submit a 2M-triangle
-# grid with holes and compare its large answers (reply_part_t) with the core,
-# prints the daemon's log lines about them, and stops the daemon by its PID.
-# usage: netns_parts.sh MESHTOPOD CLIENT NAME
+# daemon.netns_chunked_* and daemon.netns_parts_*, run inside netns-run (with
+# --loss for the lossy variants): starts meshtopod, runs CLIENT NAME against
+# it (meshtopod_chunked_client submits a 2M-triangle mesh in chunks and
+# compares the ack with the in-process build; meshtopod_parts_client asks for
+# large answers and compares them with the core), prints the daemon's log
+# lines about transfers, parts and builds, and stops the daemon by its PID.
+# usage: netns_large_client.sh MESHTOPOD CLIENT NAME
 set -uo pipefail
 meshtopod=$1 client=$2 name=$3
 [ "${MESHTOPO_NETNS:-}" = 1 ] || { echo "run me through netns-run" >&2; exit 2; }
@@ -26,7 +28,7 @@ done
 kill -0 "$daemon_pid" 2>/dev/null && kill -KILL "$daemon_pid" 2>/dev/null
 wait "$daemon_pid"
 daemon_rc=$?
-grep -E ' (built|reply_pull|chunk_error) ' "$log" | sed 's/^/meshtopod: /'
+grep -E ' (transfer_[a-z]+|built|chunk_error|reply_pull) ' "$log" | sed 's/^/meshtopod: /'
 if [ "$rc" -ne 0 ]; then
     echo "daemon log:" >&2
     tail -50 "$log" >&2
