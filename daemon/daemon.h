@@ -136,9 +136,11 @@ void mtd_reply_pull_handle(mtd_daemon *daemon, const void *data, size_t size);
 void mtd_submit_handle(mtd_daemon *daemon, meshtopo_mesh_t *msg, const void *encoded,
                        size_t encoded_size);
 
-/* mtd_submit_handle with the content hash already computed (a chunked
- * submission hashes its reassembled content once). */
-void mtd_submit_handle_hashed(mtd_daemon *daemon, meshtopo_mesh_t *msg, uint64_t content_hash);
+/* A chunked submission, reassembled: msg's strings are heap copies it owns,
+ * its arrays point into `content` (the decoded chunks, mesh_content.h),
+ * whose hash the decoder computed. Takes msg and content. */
+void mtd_submit_handle_content(mtd_daemon *daemon, meshtopo_mesh_t *msg, void *content,
+                               uint64_t content_hash);
 
 /* ---- chunked submissions (transfer.c) ---- */
 

@@ -20,13 +20,26 @@
 typedef struct submit_job {
     mtd_daemon *daemon;
     meshtopo_mesh_t *msg;
+    void *content; /* NULL, or the buffer msg's arrays point into */
     uint64_t content_hash;
 } submit_job;
 
+/* Frees msg: its strings, and its arrays or the buffer they point into. */
+static void free_msg(meshtopo_mesh_t *msg, void *content)
+{
+    if (content) {
+        msg->positions = NULL;
+        msg->face_vertex_counts = NULL;
+        msg->face_vertex_indices = NULL;
+        free(content);
+    }
+    meshtopo_mesh_t_decode_cleanup(msg);
+    free(msg);
+}
+
 static void free_job(submit_job *job)
 {
-    meshtopo_mesh_t_decode_cleanup(job->msg);
-    free(job->msg);
+    free_msg(job->msg, job->content);
     free(job);
 }
 
@@ -223,21 +236,14 @@ static void build_job(void *arg, bool cancelled)
     free_job(job);
 }
 
-void mtd_submit_handle(mtd_daemon *d, meshtopo_mesh_t *msg, const void *encoded,
-                       size_t encoded_size)
-{
-    mtd_submit_handle_hashed(d, msg, mt_msgs_mesh_content_hash(msg, encoded, encoded_size));
-}
-
-void mtd_submit_handle_hashed(mtd_daemon *d, meshtopo_mesh_t *msg, uint64_t content_hash)
+static void submit(mtd_daemon *d, meshtopo_mesh_t *msg, void *content, uint64_t content_hash)
 {
     char error[MTD_ERROR_MAX];
     int32_t status = check_mesh(&d->config, msg, error, sizeof error);
     if (status != MESHTOPO_STATUS_CODE_T_OK) {
         mtd_send_ack_error(d, msg->reply_channel, msg->request_id, msg->mesh_id, true, status,
                            error);
-        meshtopo_mesh_t_decode_cleanup(msg);
-        free(msg);
+        free_msg(msg, content);
         return;
     }
     submit_job *job = malloc(sizeof *job);
@@ -245,12 +251,12 @@ void mtd_submit_handle_hashed(mtd_daemon *d, meshtopo_mesh_t *msg, uint64_t cont
         mtd_reqcache_abandon(d->cache, msg->reply_channel, msg->request_id);
         mtd_send_ack_error(d, msg->reply_channel, msg->request_id, msg->mesh_id, false,
                            MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory");
-        meshtopo_mesh_t_decode_cleanup(msg);
-        free(msg);
+        free_msg(msg, content);
         return;
     }
     job->daemon = d;
     job->msg = msg;
+    job->content = content;
     job->content_hash = content_hash;
     mtd_log(MTD_LOG_DEBUG, "submit",
             "mesh_id=%s request_id=%" PRId64 " verts=%" PRId32 " faces=%" PRId32, msg->mesh_id,
@@ -264,4 +270,16 @@ void mtd_submit_handle_hashed(mtd_daemon *d, meshtopo_mesh_t *msg, uint64_t cont
                                                 : "the daemon is shutting down");
         free_job(job);
     }
+}
+
+void mtd_submit_handle(mtd_daemon *d, meshtopo_mesh_t *msg, const void *encoded,
+                       size_t encoded_size)
+{
+    submit(d, msg, NULL, mt_msgs_mesh_content_hash(msg, encoded, encoded_size));
+}
+
+void mtd_submit_handle_content(mtd_daemon *d, meshtopo_mesh_t *msg, void *content,
+                               uint64_t content_hash)
+{
+    submit(d, msg, content, content_hash);
 }

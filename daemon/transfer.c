@@ -1,7 +1,8 @@
 /* meshtopod's chunked submissions (msgs/mesh_chunk_t.lcm): reassembles the
  * content of a mesh_t sent in single-datagram pieces, per (reply channel,
- * request id), directly behind an encoded mesh_t header so the complete
- * message goes through mt_msgs_decode and the ordinary submission path once.
+ * request id), into one buffer that a content decoder (meshtopo/
+ * mesh_content.h) hashes and turns into the mesh's arrays while the chunks
+ * arrive, so the complete mesh goes to the ordinary submission path at once.
  * Admission is bounded (--max-transfer-bytes, the mesh limits), stalled
  * transfers expire (--transfer-timeout-ms), and every chunk that contradicts
  * its transfer is answered with BAD_REQUEST without touching the transfer. */
@@ -14,7 +15,7 @@
 #include "byte_ranges.h"
 #include "daemon.h"
 #include "log.h"
-#include "meshtopo/content_hash.h"
+#include "meshtopo/mesh_content.h"
 
 /* Bytes of mesh_t's four content counts, encoded with no arrays behind them. */
 #define EMPTY_CONTENT_SIZE 16
@@ -25,10 +26,11 @@ struct mtd_transfer {
     int64_t request_id;
     char *mesh_id, *source;
     bool strict;
+    int64_t utime; /* the mesh's, from the first chunk */
     uint64_t total, hash;
-    uint8_t *message;   /* header_size + total bytes: the mesh_t being reassembled */
-    size_t header_size; /* the encoded mesh_t fields before num_verts */
-    size_t charged;     /* counted in transfer_bytes */
+    uint8_t *content; /* total bytes, being reassembled */
+    mt_msgs_content_decoder *decoder;
+    size_t charged; /* counted in transfer_bytes */
     mtd_byte_ranges got;
     int64_t first_us, last_us; /* monotonic */
 };
@@ -45,7 +47,8 @@ static void transfer_free(mtd_transfer *t)
     if (!t) return;
     free(t->mesh_id);
     free(t->source);
-    free(t->message);
+    mt_msgs_content_decoder_free(t->decoder);
+    free(t->content);
     mtd_byte_ranges_free(&t->got);
     free(t);
 }
@@ -121,33 +124,6 @@ static uint64_t content_limit(const mtd_config *config)
            4ull * config->max_indices;
 }
 
-/* Encodes c's mesh_t fields before the content into a new buffer of
- * header_size + total bytes. NULL when out of memory. */
-static uint8_t *new_message(const meshtopo_mesh_chunk_t *c, size_t *out_header_size)
-{
-    meshtopo_mesh_t m;
-    memset(&m, 0, sizeof m);
-    m.utime = c->utime;
-    m.request_id = c->request_id;
-    m.reply_channel = c->reply_channel;
-    m.mesh_id = c->mesh_id;
-    m.source = c->source;
-    m.strict = c->strict;
-    int size = meshtopo_mesh_t_encoded_size(&m);
-    if (size < EMPTY_CONTENT_SIZE) return NULL;
-    size_t header = (size_t)size - EMPTY_CONTENT_SIZE;
-    uint8_t *buf =
-        malloc(header + (size_t)c->total_size > (size_t)size ? header + (size_t)c->total_size
-                                                             : (size_t)size);
-    if (!buf) return NULL;
-    if (meshtopo_mesh_t_encode(buf, 0, size, &m) != size) {
-        free(buf);
-        return NULL;
-    }
-    *out_header_size = header;
-    return buf;
-}
-
 /* Admits a new transfer for chunk c (transfer_lock held), taking over a
  * resumable one. Returns it, or NULL after answering why not. */
 static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
@@ -192,9 +168,19 @@ static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
         if (t) {
             t->mesh_id = strdup(c->mesh_id);
             t->source = strdup(c->source);
-            t->message = new_message(c, &t->header_size);
+            if (old) { /* its bytes, ranges and decoder carry over */
+                t->content = old->content;
+                t->decoder = old->decoder;
+            } else {
+                t->content = malloc(total);
+                t->decoder = t->content ? mt_msgs_content_decoder_new(t->content, total) : NULL;
+            }
         }
-        if (!t || !t->mesh_id || !t->source || !t->message) {
+        if (!t || !t->mesh_id || !t->source || !t->content || !t->decoder) {
+            if (t && old) { /* still old's */
+                t->content = NULL;
+                t->decoder = NULL;
+            }
             transfer_free(t);
             t = NULL;
             status = MESHTOPO_STATUS_CODE_T_BUSY;
@@ -210,12 +196,14 @@ static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
     snprintf(t->channel, sizeof t->channel, "%s", c->reply_channel);
     t->request_id = c->request_id;
     t->strict = c->strict != 0;
+    t->utime = c->utime;
     t->total = total;
     t->hash = (uint64_t)c->content_hash;
     t->first_us = t->last_us = monotonic_us();
-    t->charged = t->header_size + total;
+    t->charged = total;
     if (old) {
-        memcpy(t->message + t->header_size, old->message + old->header_size, total);
+        old->content = NULL;
+        old->decoder = NULL;
         t->got = old->got;
         memset(&old->got, 0, sizeof old->got);
         unlink_transfer(d, old);
@@ -261,48 +249,72 @@ static bool contradicts(const mtd_transfer *t, const meshtopo_mesh_chunk_t *c, c
     return true;
 }
 
-/* Every byte of t is in (t is out of the table): decode, check the hash,
- * submit once. Takes t. */
+/* A heap mesh_t for t's submission: t's header fields (copied) and the
+ * decoded content's counts and arrays (pointing into t->content). NULL when
+ * out of memory. */
+static meshtopo_mesh_t *new_mesh_msg(const mtd_transfer *t, const meshtopo_mesh_t *content)
+{
+    meshtopo_mesh_t *msg = malloc(sizeof *msg);
+    if (!msg) return NULL;
+    *msg = *content;
+    msg->utime = t->utime;
+    msg->request_id = t->request_id;
+    msg->strict = t->strict;
+    msg->reply_channel = strdup(t->channel);
+    msg->mesh_id = strdup(t->mesh_id);
+    msg->source = strdup(t->source);
+    if (!msg->reply_channel || !msg->mesh_id || !msg->source) {
+        free(msg->reply_channel);
+        free(msg->mesh_id);
+        free(msg->source);
+        free(msg);
+        return NULL;
+    }
+    return msg;
+}
+
+/* Every byte of t is in (t is out of the table): check the hash and the
+ * counts the decoder saw, submit once. Takes t. */
 static void finish(mtd_daemon *d, mtd_transfer *t)
 {
     atomic_fetch_add(&d->transfers_completed, 1);
     atomic_fetch_add(&d->submissions, 1);
-    const size_t size = t->header_size + t->total;
-    const uint8_t *content = t->message + t->header_size;
-    char error[MTD_ERROR_MAX];
     mtd_log(MTD_LOG_INFO, "transfer_complete",
             "mesh_id=%s request_id=%" PRId64 " bytes=%" PRIu64 " transfer_us=%" PRId64, t->mesh_id,
             t->request_id, t->total, monotonic_us() - t->first_us);
-    uint64_t hash = mt_msgs_fnv1a(MT_MSGS_FNV1A_BASIS, content, t->total);
+    meshtopo_mesh_t content;
+    memset(&content, 0, sizeof content);
+    uint64_t hash = 0;
+    char why[MTD_ERROR_MAX / 2];
+    int decoded = mt_msgs_content_decoder_finish(t->decoder, &content, &hash, why, sizeof why);
+    char error[MTD_ERROR_MAX];
+    int32_t status = MESHTOPO_STATUS_CODE_T_OK;
+    meshtopo_mesh_t *msg = NULL;
     if (hash != t->hash) {
+        status = MESHTOPO_STATUS_CODE_T_BAD_REQUEST;
         snprintf(error, sizeof error,
                  "content_hash: the reassembled %" PRIu64 " bytes hash to %016" PRIx64
                  ", the chunks said %016" PRIx64,
                  t->total, hash, t->hash);
-        mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false,
-                           MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error);
-        transfer_free(t);
-        return;
-    }
-    meshtopo_mesh_t *msg = calloc(1, sizeof *msg);
-    char why[MT_MSGS_ERROR_SIZE];
-    if (!msg) {
-        mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false,
-                           MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory");
-    } else if (mt_msgs_decode(&mt_msgs_type_mesh, t->message, size, msg, why, sizeof why) != 0) {
+    } else if (decoded != 0) {
+        status = MESHTOPO_STATUS_CODE_T_UNDECODABLE;
         snprintf(error, sizeof error, "undecodable mesh_t from the chunks' content: %s", why);
-        mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false,
-                           MESHTOPO_STATUS_CODE_T_UNDECODABLE, error);
-        free(msg);
     } else if (atomic_load(&d->stopping)) {
-        mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false,
-                           MESHTOPO_STATUS_CODE_T_BUSY, "the daemon is shutting down");
-        meshtopo_mesh_t_decode_cleanup(msg);
-        free(msg);
+        status = MESHTOPO_STATUS_CODE_T_BUSY;
+        snprintf(error, sizeof error, "the daemon is shutting down");
+    } else if (!(msg = new_mesh_msg(t, &content))) {
+        status = MESHTOPO_STATUS_CODE_T_INTERNAL;
+        snprintf(error, sizeof error, "out of memory");
+    }
+    if (status != MESHTOPO_STATUS_CODE_T_OK) {
+        mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false, status, error);
     } else if (mtd_begin_request(d, t->channel, t->request_id)) {
-        mtd_submit_handle_hashed(d, msg, hash); /* takes msg */
+        mtd_submit_handle_content(d, msg, t->content, hash); /* takes both */
+        t->content = NULL;
     } else {
-        meshtopo_mesh_t_decode_cleanup(msg);
+        free(msg->reply_channel);
+        free(msg->mesh_id);
+        free(msg->source);
         free(msg);
     }
     transfer_free(t);
@@ -316,6 +328,13 @@ static bool channel_ok(const char *channel)
     for (size_t i = 0; i < n; i++)
         if (channel[i] <= ' ' || channel[i] > '~') return false;
     return true;
+}
+
+/* The bytes t holds from offset 0 on, without a gap: what its decoder has
+ * been given. */
+static uint64_t held_from_start(const mtd_transfer *t)
+{
+    return t->got.count > 0 && t->got.items[0].start == 0 ? t->got.items[0].end : 0;
 }
 
 /* Handles one decoded chunk (transfer_lock held). Returns a transfer that
@@ -369,12 +388,19 @@ static mtd_transfer *take_chunk(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
     }
     t->last_us = monotonic_us();
     if (c->length > 0) {
-        uint64_t start = (uint64_t)c->offset, end = start + (uint64_t)c->length;
+        const uint64_t start = (uint64_t)c->offset, end = start + (uint64_t)c->length;
+        /* Bytes below `decoded` were turned into values in place already:
+         * a chunk sent again must not overwrite them. */
+        const uint64_t decoded = held_from_start(t);
+        const uint64_t copy_from = start > decoded ? start : decoded;
         /* Copy first: a failed add only forgets that these bytes arrived. */
-        memcpy(t->message + t->header_size + start, c->data, (size_t)c->length);
+        if (copy_from < end)
+            memcpy(t->content + copy_from, c->data + (copy_from - start),
+                   (size_t)(end - copy_from));
         if (mtd_byte_ranges_add(&t->got, start, end, NULL) != MT_OK)
             mtd_log(MTD_LOG_WARN, "chunk", "request_id=%" PRId64 " out of memory for its ranges",
                     c->request_id);
+        mt_msgs_content_decoder_advance(t->decoder, held_from_start(t));
     }
     if (t->got.covered == t->total) {
         send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", NULL, t->total, true);

@@ -16,6 +16,7 @@ packages=(
     # pull in
     liblcm-dev liblcm-bin liblcm-java default-jdk-headless default-jre libjchart2d-java
     libglib2.0-dev
+    libxxhash-dev                                  # content hash of submitted meshes (XXH3)
     libhdf5-dev hdf5-tools                         # meshtopo::archive (HDF5 1.10), h5dump/h5ls
     python3-h5py python3-vtk9                      # tests/archive: h5py and VTK's vtkHDFReader read archives
     nftables iproute2                              # tests/netns: private network, packet loss

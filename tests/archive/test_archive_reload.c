@@ -139,7 +139,7 @@ static bool set_meshtopo_u32(const char *path, const char *name, uint32_t value)
     return H5Fclose(f) >= 0 && ok;
 }
 
-/* Makes a format 2 file a format 1 file: no /meshtopo/halfedge and
+/* Makes a format 3 file a format 1 file: no /meshtopo/halfedge and
  * format_version 1, exactly the layout version 1 wrote. */
 static bool make_version1(const char *path)
 {
@@ -231,6 +231,33 @@ static void test_reload_version1(void)
                  MT_ERR_UNSUPPORTED);
     CHECK(strstr(diag.message, "format_version") != NULL);
     CHECK(loaded == NULL);
+    mt_mesh_destroy(built);
+    mt_face_list_free(&list);
+    mt_archive_close(archive);
+    at_rmdir(dir);
+}
+
+/* Files of formats 1 and 2 carry the former content hash: verification
+ * skips it there and checks it from format 3 on. */
+static void test_verify_hash_by_format(void)
+{
+    char dir[512], path[1024];
+    mt_mesh *built = NULL;
+    mt_face_list list;
+    mt_archive *archive = open_fresh(dir, sizeof dir);
+    if (!archive) return;
+    CHECK_OK(mt_gen_torus(10, 6, &list));
+    uint64_t hash = 0;
+    at_hash(NULL, &list, &hash, NULL);
+    CHECK_OK(at_archive_list(archive, "old", 1, &list, hash ^ 0x5a5a, &built)); /* another hash */
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    mt_archive_file_name("old", 1, name, sizeof name);
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    mt_diag diag;
+    CHECK_STATUS(mt_archive_verify_file(archive, name, at_hash, NULL, &diag), MT_ERR_CORRUPT);
+    CHECK(strstr(diag.message, "content hash mismatch") != NULL);
+    CHECK(set_meshtopo_u32(path, "format_version", MT_ARCHIVE_FORMAT_VERSION_HASHED - 1));
+    CHECK_OK(mt_archive_verify_file(archive, name, at_hash, NULL, &diag));
     mt_mesh_destroy(built);
     mt_face_list_free(&list);
     mt_archive_close(archive);
@@ -396,6 +423,7 @@ static const mt_test_case cases[] = {
     {"reload_restores_generated", test_reload_restores_generated},
     {"reload_restores_corpus", test_reload_restores_corpus},
     {"reload_version1", test_reload_version1},
+    {"verify_hash_by_format", test_verify_hash_by_format},
     {"reload_hostile_arrays", test_reload_hostile_arrays},
     {"compression_option", test_compression_option},
 };

@@ -22,7 +22,7 @@ rc=$?
 [ "$rc" -eq 77 ] && { cat "$out"; exit 77; }
 [ "$rc" -eq 0 ] || fail "exit status $rc, expected 0"
 cat "$out"
-rows="raw LCM push, 0% loss|submit end to end, 0% loss|of which the daemon's build|transfer part|of which encoding + content hash|ratio transfer part / raw push"
+rows="raw LCM push, 0% loss|submit end to end, 0% loss|of which the daemon's build|transfer part|of which the content hash|ratio transfer part / raw push"
 expected=6
 if command -v nft >/dev/null 2>&1; then
     rows="$rows|submit end to end, 5% loss|ratio 5% loss / 0% loss"

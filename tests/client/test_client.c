@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <xxhash.h>
 
 #include "harness.h"
 #include "meshtopo/client.h"
@@ -226,18 +227,9 @@ static void answer_query(fixture *f, const meshtopo_query_t *q, int32_t status, 
     free(zeros);
 }
 
-static uint64_t fnv1a(const uint8_t *p, size_t n)
-{
-    uint64_t h = 0xcbf29ce484222325ull;
-    for (size_t i = 0; i < n; i++) {
-        h ^= p[i];
-        h *= 0x100000001b3ull;
-    }
-    return h;
-}
-
 /* Acks a submission with version 1, the hash of the received bytes' content
- * tail and a report naming the counts. */
+ * tail (XXH3-64, as msgs/mesh_t.lcm defines it, computed here with libxxhash
+ * itself) and a report naming the counts. */
 static void answer_submit(fixture *f, const meshtopo_mesh_t *m, const uint8_t *data, size_t size)
 {
     size_t tail = 8 + 8 * (size_t)m->num_position_values + 4 + 4 * (size_t)m->num_faces + 4 +
@@ -249,7 +241,7 @@ static void answer_submit(fixture *f, const meshtopo_mesh_t *m, const uint8_t *d
     report.source = m->source;
     report.num_verts = m->num_verts;
     report.num_faces = m->num_faces;
-    report.content_hash = (int64_t)fnv1a(data + size - tail, tail);
+    report.content_hash = (int64_t)XXH3_64bits(data + size - tail, tail);
     meshtopo_ack_t ack;
     memset(&ack, 0, sizeof ack);
     ack.request_id = m->request_id;

@@ -163,7 +163,7 @@ mt_status mt_archive_verify_file(const mt_archive *archive, const char *file_nam
     if (st != MT_OK) return st;
     mt_mesh *mesh = NULL;
     st = mt_archive_record_build(&record, &mesh, diag);
-    if (st == MT_OK && hash) {
+    if (st == MT_OK && hash && record.format_version >= MT_ARCHIVE_FORMAT_VERSION_HASHED) {
         uint64_t h = 0;
         mt_diag why;
         mt_diag_clear(&why);

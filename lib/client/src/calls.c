@@ -198,31 +198,24 @@ mt_status mt_client_submit(mt_client *client, const char *mesh_id, const mt_face
     m.mesh_id = (char *)(uintptr_t)mesh_id;
     m.source = client->source;
     m.strict = strict ? 1 : 0;
-    m.num_verts = (int32_t)list->num_verts;
-    m.num_position_values = list->positions ? (int32_t)(3 * list->num_verts) : 0;
-    m.positions = list->positions;
-    m.num_faces = (int32_t)list->num_faces;
-    m.face_vertex_counts = (int32_t *)list->face_sizes;
-    m.num_indices = (int32_t)list->num_indices;
-    m.face_vertex_indices = (int32_t *)list->face_indices;
+    mt__mesh_content_of(list, &m);
     int size = meshtopo_mesh_t_encoded_size(&m);
-    mt__msgbuf *buf = mt__msgbuf_new(size);
-    if (!buf) return mt__client_fail(diag, MT_ERR_NOMEM, "no memory for a %d-byte mesh", size);
-    if (meshtopo_mesh_t_encode(buf->data, 0, size, &m) != size || (uint64_t)size < tail) {
-        mt__msgbuf_release(buf);
-        return mt__client_fail(diag, MT_ERR_INVALID_ARG, "mesh_t did not encode");
-    }
-    /* The content fields are the tail of the encoded message. */
-    out_ack->sent_content_hash = mt_msgs_mesh_content_hash(&m, buf->data, (size_t)size);
-
     mt__pending p;
-    if (size <= MT_CLIENT_SINGLE_MESSAGE_MAX) {
+    if (size > MT_CLIENT_SINGLE_MESSAGE_MAX) {
+        /* In chunks, each encoded when it is sent: no copy of the whole mesh. */
+        out_ack->sent_content_hash = mt_msgs_mesh_content_hash_of(&m);
+        st = mt__client_submit_chunked(client, &m, out_ack->sent_content_hash, &p, diag);
+    } else {
+        mt__msgbuf *buf = mt__msgbuf_new(size);
+        if (!buf) return mt__client_fail(diag, MT_ERR_NOMEM, "no memory for a %d-byte mesh", size);
+        if (meshtopo_mesh_t_encode(buf->data, 0, size, &m) != size || (uint64_t)size < tail) {
+            mt__msgbuf_release(buf);
+            return mt__client_fail(diag, MT_ERR_INVALID_ARG, "mesh_t did not encode");
+        }
+        /* The content fields are the tail of the encoded message. */
+        out_ack->sent_content_hash = mt_msgs_mesh_content_hash(&m, buf->data, (size_t)size);
         st =
             call_sync(client, request_id, &mt_msgs_type_ack, client->submit_channel, buf, &p, diag);
-    } else {
-        st = mt__client_submit_chunked(client, &m, buf->data, (size_t)size, (size_t)tail,
-                                       out_ack->sent_content_hash, &p, diag);
-        mt__msgbuf_release(buf);
     }
     if (p.has_answer) out_ack->msg = p.answer.ack;
     return st;

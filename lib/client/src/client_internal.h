@@ -129,6 +129,10 @@ mt_status mt__client_fail(mt_diag *diag, mt_status status, const char *fmt, ...)
  * count does not fit its int32 field or the message would exceed LCM's limit. */
 uint64_t mt__content_size(const mt_face_list *list);
 
+/* Points m's content fields (num_verts .. face_vertex_indices) at list's
+ * arrays (content_hash.c); the list must fit (mt__content_size > 0). */
+void mt__mesh_content_of(const mt_face_list *list, meshtopo_mesh_t *m);
+
 /* A new request id (unique within the client). */
 int64_t mt__client_next_id(mt_client *client);
 
@@ -142,12 +146,12 @@ void mt__msgbuf_release(mt__msgbuf *buf);
  * table. */
 mt_status mt__client_start(mt_client *client, mt__pending *p);
 
-/* Sends a mesh whose encoded mesh_t (buf, `size` bytes; its last `tail`
- * bytes are the content) is too large for one datagram as mesh_chunk_t
- * pieces and waits for the ack, like a synchronous call: p (zeroed by the
- * caller) holds the answer whatever the status (submit_chunked.c). */
+/* Sends mesh m, whose encoded mesh_t is too large for one datagram, as
+ * mesh_chunk_t pieces of its content (encoded from m's arrays a chunk at a
+ * time; content_hash is the content's hash) and waits for the ack, like a
+ * synchronous call: p (zeroed by the caller) holds the answer whatever the
+ * status (submit_chunked.c). */
 mt_status mt__client_submit_chunked(mt_client *client, const meshtopo_mesh_t *m,
-                                    const uint8_t *encoded, size_t size, size_t tail,
                                     uint64_t content_hash, mt__pending *p, mt_diag *diag);
 
 /* Reassembly of large answers (reply_parts.c). mt__parts_create checks the

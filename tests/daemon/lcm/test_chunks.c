@@ -3,8 +3,9 @@
  * interleaved, chunks that lie (BAD_REQUEST naming the field, the transfer
  * unharmed), a transfer abandoned half way (expired, memory released, seen
  * in the heartbeat), a sender restarting under a new id and channel
- * (resumed), the memory cap (BUSY, TOO_LARGE), and meshtopo::client choosing
- * chunks by itself. Every mesh is built once and checked with the sender's
+ * (resumed), the memory cap (BUSY, TOO_LARGE), pieces cutting values in two,
+ * counts that do not fit the content (UNDECODABLE), and meshtopo::client
+ * choosing chunks by itself. Every mesh is built once and checked with the sender's
  * content hash; the in-process builds are validated. */
 #include <inttypes.h>
 #include <lcm/lcm.h>
@@ -276,6 +277,51 @@ static void heartbeat(fixture *fx)
     CHECK(fx->have_status);
 }
 
+/* Version `version` of s as the daemon stores it has s's positions, bit for
+ * bit, and the topology of s built in-process: the chunks' bytes were turned
+ * into the right values whatever their sizes and order. */
+static void expect_stored(fixture *fx, const sent_mesh *s, int32_t version, int line)
+{
+    mtd_mesh_entry *entry = NULL;
+    if (mtd_store_acquire(fx->daemon->store, s->mesh_id, (uint32_t)version, &entry, NULL) !=
+        MT_OK) {
+        mt_test_fail(__FILE__, line, "version %d of '%s' is not stored", (int)version, s->mesh_id);
+        return;
+    }
+    const mt_mesh *held = mtd_entry_mesh(entry);
+    mt_diag diag;
+    CHECK_OK(mt_mesh_validate(held, &diag));
+    mt_mesh_view view;
+    mt_mesh_get_view(held, &view);
+    if (!view.positions ||
+        memcmp(view.positions, s->list.positions, sizeof(double) * 3 * s->list.num_verts) != 0)
+        mt_test_fail(__FILE__, line, "the stored positions differ from the sent ones");
+    mt_mesh *local = NULL;
+    mt_build_options bo = {.strict = false, .threads = 1};
+    CHECK_OK(mt_mesh_build(&s->list, &bo, &local, &diag));
+    const mt_report *a = mt_mesh_report(held), *b = mt_mesh_report(local);
+    CHECK_EQ(a->num_verts, b->num_verts);
+    CHECK_EQ(a->num_faces_valid, b->num_faces_valid);
+    CHECK_EQ(a->num_edges, b->num_edges);
+    CHECK_EQ(a->boundary_edges, b->boundary_edges);
+    CHECK_EQ(a->boundary_loops, b->boundary_loops);
+    CHECK_EQ(a->euler_characteristic, b->euler_characteristic);
+    CHECK_EQ(a->out_of_range_indices, 0);
+    mt_mesh_destroy(local);
+    mtd_entry_release(entry);
+}
+
+/* A piece of s's content: bytes [offset, offset + length). */
+static void send_piece(fixture *fx, const sent_mesh *s, int64_t request_id, uint64_t offset,
+                       uint64_t length, bool want_status)
+{
+    meshtopo_mesh_chunk_t c = chunk_of(s, REPLY, request_id, 0, want_status);
+    c.offset = (int64_t)offset;
+    c.length = (int32_t)length;
+    c.data = (uint8_t *)(uintptr_t)(s->content + offset);
+    publish_chunk(fx, &c);
+}
+
 /* Chunks in reverse order, each sent twice; a poll half way lists exactly the
  * chunks not yet sent; the mesh is built once. */
 static void test_out_of_order_duplicates(void)
@@ -533,6 +579,92 @@ static void test_over_limit(void)
     fixture_free(&fx);
 }
 
+/* Pieces of odd sizes that cut values in two, the first ones again after the
+ * daemon has turned them into values, then the rest backwards: the stored
+ * mesh is the sent one. */
+static void test_odd_pieces(void)
+{
+    fixture fx;
+    fixture_init(&fx, "64M", "10000");
+    sent_mesh s;
+    sent_mesh_make(&s, "odd", 25, 25);
+    const uint64_t piece = 997; /* prime: cuts doubles and ints anywhere */
+    const uint64_t n = (s.total + piece - 1) / piece;
+    CHECK(n > 20);
+    for (uint64_t k = 0; k < n / 2; k++) send_piece(&fx, &s, 21, k * piece, piece, false);
+    for (uint64_t k = 0; k < 3; k++) /* sent again: below the decoded bytes */
+        send_piece(&fx, &s, 21, k * piece + 5, piece - 5, false);
+    for (uint64_t k = n; k-- > n / 2;) {
+        uint64_t at = k * piece;
+        send_piece(&fx, &s, 21, at, s.total - at < piece ? s.total - at : piece, false);
+    }
+    int32_t version = expect_ack(&fx, &s, 21, __LINE__);
+    CHECK_EQ(version, 1);
+    expect_stored(&fx, &s, version, __LINE__);
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+}
+
+/* Waits for the ack of request_id and checks it refuses the mesh with
+ * `status`, naming `needle`. */
+static void expect_ack_error(fixture *fx, int64_t request_id, int32_t status, const char *needle,
+                             int line)
+{
+    meshtopo_ack_t ack;
+    if (wait_for(fx, &mt_msgs_type_ack, request_id, &ack, line) != 0) return;
+    if (ack.status != status)
+        mt_test_fail(__FILE__, line, "ack status %d, expected %d (error '%s')", (int)ack.status,
+                     (int)status, ack.error);
+    else if (!strstr(ack.error, needle))
+        mt_test_fail(__FILE__, line, "ack error '%s' does not name '%s'", ack.error, needle);
+    meshtopo_ack_t_decode_cleanup(&ack);
+}
+
+/* Content whose hash is right but whose counts do not describe its bytes:
+ * UNDECODABLE naming the count, nothing built, the daemon unharmed. */
+static void test_counts_that_do_not_fit(void)
+{
+    fixture fx;
+    fixture_init(&fx, "64M", "10000");
+    sent_mesh s;
+    sent_mesh_make(&s, "liar", 10, 10);
+    uint8_t *content = malloc(s.total);
+    const struct {
+        uint64_t at;   /* the count's offset in the content */
+        int32_t value; /* written big-endian */
+        const char *needle;
+    } lies[] = {
+        {4, -3, "num_position_values: -3 is negative"},
+        {4, 3 * 100000, "num_position_values"},
+        {8 + 8 * 3 * (uint64_t)s.list.num_verts, s.list.num_faces + 1, "num_indices"},
+        {8 + 8 * 3 * (uint64_t)s.list.num_verts, 1 << 30, "num_faces"},
+    };
+    for (size_t i = 0; i < sizeof lies / sizeof lies[0]; i++) {
+        memcpy(content, s.content, s.total);
+        for (int k = 0; k < 4; k++)
+            content[lies[i].at + (uint64_t)k] = (uint8_t)((uint32_t)lies[i].value >> (24 - 8 * k));
+        sent_mesh liar = s;
+        liar.content = content;
+        liar.hash = mt_msgs_content_hash_bytes(content, s.total);
+        int64_t request_id = 30 + (int64_t)i;
+        for (size_t k = 0; k < num_chunks(&liar); k++)
+            send_chunk(&fx, &liar, REPLY, request_id, k, false);
+        expect_ack_error(&fx, request_id, MESHTOPO_STATUS_CODE_T_UNDECODABLE, lies[i].needle,
+                         __LINE__);
+    }
+    free(content);
+    /* The honest mesh still goes through. */
+    for (size_t k = 0; k < num_chunks(&s); k++) send_chunk(&fx, &s, REPLY, 40, k, false);
+    expect_stored(&fx, &s, expect_ack(&fx, &s, 40, __LINE__), __LINE__);
+    drain(&fx);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.builds, 1);
+    CHECK_EQ(fx.status.transfers_active, 0);
+    CHECK_EQ(fx.status.transfer_bytes, 0);
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+}
+
 static void on_progress(uint64_t done, uint64_t total, void *user)
 {
     uint64_t *seen = user; /* [0] last done, [1] total, [2] calls, [3] went backwards */
@@ -553,7 +685,7 @@ static void test_client_chunks(void)
     mt_client_options opts;
     memset(&opts, 0, sizeof opts);
     opts.lcm = fx.lcm;
-    opts.chunk_bytes = 2000;
+    opts.chunk_bytes = 1999; /* odd: chunks cut values in two */
     opts.window_chunks = 4;
     opts.progress = on_progress;
     opts.progress_user = seen;
@@ -569,6 +701,7 @@ static void test_client_chunks(void)
     CHECK(ack.sent_content_hash == s.hash);
     CHECK((uint64_t)ack.msg.content_hash == s.hash);
     CHECK_EQ(ack.msg.version, 1);
+    expect_stored(&fx, &s, ack.msg.version, __LINE__);
     mt_client_ack_free(&ack);
     CHECK(seen[2] >= 2);
     CHECK_EQ(seen[0], s.total);
@@ -596,5 +729,7 @@ static const mt_test_case cases[] = {
     {"restart", test_restart},
     {"over_limit", test_over_limit},
     {"client_chunks", test_client_chunks},
+    {"odd_pieces", test_odd_pieces},
+    {"counts_that_do_not_fit", test_counts_that_do_not_fit},
 };
 const mt_test_table mt_tests_chunks = {cases, sizeof cases / sizeof cases[0]};

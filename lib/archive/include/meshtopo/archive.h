@@ -3,7 +3,7 @@
  * directory fsync). Each file is a VTKHDF 1.0 UnstructuredGrid (VTK 9.1's
  * vtkHDFReader and ParaView open it) plus a /meshtopo group holding the face
  * list exactly as submitted, provenance, the build's topology report and
- * (format 2) the half-edge arrays, so that a reload skips the rebuild.
+ * (format 2 and later) the half-edge arrays, so that a reload skips the rebuild.
  * Every value read back from a file is checked before use. */
 #ifndef MESHTOPO_ARCHIVE_H
 #define MESHTOPO_ARCHIVE_H
@@ -24,8 +24,13 @@ extern "C" {
 /* Version of the /meshtopo group's layout (attribute format_version)
  * written by this meshtopo. 2 added /meshtopo/halfedge (the half-edge
  * arrays); files of version 1 lack it and still load, by a rebuild from
- * their face list. */
-#define MT_ARCHIVE_FORMAT_VERSION 2
+ * their face list. 3 has the same layout, its content_hash is the one
+ * msgs/mesh_t.lcm now defines (XXH3-64); versions 1 and 2 carry the former
+ * hash (FNV-1a), which verification does not check. */
+#define MT_ARCHIVE_FORMAT_VERSION 3
+
+/* Oldest format version whose content_hash verification checks. */
+#define MT_ARCHIVE_FORMAT_VERSION_HASHED 3
 
 /* Oldest format version read. */
 #define MT_ARCHIVE_FORMAT_VERSION_MIN 1
@@ -234,7 +239,7 @@ typedef struct mt_archive_load_info {
 } mt_archive_load_info;
 
 /* Reloads one archived version as a queryable mesh: reads provenance, the
- * stored report and, in a format 2 file, the half-edge arrays and
+ * stored report and, in a format 2 or later file, the half-edge arrays and
  * positions, and makes the mesh with mt_mesh_restore (which validates the
  * untrusted arrays) instead of rebuilding it. When a version 1 file has no
  * arrays, or the arrays cannot be read or fail validation, it falls back to
@@ -273,7 +278,8 @@ typedef mt_status (*mt_archive_hash_fn)(void *ctx, const mt_face_list *faces, ui
 /* Verifies one file of the archive: readable, every shape and type right,
  * the name matching its mesh id and version, the VTKHDF datasets agreeing
  * with the stored face list, the content hash matching (when hash is not
- * NULL), a rebuild giving the stored report, and (format 2) the stored
+ * NULL and the file's format is MT_ARCHIVE_FORMAT_VERSION_HASHED or later), a
+ * rebuild giving the stored report, and (format 2 and later) the stored
  * half-edge arrays restoring, validating and equal to the rebuild's. MT_OK or the first
  * problem's status with diag naming the file and the problem. */
 mt_status mt_archive_verify_file(const mt_archive *archive, const char *file_name,

@@ -164,9 +164,9 @@ void mt_client_reply_free(meshtopo_reply_t *reply);
 
 /* ---- Content hash ------------------------------------------------------ */
 
-/* The content hash of msgs/mesh_t.lcm (64-bit FNV-1a over the encoded
+/* The content hash of msgs/mesh_t.lcm (XXH3-64 over the encoded
  * num_verts .. face_vertex_indices fields) of a face list, without encoding
- * it. Returns MT_ERR_INVALID_ARG for an inconsistent list and
+ * it whole. Returns MT_ERR_INVALID_ARG for an inconsistent list and
  * MT_ERR_TOO_LARGE when a count does not fit mesh_t's int32 fields. */
 mt_status mt_client_content_hash(const mt_face_list *list, uint64_t *out_hash, mt_diag *diag);
 
