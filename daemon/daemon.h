@@ -64,6 +64,11 @@ typedef struct mtd_daemon {
     size_t transfers_active;
     uint64_t transfer_bytes;
     atomic_int_fast64_t chunks, transfers_completed, transfers_expired, transfers_refused;
+    /* The content buffer of the last finished transfer, kept for the next
+     * one that fits in it (transfer.c); guarded by spare_lock. */
+    pthread_mutex_t spare_lock;
+    void *spare_content;
+    size_t spare_capacity;
     pthread_mutex_t error_lock;
     char last_error[MTD_ERROR_MAX];
     int64_t last_error_utime;
@@ -137,10 +142,11 @@ void mtd_submit_handle(mtd_daemon *daemon, meshtopo_mesh_t *msg, const void *enc
                        size_t encoded_size);
 
 /* A chunked submission, reassembled: msg's strings are heap copies it owns,
- * its arrays point into `content` (the decoded chunks, mesh_content.h),
- * whose hash the decoder computed. Takes msg and content. */
+ * its arrays point into `content` (the decoded chunks, mesh_content.h, a
+ * buffer of content_capacity bytes), whose hash the decoder computed. Takes
+ * msg and content (given back with mtd_content_release). */
 void mtd_submit_handle_content(mtd_daemon *daemon, meshtopo_mesh_t *msg, void *content,
-                               uint64_t content_hash);
+                               size_t content_capacity, uint64_t content_hash);
 
 /* ---- chunked submissions (transfer.c) ---- */
 
@@ -154,8 +160,14 @@ void mtd_chunk_handle(mtd_daemon *daemon, const void *data, size_t size);
  * releases its memory. Returns how many were dropped. */
 size_t mtd_transfers_expire(mtd_daemon *daemon);
 
-/* Frees every transfer (at destroy). */
+/* Frees every transfer and the kept content buffer (at destroy). */
 void mtd_transfers_free(mtd_daemon *daemon);
+
+/* Gives back a transfer's content buffer of `capacity` bytes: it is kept for
+ * the next transfer that fits in it (the one kept before is freed), so that
+ * a stream of similar meshes does not make the kernel map and zero fresh
+ * pages for each one, which costs more than the network does. NULL-safe. */
+void mtd_content_release(mtd_daemon *daemon, void *content, size_t capacity);
 
 /* ---- queries (query.c) ---- */
 

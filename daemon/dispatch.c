@@ -279,6 +279,7 @@ mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **o
     d->start_utime = mtd_now_utime();
     pthread_mutex_init(&d->error_lock, NULL);
     pthread_mutex_init(&d->transfer_lock, NULL);
+    pthread_mutex_init(&d->spare_lock, NULL);
     char host[64] = "";
     gethostname(host, sizeof host - 1);
     snprintf(d->instance, sizeof d->instance, "%s:%d:%" PRId64, host, (int)getpid(),
@@ -346,6 +347,7 @@ void mtd_daemon_destroy(mtd_daemon *d)
     mtd_archiver_free(d);
     mtd_transfers_free(d);
     pthread_mutex_destroy(&d->transfer_lock);
+    pthread_mutex_destroy(&d->spare_lock);
     mtd_reqcache_destroy(d->cache);
     mtd_store_destroy(d->store);
     pthread_mutex_destroy(&d->error_lock);

@@ -21,17 +21,19 @@ typedef struct submit_job {
     mtd_daemon *daemon;
     meshtopo_mesh_t *msg;
     void *content; /* NULL, or the buffer msg's arrays point into */
+    size_t content_capacity;
     uint64_t content_hash;
 } submit_job;
 
-/* Frees msg: its strings, and its arrays or the buffer they point into. */
-static void free_msg(meshtopo_mesh_t *msg, void *content)
+/* Frees msg: its strings, and its arrays or gives back the buffer they
+ * point into. */
+static void free_msg(mtd_daemon *d, meshtopo_mesh_t *msg, void *content, size_t capacity)
 {
     if (content) {
         msg->positions = NULL;
         msg->face_vertex_counts = NULL;
         msg->face_vertex_indices = NULL;
-        free(content);
+        mtd_content_release(d, content, capacity);
     }
     meshtopo_mesh_t_decode_cleanup(msg);
     free(msg);
@@ -39,7 +41,7 @@ static void free_msg(meshtopo_mesh_t *msg, void *content)
 
 static void free_job(submit_job *job)
 {
-    free_msg(job->msg, job->content);
+    free_msg(job->daemon, job->msg, job->content, job->content_capacity);
     free(job);
 }
 
@@ -236,14 +238,15 @@ static void build_job(void *arg, bool cancelled)
     free_job(job);
 }
 
-static void submit(mtd_daemon *d, meshtopo_mesh_t *msg, void *content, uint64_t content_hash)
+static void submit(mtd_daemon *d, meshtopo_mesh_t *msg, void *content, size_t capacity,
+                   uint64_t content_hash)
 {
     char error[MTD_ERROR_MAX];
     int32_t status = check_mesh(&d->config, msg, error, sizeof error);
     if (status != MESHTOPO_STATUS_CODE_T_OK) {
         mtd_send_ack_error(d, msg->reply_channel, msg->request_id, msg->mesh_id, true, status,
                            error);
-        free_msg(msg, content);
+        free_msg(d, msg, content, capacity);
         return;
     }
     submit_job *job = malloc(sizeof *job);
@@ -251,12 +254,13 @@ static void submit(mtd_daemon *d, meshtopo_mesh_t *msg, void *content, uint64_t 
         mtd_reqcache_abandon(d->cache, msg->reply_channel, msg->request_id);
         mtd_send_ack_error(d, msg->reply_channel, msg->request_id, msg->mesh_id, false,
                            MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory");
-        free_msg(msg, content);
+        free_msg(d, msg, content, capacity);
         return;
     }
     job->daemon = d;
     job->msg = msg;
     job->content = content;
+    job->content_capacity = capacity;
     job->content_hash = content_hash;
     mtd_log(MTD_LOG_DEBUG, "submit",
             "mesh_id=%s request_id=%" PRId64 " verts=%" PRId32 " faces=%" PRId32, msg->mesh_id,
@@ -275,11 +279,11 @@ static void submit(mtd_daemon *d, meshtopo_mesh_t *msg, void *content, uint64_t 
 void mtd_submit_handle(mtd_daemon *d, meshtopo_mesh_t *msg, const void *encoded,
                        size_t encoded_size)
 {
-    submit(d, msg, NULL, mt_msgs_mesh_content_hash(msg, encoded, encoded_size));
+    submit(d, msg, NULL, 0, mt_msgs_mesh_content_hash(msg, encoded, encoded_size));
 }
 
 void mtd_submit_handle_content(mtd_daemon *d, meshtopo_mesh_t *msg, void *content,
-                               uint64_t content_hash)
+                               size_t content_capacity, uint64_t content_hash)
 {
-    submit(d, msg, content, content_hash);
+    submit(d, msg, content, content_capacity, content_hash);
 }

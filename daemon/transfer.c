@@ -29,6 +29,7 @@ struct mtd_transfer {
     int64_t utime; /* the mesh's, from the first chunk */
     uint64_t total, hash;
     uint8_t *content; /* total bytes, being reassembled */
+    size_t capacity;  /* of the content buffer (>= total) */
     mt_msgs_content_decoder *decoder;
     size_t charged; /* counted in transfer_bytes */
     mtd_byte_ranges got;
@@ -42,15 +43,47 @@ static int64_t monotonic_us(void)
     return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
 }
 
-static void transfer_free(mtd_transfer *t)
+/* Frees t; its content buffer, if it still has one, is given back. */
+static void transfer_free(mtd_daemon *d, mtd_transfer *t)
 {
     if (!t) return;
     free(t->mesh_id);
     free(t->source);
     mt_msgs_content_decoder_free(t->decoder);
-    free(t->content);
+    mtd_content_release(d, t->content, t->capacity);
     mtd_byte_ranges_free(&t->got);
     free(t);
+}
+
+/* A buffer for `size` content bytes: the kept one when it is large enough,
+ * else a new one (NULL when out of memory). *out_capacity gets its size. */
+static uint8_t *content_take(mtd_daemon *d, size_t size, size_t *out_capacity)
+{
+    pthread_mutex_lock(&d->spare_lock);
+    uint8_t *content = NULL;
+    if (d->spare_content && d->spare_capacity >= size) {
+        content = d->spare_content;
+        *out_capacity = d->spare_capacity;
+        d->spare_content = NULL;
+        d->spare_capacity = 0;
+    }
+    pthread_mutex_unlock(&d->spare_lock);
+    if (!content) {
+        content = malloc(size);
+        *out_capacity = size;
+    }
+    return content;
+}
+
+void mtd_content_release(mtd_daemon *d, void *content, size_t capacity)
+{
+    if (!content) return;
+    pthread_mutex_lock(&d->spare_lock);
+    void *older = d->spare_content;
+    d->spare_content = content;
+    d->spare_capacity = capacity;
+    pthread_mutex_unlock(&d->spare_lock);
+    free(older);
 }
 
 /* Unlinks t from the table and releases its charge (transfer_lock held). */
@@ -171,8 +204,9 @@ static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
             if (old) { /* its bytes, ranges and decoder carry over */
                 t->content = old->content;
                 t->decoder = old->decoder;
+                t->capacity = old->capacity;
             } else {
-                t->content = malloc(total);
+                t->content = content_take(d, total, &t->capacity);
                 t->decoder = t->content ? mt_msgs_content_decoder_new(t->content, total) : NULL;
             }
         }
@@ -181,7 +215,7 @@ static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
                 t->content = NULL;
                 t->decoder = NULL;
             }
-            transfer_free(t);
+            transfer_free(d, t);
             t = NULL;
             status = MESHTOPO_STATUS_CODE_T_BUSY;
             snprintf(error, sizeof error,
@@ -211,7 +245,7 @@ static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
                 "mesh_id=%s request_id=%" PRId64 " from request_id=%" PRId64
                 " channel=%s bytes_held=%" PRIu64,
                 t->mesh_id, t->request_id, old->request_id, old->channel, t->got.covered);
-        transfer_free(old);
+        transfer_free(d, old);
     }
     t->next = d->transfers;
     d->transfers = t;
@@ -309,7 +343,7 @@ static void finish(mtd_daemon *d, mtd_transfer *t)
     if (status != MESHTOPO_STATUS_CODE_T_OK) {
         mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false, status, error);
     } else if (mtd_begin_request(d, t->channel, t->request_id)) {
-        mtd_submit_handle_content(d, msg, t->content, hash); /* takes both */
+        mtd_submit_handle_content(d, msg, t->content, t->capacity, hash); /* takes both */
         t->content = NULL;
     } else {
         free(msg->reply_channel);
@@ -317,7 +351,7 @@ static void finish(mtd_daemon *d, mtd_transfer *t)
         free(msg->source);
         free(msg);
     }
-    transfer_free(t);
+    transfer_free(d, t);
 }
 
 /* A channel the daemon can answer on: 1..63 printable bytes. */
@@ -475,7 +509,7 @@ size_t mtd_transfers_expire(mtd_daemon *d)
                 " idle_ms=%" PRId64,
                 e->mesh_id, e->request_id, e->channel, e->got.covered, e->total,
                 (now - e->last_us) / 1000);
-        transfer_free(e);
+        transfer_free(d, e);
     }
     return n;
 }
@@ -485,6 +519,9 @@ void mtd_transfers_free(mtd_daemon *d)
     while (d->transfers) {
         mtd_transfer *t = d->transfers;
         unlink_transfer(d, t);
-        transfer_free(t);
+        transfer_free(d, t);
     }
+    free(d->spare_content);
+    d->spare_content = NULL;
+    d->spare_capacity = 0;
 }
