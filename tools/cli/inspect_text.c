@@ -147,7 +147,7 @@ static void print_defect_headline(FILE *out, const mt_report *r, uint32_t kind, 
                     plural(count, "it is", "they are"));
             break;
         case MT_DEFECT_DEGENERATE_FACE:
-            fprintf(out, "%zu %s fewer than 3 distinct vertices; %s left out", count,
+            fprintf(out, "%zu %s fewer than 3 entries or a repeated vertex; %s left out", count,
                     plural(count, "face has", "faces have"), plural(count, "it is", "they are"));
             break;
         case MT_DEFECT_DUPLICATE_FACE:

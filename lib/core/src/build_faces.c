@@ -1,6 +1,7 @@
 /* Build phase "faces": one pass over the face records, split by face range
- * across the parts. Classifies each record (valid, out-of-range index, fewer
- * than 3 distinct vertices), records the defects and the size histogram,
+ * across the parts. Classifies each record (valid, out-of-range index,
+ * degenerate: fewer than 3 entries or a vertex repeated anywhere in it, as
+ * ../shared/corpus/DEFINITIONS.md counts them), records the defects and the size histogram,
  * and counts the corners leaving each vertex per part (the counts of the
  * counting sort in build_edges.c). Positions are copied and checked to be
  * finite, split by vertex range. Rejected records get face_he = MT_NONE. */

@@ -47,7 +47,7 @@ typedef struct mt_build_options {
 /* Builds a half-edge mesh and its topology report from a face list.
  * Expected linear time; a fixed number of allocations whatever the size.
  * Faces that cannot be represented (an index >= num_verts, fewer than three
- * distinct vertices) are left out and listed in the report; every other face
+ * entries or a vertex repeated anywhere in the face) are left out and listed in the report; every other face
  * is kept under its own id. Vertex ids and face ids are the caller's.
  * Positions are copied (NULL positions give a mesh without geometry).
  * On success *out_mesh owns everything; free it with mt_mesh_destroy. On

@@ -22,7 +22,8 @@ extern "C" {
     /* a = face, b = first bad index value (as stored), c = its position in the face */            \
     X(MT_DEFECT_OUT_OF_RANGE_INDEX, "out_of_range_index", "face uses a vertex index out of range") \
     /* a = face, b = number of distinct vertices, c = face size */                                 \
-    X(MT_DEFECT_DEGENERATE_FACE, "degenerate_face", "face has fewer than 3 distinct vertices")     \
+    X(MT_DEFECT_DEGENERATE_FACE, "degenerate_face",                                                \
+      "face has fewer than 3 entries or repeats a vertex")                                         \
     /* a = face, b = earlier face with the same vertex cycle (either direction) */                 \
     X(MT_DEFECT_DUPLICATE_FACE, "duplicate_face", "face repeats an earlier face")                  \
     /* a, b = edge vertices (a < b), c = number of faces using the edge (> 2) */                   \
