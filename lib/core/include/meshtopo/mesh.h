@@ -47,14 +47,14 @@ typedef struct mt_build_options {
 /* Builds a half-edge mesh and its topology report from a face list.
  * Expected linear time; a fixed number of allocations whatever the size.
  * Faces that cannot be represented (an index >= num_verts, fewer than three
- * entries or a vertex repeated anywhere in the face) are left out and listed in the report; every other face
- * is kept under its own id. Vertex ids and face ids are the caller's.
- * Positions are copied (NULL positions give a mesh without geometry).
- * On success *out_mesh owns everything; free it with mt_mesh_destroy. On
- * failure *out_mesh is NULL and diag says why (MT_ERR_INVALID_ARG for
- * inconsistent sizes, MT_ERR_TOO_LARGE past 2^31 - 1 vertices or
- * indices or 2^30 - 1 sides of valid faces,
- * MT_ERR_NOMEM, MT_ERR_DEFECT in strict mode). */
+ * entries or a vertex repeated anywhere in the face) are left out and listed
+ * in the report; every other face is kept under its own id. Vertex ids and
+ * face ids are the caller's. Positions are copied (NULL positions give a
+ * mesh without geometry). On success *out_mesh owns everything; free it with
+ * mt_mesh_destroy. On failure *out_mesh is NULL and diag says why
+ * (MT_ERR_INVALID_ARG for inconsistent sizes, MT_ERR_TOO_LARGE past 2^31 - 1
+ * vertices or indices or 2^30 - 1 sides of valid faces, MT_ERR_NOMEM,
+ * MT_ERR_DEFECT in strict mode). */
 mt_status mt_mesh_build(const mt_face_list *input, const mt_build_options *options,
                         mt_mesh **out_mesh, mt_diag *diag);
 
