@@ -1,23 +1,28 @@
 # Install rules: the libraries (static by default, shared with
-# -DBUILD_SHARED_LIBS=ON), their headers under include/meshtopo/, a CMake
-# package (find_package(meshtopo) gives meshtopo::core and meshtopo::io) and
-# pkg-config files. Included once from the top-level CMakeLists.txt after
+# -DBUILD_SHARED_LIBS=ON), their headers under include/meshtopo/ (and the
+# message types' under include/lcmtypes/), a CMake package
+# (find_package(meshtopo) gives meshtopo::core, meshtopo::io and
+# meshtopo::client, with meshtopo::msgs beneath it) and pkg-config files. Included once from the top-level CMakeLists.txt after
 # every library target exists; the installed tree is relocatable.
 include(CMakePackageConfigHelpers)
 
 set(MESHTOPO_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/meshtopo)
 
 # --- Libraries and headers ------------------------------------------------
-# Exported as meshtopo::core and meshtopo::io, the same names as the aliases
-# the build tree uses, so consumer code reads the same either way.
+# Exported as meshtopo::core, meshtopo::io, meshtopo::msgs and
+# meshtopo::client, the same names as the aliases the build tree uses, so
+# consumer code reads the same either way. meshtopo::msgs (the LCM message
+# types, always static) comes with meshtopo::client, whose API uses them.
 set_target_properties(meshtopo_core PROPERTIES EXPORT_NAME core)
 set_target_properties(meshtopo_io PROPERTIES EXPORT_NAME io)
-foreach(lib meshtopo_core meshtopo_io)
+set_target_properties(meshtopo_msgs PROPERTIES EXPORT_NAME msgs)
+set_target_properties(meshtopo_client PROPERTIES EXPORT_NAME client)
+foreach(lib meshtopo_core meshtopo_io meshtopo_client)
   set_target_properties(${lib} PROPERTIES VERSION ${PROJECT_VERSION}
                         SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
 endforeach()
 
-install(TARGETS meshtopo_core meshtopo_io
+install(TARGETS meshtopo_core meshtopo_io meshtopo_msgs meshtopo_client
   EXPORT meshtopoTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -25,6 +30,10 @@ install(TARGETS meshtopo_core meshtopo_io
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/core/include/meshtopo
                   ${PROJECT_SOURCE_DIR}/lib/io/include/meshtopo
+                  ${PROJECT_SOURCE_DIR}/lib/client/include/meshtopo
+                  ${PROJECT_SOURCE_DIR}/msgs/include/meshtopo
+                  ${MESHTOPO_MSGS_GENERATED_INCLUDE}/meshtopo
+                  ${MESHTOPO_MSGS_GENERATED_INCLUDE}/lcmtypes
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.h")
 
@@ -79,19 +88,26 @@ foreach(dir LIBDIR INCLUDEDIR)
   endif()
 endforeach()
 
+# meshtopo-client names LCM and xxHash as plain -llcm -lxxhash (Debian's
+# lcm.pc requires glib-2.0, which liblcm-dev does not install); -llcm is
+# public in both kinds, as the client's options take an lcm_t.
 if(BUILD_SHARED_LIBS)
   set(MESHTOPO_PC_CORE_LIBS "")
   set(MESHTOPO_PC_CORE_LIBS_PRIVATE "-lm -pthread")
   set(MESHTOPO_PC_IO_REQUIRES "meshtopo-core = ${PROJECT_VERSION}")
   set(MESHTOPO_PC_IO_REQUIRES_PRIVATE "zlib")
+  set(MESHTOPO_PC_CLIENT_LIBS " -llcm")
+  set(MESHTOPO_PC_CLIENT_LIBS_PRIVATE "-lmeshtopo-msgs -lxxhash -pthread")
 else()
   set(MESHTOPO_PC_CORE_LIBS " -lm -pthread")
   set(MESHTOPO_PC_CORE_LIBS_PRIVATE "")
   set(MESHTOPO_PC_IO_REQUIRES "meshtopo-core = ${PROJECT_VERSION}, zlib")
   set(MESHTOPO_PC_IO_REQUIRES_PRIVATE "")
+  set(MESHTOPO_PC_CLIENT_LIBS " -lmeshtopo-msgs -llcm -lxxhash -pthread")
+  set(MESHTOPO_PC_CLIENT_LIBS_PRIVATE "")
 endif()
 
-foreach(pc meshtopo-core meshtopo-io meshtopo)
+foreach(pc meshtopo-core meshtopo-io meshtopo-client meshtopo)
   configure_file(${CMAKE_CURRENT_LIST_DIR}/${pc}.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/${pc}.pc
                  @ONLY)
   install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/${pc}.pc

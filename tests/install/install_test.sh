@@ -47,6 +47,8 @@ step "cmake --install $build_dir --prefix $prefix"
 cmake --install "$build_dir" --prefix "$prefix" >"$work/install.log" ||
     { cat "$work/install.log"; fail "cmake --install failed"; }
 for f in include/meshtopo/core.h include/meshtopo/io.h include/meshtopo/status.h \
+    include/meshtopo/client.h include/meshtopo/msgs.h include/meshtopo/msgs_types.h \
+    include/lcmtypes/meshtopo_mesh_t.h "$libdir/pkgconfig/meshtopo-client.pc" \
     "$libdir/cmake/meshtopo/meshtopoConfig.cmake" \
     "$libdir/cmake/meshtopo/meshtopoConfigVersion.cmake" \
     "$libdir/cmake/meshtopo/meshtopoTargets.cmake" \
@@ -79,10 +81,14 @@ run_expect "consumer (meshtopo::core)" "Euler characteristic: 2, genus: 0" \
     "$work/consumer/consumer"
 run_expect "consumer_io (meshtopo::io)" "cube (off): Euler characteristic: 2" \
     "$work/consumer/consumer_io"
+run_expect "consumer_client (meshtopo::client)" "client ok: cube content hash" \
+    "$work/consumer/consumer_client"
+# The same hash from the pkg-config build below.
+client_line=$("$work/consumer/consumer_client" | grep "client ok")
 
 step "pkg-config: compile main.c and read_main.c"
 export PKG_CONFIG_PATH="$prefix/$libdir/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
-for pc in meshtopo-core meshtopo-io meshtopo; do
+for pc in meshtopo-core meshtopo-io meshtopo-client meshtopo; do
     printf '%s: %s\n' "$pc" "$(pkg-config --cflags --libs "$pc")"
 done
 [ "$(pkg-config --modversion meshtopo-core)" = "$(pkg-config --modversion meshtopo)" ] ||
@@ -99,9 +105,14 @@ done
 "$cc" $extra_flags $(pkg-config --cflags meshtopo) "$here/read_main.c" \
     $(pkg-config --libs meshtopo) -o "$work/read_pc_all" ||
     fail "compiling read_main.c with pkg-config meshtopo failed"
+# shellcheck disable=SC2046,SC2086
+"$cc" $extra_flags $(pkg-config --cflags meshtopo-client) "$here/client_main.c" \
+    $(pkg-config --libs meshtopo-client) -o "$work/client_pc" ||
+    fail "compiling client_main.c with pkg-config meshtopo-client failed"
 run_expect "main.c (pkg-config)" "Euler characteristic: 2, genus: 0" "$work/main_pc"
 run_expect "read_main.c (pkg-config)" "cube (off): Euler characteristic: 2" "$work/read_pc"
 run_expect "read_main.c (pkg-config meshtopo)" "cube (off): Euler characteristic: 2" \
     "$work/read_pc_all"
+run_expect "client_main.c (pkg-config)" "$client_line" "$work/client_pc"
 
 step "install test passed"
