@@ -3,7 +3,8 @@
  * with their original spacing divided by --rate, each from a client named
  * after the archived source. Prints one line (or JSON object) per mesh: the
  * archived and the newly assigned version and whether the daemon's content
- * hash equals the archived one. On a terminal a progress line goes to stderr. */
+ * hash equals the archived one (for archive formats 1 and 2, that of the
+ * archived face list). On a terminal a progress line goes to stderr. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -250,6 +251,10 @@ typedef struct replay_result {
     bool acked;
     int32_t version;
     int64_t content_hash;
+    /* What the ack's hash must equal: the archived hash, or for a file of
+     * format 1 or 2 (whose hash is the former kind) the hash of what was
+     * sent, computed here from the archived face list. */
+    uint64_t expected_hash;
     double offset_s, sent_s, acked_s;
 } replay_result;
 
@@ -288,7 +293,7 @@ static void result_print_json(const replay_result *res)
     else
         mt_json_null(&j);
     mt_json_key(&j, "hash_match");
-    mt_json_bool(&j, res->acked && (uint64_t)res->content_hash == e->content_hash);
+    mt_json_bool(&j, res->acked && (uint64_t)res->content_hash == res->expected_hash);
     /* Seconds after the first send: planned, actual send, ack received. */
     mt_json_key(&j, "scheduled_us");
     mt_json_int(&j, (int64_t)llround(res->offset_s * 1e6));
@@ -311,7 +316,7 @@ static void result_print(replay *r, const replay_result *res)
     } else if (res->acked && strcmp(res->status, "OK") == 0) {
         char got[24], want[24];
         mt_cli_hash_text(res->content_hash, got, sizeof got);
-        mt_cli_hash_text((int64_t)res->entry->content_hash, want, sizeof want);
+        mt_cli_hash_text((int64_t)res->expected_hash, want, sizeof want);
         bool same = strcmp(got, want) == 0;
         printf("%s version %u -> version %d  content hash %s %s%s\n", res->entry->mesh_id,
                res->entry->version, (int)res->version, got,
@@ -367,9 +372,12 @@ static int replay_one(replay *r, const mt_archive *archive, const mt_cli_replay_
     res.acked = ack.msg.mesh_id != NULL;
     res.version = ack.msg.version;
     res.content_hash = ack.msg.content_hash;
+    res.expected_hash = rec.format_version >= MT_ARCHIVE_FORMAT_VERSION_HASHED
+                            ? e->content_hash
+                            : ack.sent_content_hash;
     if (st == MT_OK) {
         res.status = "OK";
-        code = (uint64_t)res.content_hash == e->content_hash ? MT_CLI_EXIT_OK : MT_CLI_EXIT_READ;
+        code = (uint64_t)res.content_hash == res.expected_hash ? MT_CLI_EXIT_OK : MT_CLI_EXIT_READ;
     } else {
         progress_clear(r);
         code = mt_cli_call_failed("replay", rec.mesh_id, &r->remote, st, res.acked, &diag);
@@ -382,7 +390,7 @@ static int replay_one(replay *r, const mt_archive *archive, const mt_cli_replay_
     if (code == MT_CLI_EXIT_READ) {
         char want[24];
         mt_cli_error("replay", "%s: meshtopod computed another content hash than the archived %s",
-                     e->file_name, mt_cli_hash_text((int64_t)e->content_hash, want, sizeof want));
+                     e->file_name, mt_cli_hash_text((int64_t)res.expected_hash, want, sizeof want));
     }
     mt_client_ack_free(&ack);
     mt_archive_record_free(&rec);
@@ -483,7 +491,9 @@ const mt_cli_command mt_cli_cmd_replay = {
         "of sending.\n"
         "\n"
         "Prints one line per mesh: id, archived version -> new version, and whether the\n"
-        "daemon's content hash equals the archived one. --json prints one JSON object per\n"
+        "daemon's content hash equals the archived one (for files of archive formats 1\n"
+        "and 2, whose hash is of a former kind, the hash of the archived face list).\n"
+        "--json prints one JSON object per\n"
         "line instead: {mesh_id, file, source, utime, original_version,\n"
         "archived_content_hash, status, error, version, content_hash, hash_match,\n"
         "scheduled_us, sent_us, acked_us} (the last three in microseconds after the first\n"
