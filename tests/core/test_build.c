@@ -456,6 +456,67 @@ static void test_thread_counts_agree(void)
     mt_face_list_free(&fl);
 }
 
+/* A shuffled grid of several matching blocks (over 4096 vertices each)
+ * with defects spread over them: fins, flipped and repeated faces, and a
+ * hub vertex with two fans of many triangles (more sides on one vertex
+ * than a short sort takes). */
+static void messy_grid(mt_face_list *out)
+{
+    mt_face_list grid;
+    CHECK_OK(mt_gen_grid(150, 150, true, &grid));
+    CHECK_OK(mt_face_list_permute(&grid, 11, NULL));
+    enum { FINS = 40, FLIPS = 40, REPEATS = 10, FAN_A = 99, FAN_B = 50 };
+    const uint32_t nv = grid.num_verts, hub = nv + FINS;
+    const uint32_t extra_verts = FINS + 1 + (FAN_A + 1) + (FAN_B + 1);
+    const uint32_t extra_faces = FINS + FLIPS + REPEATS + FAN_A + FAN_B;
+    CHECK_OK(mt_face_list_alloc(out, nv + extra_verts, grid.num_faces + extra_faces,
+                                grid.num_indices + 3 * (uint64_t)extra_faces, NULL));
+    memcpy(out->face_sizes, grid.face_sizes, grid.num_faces * sizeof(uint32_t));
+    memcpy(out->face_indices, grid.face_indices, grid.num_indices * sizeof(uint32_t));
+    uint32_t f = grid.num_faces, *idx = out->face_indices + grid.num_indices;
+    uint64_t state = 12345;
+    for (uint32_t i = 0; i < FINS + FLIPS + REPEATS; i++) {
+        state = state * 6364136223846793005u + 1442695040888963407u;
+        const uint32_t *g = grid.face_indices + 3 * ((state >> 33) % grid.num_faces);
+        const uint32_t fin[3] = {g[0], g[1], nv + i}, flip[3] = {g[2], g[1], g[0]};
+        const uint32_t *face = i < FINS ? fin : i < FINS + FLIPS ? flip : g;
+        out->face_sizes[f++] = 3;
+        for (int k = 0; k < 3; k++) *idx++ = face[k];
+    }
+    for (uint32_t i = 0; i < FAN_A + FAN_B; i++) {
+        const uint32_t rim = i < FAN_A ? hub + 1 + i : hub + 2 + i;
+        out->face_sizes[f++] = 3;
+        *idx++ = hub;
+        *idx++ = rim;
+        *idx++ = rim + 1;
+    }
+    CHECK_EQ(f, out->num_faces);
+    mt_face_list_free(&grid);
+}
+
+/* Matching split over blocks on two threads gives the one-thread mesh. */
+static void test_thread_counts_agree_across_blocks(void)
+{
+    mt_face_list fl;
+    messy_grid(&fl);
+    mt_mesh *one = NULL, *two = NULL;
+    mt_build_options o1 = {.threads = 1}, o2 = {.threads = 2};
+    CHECK_OK(mt_mesh_build(&fl, &o1, &one, NULL));
+    CHECK_OK(mt_mesh_build(&fl, &o2, &two, NULL));
+    if (one && two) {
+        CHECK_OK(mt_mesh_validate(one, NULL));
+        CHECK_OK(mt_mesh_validate(two, NULL));
+        check_same_mesh(one, two);
+        const mt_report *r = mt_mesh_report(one);
+        CHECK_EQ(r->nonmanifold_edges, 40 + 3 * 40 + 3 * 10); /* fins, then flips and repeats */
+        CHECK_EQ(r->nonmanifold_vertices >= 1, 1);
+        CHECK_EQ(r->duplicate_faces, 40 + 10);
+    }
+    mt_mesh_destroy(one);
+    mt_mesh_destroy(two);
+    mt_face_list_free(&fl);
+}
+
 /* Memory stays within 56 bytes per face on a large triangle grid. */
 static void test_memory_per_face(void)
 {
@@ -481,6 +542,7 @@ static const mt_test_case cases[] = {
     {"build_bad_arguments", test_bad_arguments},
     {"build_allocation_failures", test_allocation_failures},
     {"build_thread_counts_agree", test_thread_counts_agree},
+    {"build_thread_counts_agree_across_blocks", test_thread_counts_agree_across_blocks},
     {"build_memory_per_face", test_memory_per_face},
 };
 const mt_test_table mt_tests_build = {cases, sizeof cases / sizeof cases[0]};

@@ -1,8 +1,9 @@
 /* mt_mesh_build: runs the build phases (see build_internal.h) and owns the
  * mesh's lifetime. The "links" phase lives here: one pass over the valid
- * faces sets next, face and head of every half-edge. A build makes a fixed
+ * faces sets the next of every face half-edge. A build makes a fixed
  * number of allocations whatever the mesh size (plus O(log n) for defect and
  * bundle lists, which grow geometrically). */
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -69,15 +70,17 @@ size_t mt_mesh_report_memory_bytes(const mt_mesh *m)
            r->num_defects * sizeof(mt_defect);
 }
 
-/* Phase "links": next, face and head of every face half-edge, and each
- * face's first half-edge, split by face range (each part writes only the
- * half-edges of its own corners). */
+/* Phase "links": next of every face half-edge, each face's first
+ * half-edge and, for the fans, one face half-edge leaving each vertex; split
+ * by face range (each part writes only the half-edges of its own corners;
+ * two parts may both offer a vertex's fan start, and either will do). */
 static void link_part(mt__build *b, uint32_t t)
 {
     const mt__part *p = &b->part[t];
     mt_mesh *m = b->m;
     const uint32_t *sizes = b->in->face_sizes, *indices = b->in->face_indices, *c2h = b->c2h;
-    uint32_t *he_next = m->he_next, *he_face = m->he_face, *he_head = m->he_head;
+    uint32_t *he_next = m->he_next;
+    _Atomic uint32_t *fan_start = b->fan_start;
     uint32_t offset = p->index_begin;
     for (uint32_t f = p->face_begin; f < p->face_end; f++) {
         const uint32_t n = sizes[f];
@@ -93,8 +96,7 @@ static void link_part(mt__build *b, uint32_t t)
             const uint32_t next_i = i + 1 < n ? i + 1 : 0;
             const uint32_t hn = next_i ? mt__edge_gap(b, hs[next_i]) : first;
             he_next[h] = hn;
-            he_face[h] = f;
-            he_head[h] = idx[next_i];
+            atomic_store_explicit(&fan_start[idx[i]], h, memory_order_relaxed);
             h = hn;
         }
         m->face_he[f] = first;
@@ -117,7 +119,7 @@ static void *alloc_array(size_t count, size_t elem, int fill_none)
 /* The three half-edge arrays live in one block, staggered so that entry h
  * of each falls in a different cache set: the build and the queries touch
  * all three at the same index, and equal offsets modulo the page size made
- * them evict one another. he_face starts as all MT_NONE. */
+ * them evict one another. */
 static mt_status alloc_half_edges(mt_mesh *m)
 {
     const size_t n = m->num_half_edges, stagger = MT__HE_STAGGER / sizeof(uint32_t);
@@ -126,18 +128,20 @@ static mt_status alloc_half_edges(mt_mesh *m)
     m->he_head = block;
     m->he_next = block + n + stagger;
     m->he_face = m->he_next + n + stagger;
-    memset(m->he_face, 0xff, n * sizeof(uint32_t));
     return MT_OK;
 }
 
 static void build_free_temporaries(mt__build *b)
 {
-    mt__free(b->bucket_start);
-    mt__free(b->bucket);
+    mt__free(b->block_start);
+    mt__free(b->sides);
+    mt__free(b->block_half_edges);
     mt__free(b->c2h);
+    mt__free((void *)b->fan_start);
     for (uint32_t t = 0; t < MT__MAX_PARTS; t++) {
         mt__part *p = &b->part[t];
         mt__free(p->degree);
+        mt__free(p->block_sides);
         mt__vec_free(&p->large_sizes);
         mt__vec_free(&p->invalid_refs);
         mt__vec_free(&p->defects);
@@ -228,40 +232,48 @@ static mt_status build(mt__build *b)
     m->num_verts = m->num_verts_internal = in->num_verts;
     m->num_faces = in->num_faces;
     m->face_he = alloc_array(in->num_faces, sizeof(uint32_t), 0);
-    b->bucket_start = mt__malloc(((size_t)in->num_verts + 1) * sizeof(uint32_t));
     if (in->positions) m->positions = alloc_array(in->num_verts, 3 * sizeof(double), 0);
-    if (!m->face_he || !b->bucket_start || (in->positions && !m->positions)) return MT_ERR_NOMEM;
+    if (!m->face_he || (in->positions && !m->positions)) return MT_ERR_NOMEM;
+    b->block_shift = MT__BLOCK_MIN_SHIFT;
+    while ((in->num_verts >> b->block_shift) >= MT__MAX_BLOCKS) b->block_shift++;
+    b->num_blocks = (in->num_verts >> b->block_shift) + 1;
     for (uint32_t t = 0; t < b->parts; t++) {
         b->part[t].degree = mt__calloc((size_t)in->num_verts + 1, sizeof(uint32_t));
-        if (!b->part[t].degree) return MT_ERR_NOMEM;
+        b->part[t].block_sides = mt__calloc(b->num_blocks, sizeof(uint32_t));
+        if (!b->part[t].degree || !b->part[t].block_sides) return MT_ERR_NOMEM;
     }
 
     mt_status s = mt__build_faces(b);
     if (s != MT_OK) return s;
 
-    b->bucket = alloc_array(b->num_corners, sizeof(mt__side), 0);
+    b->sides = alloc_array(b->num_corners, sizeof(mt__side), 0);
+    b->block_start = alloc_array((size_t)b->num_blocks + 1, sizeof(uint32_t), 0);
+    b->block_half_edges = alloc_array(b->num_blocks, sizeof(uint32_t), 0);
     b->c2h = alloc_array(in->num_indices, sizeof(uint32_t), 0);
-    if (!b->bucket || !b->c2h) return MT_ERR_NOMEM;
+    if (!b->sides || !b->block_start || !b->block_half_edges || !b->c2h) return MT_ERR_NOMEM;
     s = mt__build_edges(b);
     if (s != MT_OK) return s;
-    for (uint32_t t = 0; t < b->parts; t++) {
-        mt__free(b->part[t].degree);
-        b->part[t].degree = NULL;
-    }
 
     m->num_half_edges = 2 * b->num_internal_edges;
     if (alloc_half_edges(m) != MT_OK) return MT_ERR_NOMEM;
+    mt__build_edges_publish(b);
+    mt__free(b->sides);
+    b->sides = NULL;
+
     m->vert_he = alloc_array(in->num_verts, sizeof(uint32_t), 1);
     b->vert_capacity = in->num_verts;
-    if (!m->vert_he) return MT_ERR_NOMEM;
+    b->fan_start = alloc_array(in->num_verts, sizeof(uint32_t), 0);
+    if (!m->vert_he || !b->fan_start) return MT_ERR_NOMEM;
     mt__parallel_run(b, link_part);
     mt__free(b->c2h);
     b->c2h = NULL;
 
     s = mt__build_fans(b);
     if (s != MT_OK) return s;
-    mt__free(b->bucket);
-    b->bucket = NULL;
+    for (uint32_t t = 0; t < b->parts; t++) {
+        mt__free(b->part[t].degree);
+        b->part[t].degree = NULL;
+    }
     return mt__build_report(b);
 }
 

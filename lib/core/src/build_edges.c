@@ -1,59 +1,55 @@
-/* Build phase "edges": twin matching in linear time. The corners (face sides
- * a -> b) are counting-sorted by tail vertex a, each part scattering its own
- * faces into slots reserved for it, so the order does not depend on the
- * number of parts; a bucket repeating a head is sorted by head (see
- * sort_part). Then, vertex by vertex, each side's group {a, b} is gathered
- * from the buckets of a and b and paired: each a -> b side with one b -> a
- * side becomes an internal edge, every side left over gets an edge of its
- * own with a boundary twin. A group needing several internal edges (used
- * by more than two faces, or by two faces running the same way) is
- * recorded as a bundle.
+/* Build phase "edges": twin matching in linear time, without random reads.
+ * Every side a -> b of a valid face is filed under its smaller vertex
+ * lo = min(a, b), in blocks of 2^block_shift consecutive lo (the faces
+ * phase counted the sides of each block): each part streams its faces'
+ * sides into its own slots of every block, a few thousand sequential write
+ * streams instead of one random write per side. Then each block, small
+ * enough to stay in the core's cache, is counting-sorted by lo, each lo's
+ * sides are sorted by hi, and each run of sides on {lo, hi} is paired: each
+ * lo -> hi side with one hi -> lo side becomes an internal edge, every side
+ * left over gets an edge of its own with a boundary twin. A run needing
+ * several internal edges (used by more than two faces, or by two faces
+ * running the same way) is recorded as a bundle.
  *
- * Ownership, which makes the parts independent: a group belongs to its
- * smaller vertex if that one has a side in it, otherwise to the larger one.
- * Only the owner's part touches the group's slots and corners. Part t
- * numbers its edges from t * corners and a final pass closes the gap, so the
- * ids equal those of a single pass in vertex order. */
+ * Edges are numbered in (lo, hi) order and half-edge 2e runs lo -> hi, so
+ * the head and face of every half-edge come out in id order: they are kept
+ * in the block's own slots, which the sort has emptied, and moved into the
+ * mesh once the number of edges is known (mt__build_edges_publish). The
+ * half-edge of each corner goes to c2h for the links phase. Part t numbers
+ * its edges from t * corners; the gap is closed afterwards, so the ids equal
+ * those of a single pass. */
 #include <string.h>
 
 #include "build_internal.h"
 
-/* Bucket slots between a prefetch and its use in matching. */
-#define MT__PREFETCH_DISTANCE 16
+/* Sides of one smaller vertex up to which they are sorted by insertion;
+ * more are heap-sorted. */
+#define MT__INSERTION_LIMIT 32
 
-/* Sides up to which a bucket is scanned (and sorted only when it repeats a
- * head); larger buckets are sorted and searched. */
-#define MT__SCAN_LIMIT 16
-
-/* Exclusive prefix sum of the per-part counts: vertex v's bucket holds part
- * 0's sides of v, then part 1's; degree[] becomes each part's next slot. */
+/* Exclusive prefix sum of the per-part counts: block k holds part 0's
+ * sides, then part 1's, each in face order; block_sides becomes each
+ * part's next free slot. */
 static void reserve_slots(mt__build *b)
 {
-    const uint32_t nv = b->in->num_verts;
-    uint32_t *start = b->bucket_start;
-    uint32_t sum = 0, max_degree = 0;
-    for (uint32_t v = 0; v < nv; v++) {
-        start[v] = sum;
-        uint32_t first = sum;
+    uint32_t sum = 0;
+    for (uint32_t k = 0; k < b->num_blocks; k++) {
+        b->block_start[k] = sum;
         for (uint32_t t = 0; t < b->parts; t++) {
-            uint32_t d = b->part[t].degree[v];
-            b->part[t].degree[v] = sum;
-            sum += d;
+            const uint32_t count = b->part[t].block_sides[k];
+            b->part[t].block_sides[k] = sum;
+            sum += count;
         }
-        if (sum - first > max_degree) max_degree = sum - first;
     }
-    start[nv] = sum;
-    b->max_degree = max_degree;
+    b->block_start[b->num_blocks] = sum;
 }
 
 static void scatter_part(mt__build *b, uint32_t t)
 {
     mt__part *p = &b->part[t];
-    const uint32_t *sizes = b->in->face_sizes;
-    const uint32_t *indices = b->in->face_indices;
+    const uint32_t *sizes = b->in->face_sizes, *indices = b->in->face_indices;
     const uint32_t *face_he = b->m->face_he;
-    mt__side *bucket = b->bucket;
-    uint32_t *slot = p->degree;
+    mt__side *sides = b->sides;
+    uint32_t *slot = p->block_sides;
     uint32_t offset = p->index_begin;
     for (uint32_t f = p->face_begin; f < p->face_end; f++) {
         const uint32_t n = sizes[f];
@@ -63,39 +59,23 @@ static void scatter_part(mt__build *b, uint32_t t)
         }
         const uint32_t *idx = indices + offset;
         for (uint32_t i = 0; i < n; i++) {
-            bucket[slot[idx[i]]++] = (mt__side){idx[i + 1 < n ? i + 1 : 0], offset + i};
+            const uint32_t tail = idx[i], head = idx[i + 1 < n ? i + 1 : 0];
+            const uint32_t down = tail > head;
+            const uint32_t lo = down ? head : tail, hi = down ? tail : head;
+            sides[slot[mt__block_of(b, lo)]++] =
+                (mt__side){lo, hi, (offset + i) | (down ? MT__SIDE_DOWN : 0u), f};
         }
         offset += n;
     }
 }
 
-/* 1 when two sides of a small bucket share a head. Branch-free: the usual
- * bucket has none, and on a shuffled mesh a search that stops early
- * mispredicts. Heads distinct modulo 64 (most buckets) are told apart
- * with one pass over a bit mask; only a collision there compares pairs. */
-static uint32_t repeats_head(const mt__side *s, uint32_t n)
-{
-    uint64_t seen = 0, collisions = 0;
-    for (uint32_t i = 0; i < n; i++) {
-        const uint64_t bit = (uint64_t)1 << (s[i].head & 63u);
-        collisions |= seen & bit;
-        seen |= bit;
-    }
-    if (!collisions) return 0;
-    uint32_t repeats = 0;
-    for (uint32_t i = 1; i < n; i++)
-        for (uint32_t j = 0; j < i; j++) repeats |= s[i].head == s[j].head;
-    return repeats;
-}
-
-/* Insertion sort of a bucket by head (stable: equal heads keep their
- * corner order). */
-static void sort_bucket(mt__side *s, uint32_t n)
+/* Insertion sort by hi (stable: equal his keep their face order). */
+static void sort_by_hi(mt__side *s, uint32_t n)
 {
     for (uint32_t i = 1; i < n; i++) {
         mt__side x = s[i];
         uint32_t j = i;
-        while (j > 0 && s[j - 1].head > x.head) {
+        while (j > 0 && s[j - 1].hi > x.hi) {
             s[j] = s[j - 1];
             j--;
         }
@@ -103,15 +83,21 @@ static void sort_bucket(mt__side *s, uint32_t n)
     }
 }
 
-/* Large buckets: a merge sort through a scratch buffer would need memory;
- * a heap sort on the pairs keeps it in place and O(n log n). */
+/* Many sides on one vertex: a merge sort through a scratch buffer would
+ * need memory; a heap sort keeps it in place and O(n log n). It orders by
+ * (hi, face), which is the order the stable insertion sort gives. */
+static uint64_t heap_key(const mt__side *s)
+{
+    return (uint64_t)s->hi << 32 | s->face;
+}
+
 static void sift_down(mt__side *s, uint32_t root, uint32_t n)
 {
     for (;;) {
         uint32_t child = 2 * root + 1;
         if (child >= n) return;
-        if (child + 1 < n && s[child + 1].head > s[child].head) child++;
-        if (s[root].head >= s[child].head) return;
+        if (child + 1 < n && heap_key(&s[child + 1]) > heap_key(&s[child])) child++;
+        if (heap_key(&s[root]) >= heap_key(&s[child])) return;
         mt__side x = s[root];
         s[root] = s[child];
         s[child] = x;
@@ -119,7 +105,7 @@ static void sift_down(mt__side *s, uint32_t root, uint32_t n)
     }
 }
 
-static void heap_sort_bucket(mt__side *s, uint32_t n)
+static void heap_sort_by_hi(mt__side *s, uint32_t n)
 {
     for (uint32_t i = n / 2; i-- > 0;) sift_down(s, i, n);
     for (uint32_t end = n; end-- > 1;) {
@@ -128,56 +114,6 @@ static void heap_sort_bucket(mt__side *s, uint32_t n)
         s[end] = x;
         sift_down(s, 0, end);
     }
-}
-
-/* Matching needs the sides of each group next to one another. A small
- * bucket whose heads are all distinct already has that and stays in corner
- * order; only one that repeats a head is sorted. Larger buckets are always
- * sorted, for binary search. */
-static void sort_part(mt__build *b, uint32_t t)
-{
-    mt__part *p = &b->part[t];
-    const uint32_t *start = b->bucket_start;
-    for (uint32_t v = p->vert_begin; v < p->vert_end; v++) {
-        mt__side *s = b->bucket + start[v];
-        const uint32_t n = start[v + 1] - start[v];
-        if (n <= MT__SCAN_LIMIT) {
-            if (repeats_head(s, n)) sort_bucket(s, n);
-        } else if (n <= 32) {
-            sort_bucket(s, n);
-        } else {
-            heap_sort_bucket(s, n);
-        }
-    }
-}
-
-/* The sides with head v in bucket [lo, hi): first slot and count. A small
- * bucket is scanned whole (its sides with head v are adjacent if there are
- * several, see sort_part); a large one is searched. */
-static uint32_t find_head(const mt__side *s, uint32_t lo, uint32_t hi, uint32_t v,
-                          uint32_t *out_count)
-{
-    const uint32_t end = hi;
-    uint32_t first = hi, count = 0;
-    if (hi - lo <= MT__SCAN_LIMIT) {
-        for (uint32_t j = hi; j-- > lo;) {
-            const uint32_t hit = s[j].head == v;
-            count += hit;
-            first = hit ? j : first;
-        }
-        *out_count = count;
-        return first;
-    }
-    while (lo < hi) {
-        uint32_t mid = lo + (hi - lo) / 2;
-        if (s[mid].head < v)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    while (lo + count < end && s[lo + count].head == v) count++;
-    *out_count = count;
-    return lo;
 }
 
 static mt_status record_group(mt__part *p, uint32_t a, uint32_t bv, uint32_t na, uint32_t nb,
@@ -220,91 +156,121 @@ static mt_status record_group(mt__part *p, uint32_t a, uint32_t bv, uint32_t na,
     return MT_OK;
 }
 
-/* Pairs the sides of group {a, b}: slots [sa, sa + na) of a's bucket hold
- * the a -> b sides, [sb, sb + nb) of b's the b -> a sides. Half-edge 2e
- * points from the smaller vertex id. */
-static void pair_group(mt__build *b, mt__part *p, uint32_t a, uint32_t bv, uint32_t sa, uint32_t na,
-                       uint32_t sb, uint32_t nb)
+/* A matched block's output: (head, face) of each half-edge it made, in id
+ * order, written over the block's slots (4 words per side, at most 4 per
+ * edge, and every edge takes at least one side). */
+typedef struct block_output {
+    uint32_t *pairs;
+    uint32_t half_edges;
+} block_output;
+
+static void put_edge(block_output *out, uint32_t lo, uint32_t hi, uint32_t face_up,
+                     uint32_t face_down)
 {
-    mt__side *bucket = b->bucket;
-    uint32_t *c2h = b->c2h;
-    const uint32_t count = na > nb ? na : nb;
-    const uint32_t a_low = a < bv ? 0u : 1u;
+    uint32_t *pair = out->pairs + 2 * (size_t)out->half_edges;
+    pair[0] = hi; /* 2e runs lo -> hi */
+    pair[1] = face_up;
+    pair[2] = lo;
+    pair[3] = face_down;
+    out->half_edges += 2;
+}
+
+/* Pairs a run of n sides on {lo, hi} that is not one side each way: the
+ * k-th lo -> hi side with the k-th hi -> lo side, in face order. */
+static mt_status pair_run(mt__build *b, mt__part *p, const mt__side *run, uint32_t n,
+                          block_output *out)
+{
+    const uint32_t lo = run[0].lo, hi = run[0].hi;
+    uint32_t up = 0;
+    for (uint32_t i = 0; i < n; i++) up += !(run[i].corner_down & MT__SIDE_DOWN);
+    const uint32_t down = n - up, count = up > down ? up : down;
+    const uint32_t first_edge = p->edge_base + p->edges_made;
+    uint32_t next_up = 0, next_down = 0;
     for (uint32_t k = 0; k < count; k++) {
         const uint32_t e = p->edge_base + p->edges_made++;
-        if (k < na) {
-            uint32_t h = 2 * e + a_low;
-            c2h[bucket[sa + k].item] = h;
-            bucket[sa + k].item = h;
+        uint32_t face_up = MT_NONE, face_down = MT_NONE, h_up = 2 * e, h_down = 2 * e + 1;
+        while (next_up < n && (run[next_up].corner_down & MT__SIDE_DOWN)) next_up++;
+        while (next_down < n && !(run[next_down].corner_down & MT__SIDE_DOWN)) next_down++;
+        if (next_up < n) {
+            face_up = run[next_up].face;
+            b->c2h[run[next_up++].corner_down] = h_up;
+        } else if (mt__vec_push(&p->boundary_halves, &h_up) != MT_OK) {
+            return MT_ERR_NOMEM;
         }
-        if (k < nb) {
-            uint32_t h = 2 * e + (1u - a_low);
-            c2h[bucket[sb + k].item] = h;
-            bucket[sb + k].item = h;
+        if (next_down < n) {
+            face_down = run[next_down].face;
+            b->c2h[run[next_down++].corner_down & ~MT__SIDE_DOWN] = h_down;
+        } else if (mt__vec_push(&p->boundary_halves, &h_down) != MT_OK) {
+            return MT_ERR_NOMEM;
+        }
+        put_edge(out, lo, hi, face_up, face_down);
+    }
+    return record_group(p, lo, hi, up, down, first_edge);
+}
+
+/* Sorts block k's sides into `sorted` by lo (counting sort, count has
+ * 2^block_shift + 1 entries), then by hi, and pairs every run. */
+static mt_status match_block(mt__build *b, mt__part *p, uint32_t k, mt__side *sorted,
+                             uint32_t *count)
+{
+    const uint32_t first = b->block_start[k], n = b->block_start[k + 1] - first;
+    const mt__side *s = b->sides + first;
+    const uint32_t base = k << b->block_shift;
+    uint32_t width = b->in->num_verts - base;
+    if (width > 1u << b->block_shift) width = 1u << b->block_shift;
+    memset(count, 0, ((size_t)width + 1) * sizeof *count);
+    for (uint32_t i = 0; i < n; i++) count[s[i].lo - base + 1]++;
+    for (uint32_t v = 1; v <= width; v++) count[v] += count[v - 1];
+    for (uint32_t i = 0; i < n; i++) sorted[count[s[i].lo - base]++] = s[i];
+    /* count[v] is now the end of lo = base + v's sides. */
+    block_output out = {(uint32_t *)(b->sides + first), 0};
+    uint32_t *c2h = b->c2h;
+    for (uint32_t v = 0, begin = 0; v < width; begin = count[v++]) {
+        const uint32_t end = count[v];
+        if (end - begin <= MT__INSERTION_LIMIT)
+            sort_by_hi(sorted + begin, end - begin);
+        else
+            heap_sort_by_hi(sorted + begin, end - begin);
+        for (uint32_t i = begin; i < end;) {
+            const mt__side *run = sorted + i;
+            uint32_t len = 1;
+            while (i + len < end && run[len].hi == run[0].hi) len++;
+            const uint32_t flip = (run[0].corner_down ^ run[len > 1].corner_down) & MT__SIDE_DOWN;
+            if (len == 2 && flip) { /* the manifold case, inline */
+                const mt__side *up = run[0].corner_down & MT__SIDE_DOWN ? run + 1 : run;
+                const mt__side *down = up == run ? run + 1 : run;
+                const uint32_t e = p->edge_base + p->edges_made++;
+                c2h[up->corner_down] = 2 * e;
+                c2h[down->corner_down & ~MT__SIDE_DOWN] = 2 * e + 1;
+                put_edge(&out, run[0].lo, run[0].hi, up->face, down->face);
+                p->num_edges++;
+                p->use_hist[2]++;
+            } else if (pair_run(b, p, run, len, &out) != MT_OK) {
+                return MT_ERR_NOMEM;
+            }
+            i += len;
         }
     }
+    b->block_half_edges[k] = out.half_edges;
+    return MT_OK;
 }
 
 static void match_part(mt__build *b, uint32_t t)
 {
     mt__part *p = &b->part[t];
-    const uint32_t *start = b->bucket_start;
-    mt__side *bucket = b->bucket;
-    uint32_t *c2h = b->c2h;
-    const uint64_t num_corners = b->num_corners;
-    p->edge_base = t * (uint32_t)num_corners;
-    for (uint32_t a = p->vert_begin; a < p->vert_end; a++) {
-        const uint32_t end_a = start[a + 1];
-        for (uint32_t i = start[a]; i < end_a;) {
-            /* The twin sides sit in another vertex's bucket, at random in a
-             * scan-ordered mesh: fetch those ahead of use. (Heads do not
-             * change during matching; items may be written by another part,
-             * so they are not read ahead.) */
-            if (i + MT__PREFETCH_DISTANCE < num_corners) {
-                __builtin_prefetch(&start[bucket[i + MT__PREFETCH_DISTANCE].head]);
-                __builtin_prefetch(&bucket[start[bucket[i + MT__PREFETCH_DISTANCE / 2].head]]);
-            }
-            const uint32_t bv = bucket[i].head;
-            uint32_t na = 1;
-            while (i + na < end_a && bucket[i + na].head == bv) na++;
-            uint32_t nb;
-            const uint32_t sb = find_head(bucket, start[bv], start[bv + 1], a, &nb);
-            /* Owned by a unless b is smaller and has a side in the group. */
-            if (bv < a && nb > 0) {
-                i += na;
-                continue;
-            }
-            if (na == 1 && nb == 1) { /* the manifold case, inline */
-                const uint32_t e = p->edge_base + p->edges_made++;
-                const uint32_t ha = 2 * e + (a < bv ? 0u : 1u);
-                c2h[bucket[i].item] = ha;
-                bucket[i].item = ha;
-                c2h[bucket[sb].item] = ha ^ 1u;
-                bucket[sb].item = ha ^ 1u;
-                p->num_edges++;
-                p->use_hist[2]++;
-            } else {
-                const uint32_t first_edge = p->edge_base + p->edges_made;
-                pair_group(b, p, a, bv, i, na, sb, nb);
-                if (record_group(p, a, bv, na, nb, first_edge) != MT_OK) {
-                    p->status = MT_ERR_NOMEM;
-                    return;
-                }
-            }
-            i += na;
-        }
+    p->edge_base = t * (uint32_t)b->num_corners;
+    uint32_t largest = 0;
+    for (uint32_t k = p->block_begin; k < p->block_end; k++) {
+        const uint32_t n = b->block_start[k + 1] - b->block_start[k];
+        if (n > largest) largest = n;
     }
-}
-
-/* Part 1 numbered its edges from `corners`; move the half-edges in the
- * buckets down to follow part 0's edges directly (c2h is moved as it is
- * read, by mt__edge_gap). */
-static void close_gap_part(mt__build *b, uint32_t t)
-{
-    const uint64_t n = b->num_corners;
-    mt__side *bucket = b->bucket;
-    for (uint64_t i = n * t / b->parts, hi = n * (t + 1) / b->parts; i < hi; i++)
-        bucket[i].item = mt__edge_gap(b, bucket[i].item);
+    mt__side *sorted = mt__malloc((size_t)largest * sizeof *sorted);
+    uint32_t *count = mt__malloc(((size_t)1 << b->block_shift) * sizeof *count + sizeof *count);
+    if (!sorted || !count) p->status = MT_ERR_NOMEM;
+    for (uint32_t k = p->block_begin; k < p->block_end && p->status == MT_OK; k++)
+        p->status = match_block(b, p, k, sorted, count);
+    mt__free(sorted);
+    mt__free(count);
 }
 
 static mt_status merge_parts(mt__build *b)
@@ -321,28 +287,30 @@ static mt_status merge_parts(mt__build *b)
         b->inconsistent_edges += p->inconsistent_edges;
         b->duplicate_directed_edges += p->duplicate_directed_edges;
         uint32_t *edges = p->bundle_edges.data, *offsets = p->bundle_offsets.data;
+        uint32_t *halves = p->boundary_halves.data;
         for (size_t i = 0; t > 0 && i < p->bundle_edges.len; i++) edges[i] -= shift;
+        for (size_t i = 0; t > 0 && i < p->boundary_halves.len; i++) halves[i] -= 2 * shift;
         for (size_t i = 0; i < p->bundle_offsets.len; i++)
             offsets[i] += (uint32_t)b->bundle_edges.len;
         if (mt__vec_append(&b->large_uses, &p->large_uses) != MT_OK ||
             mt__vec_append(&b->defects, &p->defects) != MT_OK ||
             mt__vec_append(&b->bundle_offsets, &p->bundle_offsets) != MT_OK ||
-            mt__vec_append(&b->bundle_edges, &p->bundle_edges) != MT_OK)
+            mt__vec_append(&b->bundle_edges, &p->bundle_edges) != MT_OK ||
+            mt__vec_append(&b->boundary_halves, &p->boundary_halves) != MT_OK)
             return MT_ERR_NOMEM;
     }
     return MT_OK;
 }
 
-/* Splits the vertices into parts holding about the same number of sides. */
-static void split_vertices(mt__build *b)
+/* Splits the blocks into parts holding about the same number of sides. */
+static void split_blocks(mt__build *b)
 {
-    const uint32_t nv = b->in->num_verts;
-    uint32_t v = 0;
+    uint32_t k = 0;
     for (uint32_t t = 0; t < b->parts; t++) {
-        uint64_t goal = b->num_corners * (t + 1) / b->parts;
-        b->part[t].vert_begin = v;
-        while (v < nv && (t + 1 == b->parts || b->bucket_start[v] < goal)) v++;
-        b->part[t].vert_end = v;
+        const uint64_t goal = b->num_corners * (t + 1) / b->parts;
+        b->part[t].block_begin = k;
+        while (k < b->num_blocks && (t + 1 == b->parts || b->block_start[k] < goal)) k++;
+        b->part[t].block_end = k;
     }
 }
 
@@ -350,13 +318,31 @@ mt_status mt__build_edges(mt__build *b)
 {
     reserve_slots(b);
     mt__parallel_run(b, scatter_part);
-    split_vertices(b);
-    mt__parallel_run(b, sort_part);
+    split_blocks(b);
     mt__parallel_run(b, match_part);
     if (b->parts > 1) {
         b->gap_first_he = 2 * b->part[1].edge_base;
         b->gap_shift = 2 * (b->part[1].edge_base - b->part[0].edges_made);
-        mt__parallel_run(b, close_gap_part);
     }
     return merge_parts(b);
+}
+
+static void publish_part(mt__build *b, uint32_t t)
+{
+    mt_mesh *m = b->m;
+    uint32_t h = 0;
+    for (uint32_t earlier = 0; earlier < t; earlier++) h += 2 * b->part[earlier].edges_made;
+    for (uint32_t k = b->part[t].block_begin; k < b->part[t].block_end; k++) {
+        const uint32_t *pairs = (const uint32_t *)(b->sides + b->block_start[k]);
+        for (uint32_t j = 0; j < b->block_half_edges[k]; j++, h++) {
+            m->he_head[h] = pairs[2 * j];
+            m->he_face[h] = pairs[2 * j + 1];
+            m->he_next[h] = MT_NONE; /* set by the links phase, or by the fans if no face */
+        }
+    }
+}
+
+void mt__build_edges_publish(mt__build *b)
+{
+    mt__parallel_run(b, publish_part);
 }

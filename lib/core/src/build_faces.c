@@ -1,10 +1,11 @@
 /* Build phase "faces": one pass over the face records, split by face range
  * across the parts. Classifies each record (valid, out-of-range index,
  * degenerate: fewer than 3 entries or a vertex repeated anywhere in it, as
- * ../shared/corpus/DEFINITIONS.md counts them), records the defects and the size histogram,
- * and counts the corners leaving each vertex per part (the counts of the
- * counting sort in build_edges.c). Positions are copied and checked to be
- * finite, split by vertex range. Rejected records get face_he = MT_NONE. */
+ * ../shared/corpus/DEFINITIONS.md counts them), records the defects and the
+ * size histogram, and counts per part the corners leaving each vertex (for
+ * the fans) and the sides filed in each block (for the matching in
+ * build_edges.c). Positions are copied and checked to be finite, split by
+ * vertex range. Rejected records get face_he = MT_NONE. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -131,7 +132,7 @@ static mt_status classify_faces(mt__build *b, mt__part *p)
 {
     const mt_face_list *in = b->in;
     const uint32_t nv = in->num_verts;
-    uint32_t *face_he = b->m->face_he, *degree = p->degree;
+    uint32_t *face_he = b->m->face_he, *degree = p->degree, *block_sides = p->block_sides;
     uint32_t offset = p->index_begin;
     for (uint32_t f = p->face_begin; f < p->face_end; f++) {
         const uint32_t n = in->face_sizes[f];
@@ -150,7 +151,11 @@ static mt_status classify_faces(mt__build *b, mt__part *p)
         }
         p->num_corners += n;
         face_he[f] = 0;
-        for (uint32_t i = 0; i < n; i++) degree[idx[i]]++;
+        for (uint32_t i = 0; i < n; i++) {
+            const uint32_t tail = idx[i], head = idx[i + 1 < n ? i + 1 : 0];
+            degree[tail]++;
+            block_sides[mt__block_of(b, tail < head ? tail : head)]++;
+        }
     }
     return MT_OK;
 }

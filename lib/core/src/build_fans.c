@@ -1,21 +1,26 @@
-/* Build phase "fans": completes each vertex. For every vertex the outgoing
- * half-edges (its bucket from build_edges.c) are rotated with
- * r(h) = next(twin(h)). The usual vertex has one fan: a closed cycle, or an
- * open one from its boundary half-edge to the face half-edge whose twin is a
- * boundary half-edge; that boundary half-edge's next is then set, closing
- * the boundary ring through the vertex. A vertex with several fans (a
- * bowtie, or the sheets meeting at a non-manifold edge) keeps its first fan
- * and gets one new internal vertex, a copy, per further fan, so that every
- * internal vertex has exactly one fan (Botsch et al., "Polygon Mesh
- * Processing", 2010, section 2.2: non-manifold vertices split per fan). */
+/* Build phase "fans": completes each vertex. The outgoing half-edges of a
+ * vertex are rotated with r(h) = next(twin(h)). The usual vertex has one
+ * fan: a closed cycle, or an open one from the face half-edge after its
+ * boundary half-edge to the face half-edge whose twin is a boundary
+ * half-edge; that boundary half-edge's next is then set, closing the
+ * boundary ring through the vertex. Both are checked by walking the fan once
+ * and counting its half-edges against the vertex's corners. A vertex with
+ * several fans (a bowtie, or the sheets meeting at a non-manifold edge)
+ * keeps its first fan and gets one new internal vertex, a copy, per further
+ * fan, so that every internal vertex has exactly one fan (Botsch et al.,
+ * "Polygon Mesh Processing", 2010, section 2.2: non-manifold vertices split
+ * per fan). */
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "build_internal.h"
 
-/* Outgoing half-edges up to which an open fan is checked in place; a larger
- * boundary vertex goes through split_fans, which sorts. */
-#define MT__FAN_SCAN_LIMIT 16
+/* vert_he of a vertex that several boundary half-edges leave, and of one
+ * waiting for the general case, while the fans are made. Half-edge ids stay
+ * below 2^31. */
+#define MT__SEVERAL_BOUNDARY (MT_NONE - 1)
+#define MT__NEEDS_SPLIT (MT_NONE - 2)
 
 static int compare_u64(const void *pa, const void *pb)
 {
@@ -114,122 +119,159 @@ static mt_status split_fans(mt__build *b, uint32_t v, const uint32_t *hs, uint32
     return MT_OK;
 }
 
-/* Start of v's single open fan among hs[0..n): the half-edge no rotation
- * leads to. MT_NONE when there is none (several fans or a corrupt ring). */
-static uint32_t open_fan_start(const mt_mesh *m, const uint32_t *hs, uint32_t n)
+/* Corners leaving v in valid faces: as many as its outgoing face half-edges. */
+static uint32_t out_degree(const mt__build *b, uint32_t v)
 {
-    for (uint32_t i = 0; i < n; i++) {
-        uint32_t j = 0;
-        for (; j < n; j++) {
-            uint32_t t = hs[j] ^ 1u;
-            if (m->he_face[t] != MT_NONE && m->he_next[t] == hs[i]) break;
-        }
-        if (j == n) return hs[i];
-    }
-    return MT_NONE;
+    uint32_t n = 0;
+    for (uint32_t t = 0; t < b->parts; t++) n += b->part[t].degree[v];
+    return n;
 }
 
-/* The usual vertex: one fan. Returns 0 when v needs split_fans. */
-static int single_fan(mt__build *b, mt__part *p, uint32_t v, const uint32_t *hs, uint32_t n,
-                      uint32_t boundary_in)
+/* Puts into vert_he the boundary half-edge leaving each vertex, or
+ * MT__SEVERAL_BOUNDARY. On one thread: any part may have made them. */
+static void mark_boundary_out(mt__build *b)
+{
+    mt_mesh *m = b->m;
+    const uint32_t *halves = b->boundary_halves.data;
+    for (size_t i = 0; i < b->boundary_halves.len; i++) {
+        const uint32_t h = halves[i], tail = m->he_head[h ^ 1u];
+        m->vert_he[tail] = m->vert_he[tail] == MT_NONE ? h : MT__SEVERAL_BOUNDARY;
+    }
+}
+
+/* The usual vertex, with n outgoing face half-edges: one fan. Returns 0
+ * when v needs split_fans. A closed fan is walked from the half-edge the
+ * links phase offered and starts at its smallest half-edge, whichever was
+ * offered. An open one starts at the boundary half-edge leaving v. Until
+ * this phase closes the rings, half-edges without a face have next
+ * MT_NONE, and only v's own fan sets the next of one entering v. */
+static int single_fan(mt__build *b, mt__part *p, uint32_t v, uint32_t n)
 {
     mt_mesh *m = b->m;
     uint32_t *he_next = m->he_next;
-    const uint32_t *he_face = m->he_face;
-    if (boundary_in == 0) {
-        uint32_t h = he_next[hs[0] ^ 1u], steps = 1;
-        while (h != hs[0] && steps < n) h = he_next[h ^ 1u], steps++;
-        if (h != hs[0] || steps != n) return 0;
-        m->vert_he[v] = hs[0];
-        if (n == 2 && (mt__vec_push(&p->dup_candidates, &he_face[hs[0]]) != MT_OK ||
-                       mt__vec_push(&p->dup_candidates, &he_face[hs[1]]) != MT_OK))
-            p->status = MT_ERR_NOMEM;
+    const uint32_t b_out = m->vert_he[v];
+    if (b_out == MT__SEVERAL_BOUNDARY) return 0;
+    if (b_out == MT_NONE) {
+        const uint32_t start = atomic_load_explicit(&b->fan_start[v], memory_order_relaxed);
+        uint32_t h = start, smallest = start, steps = 0;
+        do {
+            h = he_next[h ^ 1u];
+            if (h == MT_NONE) return 0; /* a half-edge without a face enters v */
+            smallest = h < smallest ? h : smallest;
+            steps++;
+        } while (h != start && steps < n);
+        if (h != start || steps != n) return 0;
+        m->vert_he[v] = smallest;
+        if (n == 2) {
+            const uint32_t faces[2] = {m->he_face[start], m->he_face[he_next[start ^ 1u]]};
+            if (mt__vec_push(&p->dup_candidates, &faces[0]) != MT_OK ||
+                mt__vec_push(&p->dup_candidates, &faces[1]) != MT_OK)
+                p->status = MT_ERR_NOMEM;
+        }
         return 1;
     }
-    if (boundary_in != 1 || n > MT__FAN_SCAN_LIMIT) return 0;
-    const uint32_t first = open_fan_start(m, hs, n);
-    if (first == MT_NONE) return 0;
-    uint32_t h = first, steps = 1;
-    while (he_face[h ^ 1u] != MT_NONE && steps < n) h = he_next[h ^ 1u], steps++;
-    if (he_face[h ^ 1u] != MT_NONE || steps != n) return 0;
-    const uint32_t b_out = mt__he_prev(m, first) ^ 1u;
+    uint32_t h = he_next[b_out ^ 1u], steps = 1;
+    while (he_next[h ^ 1u] != MT_NONE && steps < n) h = he_next[h ^ 1u], steps++;
+    if (he_next[h ^ 1u] != MT_NONE || steps != n) return 0;
     he_next[h ^ 1u] = b_out; /* close the boundary ring through v */
-    m->vert_he[v] = b_out;
     return 1;
-}
-
-/* Copies the half-edges of v's bucket into hs; returns how many. */
-static uint32_t outgoing(const mt__build *b, uint32_t v, uint32_t *hs)
-{
-    const mt__side *side = b->bucket + b->bucket_start[v];
-    const uint32_t n = b->bucket_start[v + 1] - b->bucket_start[v];
-    for (uint32_t i = 0; i < n; i++) hs[i] = side[i].item;
-    return n;
 }
 
 static void fans_part(mt__build *b, uint32_t t)
 {
     mt__part *p = &b->part[t];
-    mt_mesh *m = b->m;
-    uint32_t *he_head = m->he_head;
-    const uint32_t *he_face = m->he_face;
-    uint32_t *hs = mt__malloc(((size_t)b->max_degree + 1) * sizeof(uint32_t));
-    if (!hs) {
-        p->status = MT_ERR_NOMEM;
-        return;
-    }
     for (uint32_t v = p->vert_begin; v < p->vert_end && p->status == MT_OK; v++) {
-        const uint32_t n = outgoing(b, v, hs);
-        if (n == 0) continue;
-        uint32_t boundary_in = 0;
-        for (uint32_t i = 0; i < n; i++) {
-            uint32_t twin = hs[i] ^ 1u;
-            if (he_face[twin] != MT_NONE) continue;
-            he_head[twin] = v; /* a boundary half-edge into v: v's to set */
-            boundary_in++;
-            if (mt__vec_push(&p->boundary_halves, &twin) != MT_OK) p->status = MT_ERR_NOMEM;
-        }
-        if (!single_fan(b, p, v, hs, n, boundary_in) && mt__vec_push(&p->split_verts, &v) != MT_OK)
+        const uint32_t n = out_degree(b, v);
+        if (n != 0 && !single_fan(b, p, v, n) && mt__vec_push(&p->split_verts, &v) != MT_OK)
             p->status = MT_ERR_NOMEM;
     }
-    mt__free(hs);
+}
+
+/* The outgoing face half-edges of the vertices left for the general case,
+ * in id order, found in one pass over all half-edges: verts[i]'s are
+ * hs[first[i] .. first[i + 1]). */
+typedef struct outgoing_lists {
+    uint32_t *hs, *first, *cursor;
+    uint32_t largest;
+} outgoing_lists;
+
+static mt_status gather_outgoing(mt__build *b, const uint32_t *verts, size_t count,
+                                 outgoing_lists *out)
+{
+    mt_mesh *m = b->m;
+    out->first = mt__malloc((count + 1) * sizeof(uint32_t));
+    out->cursor = mt__malloc((count + 1) * sizeof(uint32_t));
+    if (!out->first || !out->cursor) return MT_ERR_NOMEM;
+    uint32_t total = 0;
+    out->largest = 0;
+    for (size_t i = 0; i < count; i++) {
+        const uint32_t v = verts[i], n = out_degree(b, v);
+        out->first[i] = out->cursor[i] = total;
+        total += n;
+        out->largest = n > out->largest ? n : out->largest;
+        m->vert_he[v] = MT__NEEDS_SPLIT;
+        atomic_store_explicit(&b->fan_start[v], (uint32_t)i, memory_order_relaxed);
+    }
+    out->first[count] = total;
+    out->hs = mt__malloc((size_t)total * sizeof(uint32_t) + 1);
+    if (!out->hs) return MT_ERR_NOMEM;
+    for (uint32_t h = 0; h < m->num_half_edges; h++) {
+        if (m->he_face[h] == MT_NONE) continue;
+        const uint32_t tail = m->he_head[h ^ 1u];
+        if (m->vert_he[tail] != MT__NEEDS_SPLIT) continue;
+        const uint32_t i = atomic_load_explicit(&b->fan_start[tail], memory_order_relaxed);
+        out->hs[out->cursor[i]++] = h;
+    }
+    return MT_OK;
+}
+
+/* The general case, rare and done on one thread: it makes new vertices. */
+static mt_status split_vertices(mt__build *b)
+{
+    mt__vec candidates = b->split_verts;
+    b->split_verts = (mt__vec){NULL, 0, 0, sizeof(uint32_t)};
+    const uint32_t *verts = candidates.data;
+    outgoing_lists lists = {NULL, NULL, NULL, 0};
+    uint64_t *keys = NULL;
+    mt_status status = gather_outgoing(b, verts, candidates.len, &lists);
+    if (status == MT_OK) {
+        size_t scratch_bytes;
+        const size_t per = sizeof(uint64_t) + 1;
+        if (mt__mul_size((size_t)lists.largest + 1, per, &scratch_bytes))
+            keys = mt__malloc(scratch_bytes);
+        if (!keys) status = MT_ERR_NOMEM;
+    }
+    uint8_t *flags = keys ? (uint8_t *)(keys + lists.largest + 1) : NULL;
+    for (size_t i = 0; i < candidates.len && status == MT_OK; i++) {
+        uint32_t v = verts[i], fans = 0;
+        const uint32_t *hs = lists.hs + lists.first[i];
+        status = split_fans(b, v, hs, lists.first[i + 1] - lists.first[i], keys, flags, &fans);
+        if (status == MT_OK && fans > 1 && mt__vec_push(&b->split_verts, &v) != MT_OK)
+            status = MT_ERR_NOMEM;
+    }
+    mt__vec_free(&candidates);
+    mt__free(keys);
+    mt__free(lists.hs);
+    mt__free(lists.first);
+    mt__free(lists.cursor);
+    return status;
 }
 
 mt_status mt__build_fans(mt__build *b)
 {
+    mark_boundary_out(b);
     mt__parallel_run(b, fans_part);
     for (uint32_t t = 0; t < b->parts; t++) {
         mt__part *p = &b->part[t];
         if (p->status != MT_OK) return p->status;
-        if (mt__vec_append(&b->boundary_halves, &p->boundary_halves) != MT_OK ||
-            mt__vec_append(&b->split_verts, &p->split_verts) != MT_OK ||
+        if (mt__vec_append(&b->split_verts, &p->split_verts) != MT_OK ||
             mt__vec_append(&b->dup_candidates, &p->dup_candidates) != MT_OK)
             return MT_ERR_NOMEM;
     }
-    /* The general case, rare and done on one thread: it makes new vertices. */
-    mt_status status = MT_OK;
     if (b->split_verts.len) {
-        size_t scratch_bytes;
-        const size_t per = sizeof(uint64_t) + sizeof(uint32_t) + 1;
-        if (!mt__mul_size((size_t)b->max_degree + 1, per, &scratch_bytes)) return MT_ERR_NOMEM;
-        uint64_t *keys = mt__malloc(scratch_bytes);
-        if (!keys) return MT_ERR_NOMEM;
-        uint32_t *hs = (uint32_t *)(keys + b->max_degree + 1);
-        uint8_t *flags = (uint8_t *)(hs + b->max_degree + 1);
-        mt__vec candidates = b->split_verts;
-        b->split_verts = (mt__vec){NULL, 0, 0, sizeof(uint32_t)};
-        const uint32_t *verts = candidates.data;
-        for (size_t i = 0; i < candidates.len && status == MT_OK; i++) {
-            uint32_t v = verts[i], fans = 0;
-            const uint32_t n = outgoing(b, v, hs);
-            status = split_fans(b, v, hs, n, keys, flags, &fans);
-            if (status == MT_OK && fans > 1 && mt__vec_push(&b->split_verts, &v) != MT_OK)
-                status = MT_ERR_NOMEM;
-        }
-        mt__vec_free(&candidates);
-        mt__free(keys);
+        mt_status status = split_vertices(b);
+        if (status != MT_OK) return status;
     }
-    if (status != MT_OK) return status;
 
     /* Publish the copies: originals plus the order used to look them up. */
     mt_mesh *m = b->m;

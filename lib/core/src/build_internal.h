@@ -1,13 +1,16 @@
 /* State shared by the build phases (build.c orchestrates them):
- *   faces   (build_faces.c)  classify records, count corners per vertex
- *   edges   (build_edges.c)  counting sort by tail vertex, twin matching
- *   links   (build.c)        next/face/head of every face half-edge
+ *   faces   (build_faces.c)  classify records, count corners per vertex and
+ *                            sides per block of smaller vertices
+ *   edges   (build_edges.c)  twin matching block by block: heads and faces
+ *                            of all half-edges, the half-edge of each corner
+ *   links   (build.c)        next of every face half-edge
  *   fans    (build_fans.c)   boundary rings, one internal vertex per fan
  *   report  (report_*.c)     components, loops, links, genus, duplicates
  * Every phase is a fixed number of passes over flat arrays. The first four
- * run on up to MT__MAX_PARTS threads, each owning a range of faces or of
- * vertices and writing only elements its range owns; the result does not
- * depend on the number of threads. */
+ * run on up to MT__MAX_PARTS threads, each owning a range of faces, blocks or
+ * vertices and writing only elements its range owns (except the fan starts
+ * of the links phase, see build.c); the result does not depend on the
+ * number of threads. */
 #ifndef MESHTOPO_BUILD_INTERNAL_H
 #define MESHTOPO_BUILD_INTERNAL_H
 
@@ -25,17 +28,25 @@
 #define MT__SMALL_SIZES 64
 /* Edge use counts counted in a flat histogram; larger ones collected likewise. */
 #define MT__SMALL_USES 16
+/* Sides are filed in blocks of 2^shift consecutive smaller vertices: at
+ * least 2^MT__BLOCK_MIN_SHIFT (a block's sides then stay in a core's cache
+ * while they are matched), and few enough blocks to keep one write stream
+ * per block cheap. */
+#define MT__BLOCK_MIN_SHIFT 12
+#define MT__MAX_BLOCKS 4096u
 /* Threads a build uses at most (the machines it targets have two cores). */
 #define MT__MAX_PARTS 2
 /* Below this many face sides one thread is faster than starting another. */
 #define MT__PARALLEL_MIN_CORNERS 200000u
 
-/* A face side in its tail vertex's bucket. Head and item share a cache
- * line: matching reads one and writes the other at random places. */
+/* A face side a -> b, filed under its smaller vertex. */
 typedef struct mt__side {
-    uint32_t head; /* head vertex */
-    uint32_t item; /* the side's corner (flat index), then its half-edge */
+    uint32_t lo, hi;      /* min(a, b), max(a, b) */
+    uint32_t corner_down; /* the tail corner's flat index, | MT__SIDE_DOWN when a > b */
+    uint32_t face;
 } mt__side;
+
+#define MT__SIDE_DOWN 0x80000000u
 
 /* What one thread of a parallel phase owns: its range of faces or vertices
  * and everything it counts or collects; merged by the calling thread. */
@@ -46,8 +57,9 @@ typedef struct mt__part {
     uint32_t vert_begin, vert_end; /* vertices of this part */
 
     /* faces */
-    uint32_t *degree; /* [num_verts] corners leaving each vertex in this part's faces,
-                         then the next free bucket slot of each vertex for this part */
+    uint32_t *degree;      /* [num_verts] corners leaving each vertex in this part's faces */
+    uint32_t *block_sides; /* [num_blocks] sides of this part's faces per block, then
+                              the part's next free slot in each block */
     uint64_t num_corners;
     uint64_t size_hist[MT__SMALL_SIZES];
     mt__vec large_sizes;  /* uint32 */
@@ -58,18 +70,19 @@ typedef struct mt__part {
     uint32_t out_of_range_faces, degenerate_faces, nonfinite_vertices;
 
     /* edges */
-    uint32_t edge_base, edges_made; /* internal edge ids edge_base .. edge_base + edges_made */
+    uint32_t block_begin, block_end; /* blocks this part matches */
+    uint32_t edge_base, edges_made;  /* internal edge ids edge_base .. edge_base + edges_made */
     uint64_t num_edges;
     uint64_t use_hist[MT__SMALL_USES];
     mt__vec large_uses; /* uint32 */
     uint64_t boundary_edges, nonmanifold_edges, inconsistent_edges, duplicate_directed_edges;
-    mt__vec bundle_offsets; /* uint32 */
-    mt__vec bundle_edges;   /* uint32 */
+    mt__vec bundle_offsets;  /* uint32 */
+    mt__vec bundle_edges;    /* uint32 */
+    mt__vec boundary_halves; /* uint32 half-edges without a face */
 
     /* fans */
-    mt__vec boundary_halves; /* uint32 half-edges without a face, into this part's vertices */
-    mt__vec split_verts;     /* uint32 vertices needing the general fan split */
-    mt__vec dup_candidates;  /* uint32 faces */
+    mt__vec split_verts;    /* uint32 vertices needing the general fan split */
+    mt__vec dup_candidates; /* uint32 faces */
 } mt__part;
 
 typedef struct mt__build {
@@ -89,10 +102,12 @@ typedef struct mt__build {
     uint32_t out_of_range_faces, degenerate_faces, nonfinite_vertices;
 
     /* edges */
-    uint32_t *bucket_start; /* [num_verts + 1] first slot of each vertex's bucket */
-    mt__side *bucket;       /* [num_corners] the sides, by tail vertex */
-    uint32_t *c2h;          /* [num_indices] half-edge of each corner */
-    uint32_t max_degree;
+    uint32_t block_shift, num_blocks;
+    uint32_t *block_start;            /* [num_blocks + 1] first slot of each block */
+    mt__side *sides;                  /* [num_corners] the sides, by block; a matched block's
+                                         slots then hold (head, face) of its half-edges */
+    uint32_t *block_half_edges;       /* [num_blocks] half-edges each block made */
+    uint32_t *c2h;                    /* [num_indices] half-edge of each corner */
     uint32_t gap_first_he, gap_shift; /* see mt__edge_gap */
     uint32_t num_internal_edges;
     uint64_t num_edges; /* distinct undirected edges */
@@ -102,19 +117,26 @@ typedef struct mt__build {
     mt__vec bundle_offsets; /* uint32, starts of bundles in bundle_edges */
     mt__vec bundle_edges;   /* uint32 internal edge ids, ascending */
 
-    /* fans */
-    uint32_t vert_capacity;  /* allocated length of m->vert_he */
-    mt__vec boundary_halves; /* uint32 every half-edge without a face; in the
-                                report, the boundary edges (used by one face) */
-    mt__vec copy_original;   /* uint32 */
-    mt__vec split_verts;     /* uint32 caller vertices with more than one fan */
-    mt__vec dup_candidates;  /* uint32 faces that may repeat another face */
+    /* links and fans */
+    _Atomic uint32_t *fan_start; /* [num_verts] some face half-edge leaving each vertex */
+    uint32_t vert_capacity;      /* allocated length of m->vert_he */
+    mt__vec boundary_halves;     /* uint32 every half-edge without a face; in the
+                                    report, the boundary edges (used by one face) */
+    mt__vec copy_original;       /* uint32 */
+    mt__vec split_verts;         /* uint32 caller vertices with more than one fan */
+    mt__vec dup_candidates;      /* uint32 faces that may repeat another face */
 
     /* report */
     _Atomic uint32_t *shared_parent; /* union-find shared by the parts */
     uint32_t *vert_comp;             /* [num_verts_internal] component of each internal vertex */
     uint32_t num_components;
 } mt__build;
+
+/* The block a side with smaller vertex lo is filed in. */
+static inline uint32_t mt__block_of(const mt__build *b, uint32_t lo)
+{
+    return lo >> b->block_shift;
+}
 
 /* Final id of a half-edge numbered by edge matching: ids from part 1's base
  * on move down by the gap left after part 0's edges (branch-free). */
@@ -131,6 +153,9 @@ void mt__parallel_run(mt__build *b, void (*fn)(mt__build *, uint32_t));
 
 mt_status mt__build_faces(mt__build *b);
 mt_status mt__build_edges(mt__build *b);
+/* Moves the heads and faces of the half-edges, left in the blocks by
+ * mt__build_edges, into the mesh's arrays (allocated meanwhile). */
+void mt__build_edges_publish(mt__build *b);
 mt_status mt__build_fans(mt__build *b);
 mt_status mt__build_report(mt__build *b);
 
