@@ -22,6 +22,12 @@
 #define MT__SEVERAL_BOUNDARY (MT_NONE - 1)
 #define MT__NEEDS_SPLIT (MT_NONE - 2)
 
+static int compare_u32(const void *pa, const void *pb)
+{
+    uint32_t a = *(const uint32_t *)pa, b = *(const uint32_t *)pb;
+    return (a > b) - (a < b);
+}
+
 static int compare_u64(const void *pa, const void *pb)
 {
     uint64_t a = *(const uint64_t *)pa, b = *(const uint64_t *)pb;
@@ -139,51 +145,122 @@ static void mark_boundary_out(mt__build *b)
     }
 }
 
-/* The usual vertex, with n outgoing face half-edges: one fan. Returns 0
- * when v needs split_fans. A closed fan is walked from the half-edge the
+/* The usual vertex has one fan, checked by walking it and counting its n
+ * outgoing face half-edges. A closed fan is walked from the half-edge the
  * links phase offered and starts at its smallest half-edge, whichever was
- * offered. An open one starts at the boundary half-edge leaving v. Until
- * this phase closes the rings, half-edges without a face have next
- * MT_NONE, and only v's own fan sets the next of one entering v. */
-static int single_fan(mt__build *b, mt__part *p, uint32_t v, uint32_t n)
+ * offered. An open one is walked from the face half-edge after the boundary
+ * half-edge leaving v to the face half-edge whose twin, the boundary
+ * half-edge entering v, has no next yet: that one gets the boundary
+ * half-edge leaving v, closing the ring. (Until this phase half-edges
+ * without a face have next MT_NONE, and only v's own fan sets the next of
+ * one entering v.) A vertex whose walk fails goes to split_fans.
+ *
+ * Each step of a walk waits for the load of the step before, so several
+ * vertices are walked at once, MT__FAN_WALKS loads in flight instead of
+ * one: on a mesh larger than the cache that is most of this phase's time. */
+#define MT__FAN_WALKS 16
+
+typedef struct fan_walk {
+    uint32_t v, n, steps;
+    uint32_t start;    /* closed: where the walk began; open: the boundary half-edge leaving v */
+    uint32_t h;        /* the outgoing half-edge reached */
+    uint32_t smallest; /* closed: smallest outgoing half-edge seen */
+    int open;
+} fan_walk;
+
+static void needs_split(mt__part *p, uint32_t v)
+{
+    if (mt__vec_push(&p->split_verts, &v) != MT_OK) p->status = MT_ERR_NOMEM;
+}
+
+/* Starts v's walk: 0 when there is nothing to walk (no corners, or several
+ * boundary half-edges leaving v, which goes straight to split_fans). */
+static int walk_begin(mt__build *b, mt__part *p, uint32_t v, fan_walk *w)
+{
+    const mt_mesh *m = b->m;
+    const uint32_t n = out_degree(b, v), b_out = m->vert_he[v];
+    if (n == 0) return 0;
+    if (b_out == MT__SEVERAL_BOUNDARY) {
+        needs_split(p, v);
+        return 0;
+    }
+    w->v = v;
+    w->n = n;
+    w->open = b_out != MT_NONE;
+    if (w->open) {
+        w->start = b_out;
+        w->h = m->he_next[b_out ^ 1u];
+        w->steps = 1;
+    } else {
+        w->start = w->h = w->smallest =
+            atomic_load_explicit(&b->fan_start[v], memory_order_relaxed);
+        w->steps = 0;
+    }
+    return 1;
+}
+
+static void closed_fan_done(mt__build *b, mt__part *p, const fan_walk *w)
 {
     mt_mesh *m = b->m;
-    uint32_t *he_next = m->he_next;
-    const uint32_t b_out = m->vert_he[v];
-    if (b_out == MT__SEVERAL_BOUNDARY) return 0;
-    if (b_out == MT_NONE) {
-        const uint32_t start = atomic_load_explicit(&b->fan_start[v], memory_order_relaxed);
-        uint32_t h = start, smallest = start, steps = 0;
-        do {
-            h = he_next[h ^ 1u];
-            if (h == MT_NONE) return 0; /* a half-edge without a face enters v */
-            smallest = h < smallest ? h : smallest;
-            steps++;
-        } while (h != start && steps < n);
-        if (h != start || steps != n) return 0;
-        m->vert_he[v] = smallest;
-        if (n == 2) {
-            const uint32_t faces[2] = {m->he_face[start], m->he_face[he_next[start ^ 1u]]};
-            if (mt__vec_push(&p->dup_candidates, &faces[0]) != MT_OK ||
-                mt__vec_push(&p->dup_candidates, &faces[1]) != MT_OK)
-                p->status = MT_ERR_NOMEM;
+    m->vert_he[w->v] = w->smallest;
+    if (w->n != 2) return;
+    const uint32_t faces[2] = {m->he_face[w->start], m->he_face[m->he_next[w->start ^ 1u]]};
+    if (mt__vec_push(&p->dup_candidates, &faces[0]) != MT_OK ||
+        mt__vec_push(&p->dup_candidates, &faces[1]) != MT_OK)
+        p->status = MT_ERR_NOMEM;
+}
+
+/* One step of a walk; 0 once it has ended (and its vertex is done). */
+static int walk_step(mt__build *b, mt__part *p, fan_walk *w)
+{
+    uint32_t *he_next = b->m->he_next;
+    const uint32_t next = he_next[w->h ^ 1u];
+    if (w->open) {
+        if (next == MT_NONE) {
+            if (w->steps == w->n)
+                he_next[w->h ^ 1u] = w->start; /* close the boundary ring through v */
+            else
+                needs_split(p, w->v);
+            return 0;
         }
+        if (w->steps == w->n) {
+            needs_split(p, w->v);
+            return 0;
+        }
+        w->h = next;
+        w->steps++;
         return 1;
     }
-    uint32_t h = he_next[b_out ^ 1u], steps = 1;
-    while (he_next[h ^ 1u] != MT_NONE && steps < n) h = he_next[h ^ 1u], steps++;
-    if (he_next[h ^ 1u] != MT_NONE || steps != n) return 0;
-    he_next[h ^ 1u] = b_out; /* close the boundary ring through v */
-    return 1;
+    if (next == MT_NONE) { /* a half-edge without a face enters v */
+        needs_split(p, w->v);
+        return 0;
+    }
+    w->h = next;
+    w->steps++;
+    w->smallest = next < w->smallest ? next : w->smallest;
+    if (next != w->start && w->steps < w->n) return 1;
+    if (next == w->start && w->steps == w->n)
+        closed_fan_done(b, p, w);
+    else
+        needs_split(p, w->v);
+    return 0;
 }
 
 static void fans_part(mt__build *b, uint32_t t)
 {
     mt__part *p = &b->part[t];
-    for (uint32_t v = p->vert_begin; v < p->vert_end && p->status == MT_OK; v++) {
-        const uint32_t n = out_degree(b, v);
-        if (n != 0 && !single_fan(b, p, v, n) && mt__vec_push(&p->split_verts, &v) != MT_OK)
-            p->status = MT_ERR_NOMEM;
+    fan_walk walks[MT__FAN_WALKS];
+    uint32_t active = 0, v = p->vert_begin;
+    while (p->status == MT_OK) {
+        for (; active < MT__FAN_WALKS && v < p->vert_end; v++)
+            active += (uint32_t)walk_begin(b, p, v, &walks[active]);
+        if (active == 0) break;
+        for (uint32_t i = 0; i < active;) {
+            if (walk_step(b, p, &walks[i]))
+                i++;
+            else
+                walks[i] = walks[--active];
+        }
     }
 }
 
@@ -269,6 +346,8 @@ mt_status mt__build_fans(mt__build *b)
             return MT_ERR_NOMEM;
     }
     if (b->split_verts.len) {
+        /* Walks end in any order; copies are made in vertex order. */
+        qsort(b->split_verts.data, b->split_verts.len, sizeof(uint32_t), compare_u32);
         mt_status status = split_vertices(b);
         if (status != MT_OK) return status;
     }
