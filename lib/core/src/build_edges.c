@@ -232,6 +232,10 @@ static mt_status match_block(mt__build *b, mt__part *p, uint32_t k, mt__side *so
         else
             heap_sort_by_hi(sorted + begin, end - begin);
         for (uint32_t i = begin; i < end;) {
+            if (i + MT__PREFETCH_DISTANCE < n) {
+                const uint32_t ahead = sorted[i + MT__PREFETCH_DISTANCE].corner_down;
+                __builtin_prefetch(&c2h[ahead & ~MT__SIDE_DOWN], 1);
+            }
             const mt__side *run = sorted + i;
             uint32_t len = 1;
             while (i + len < end && run[len].hi == run[0].hi) len++;

@@ -156,8 +156,9 @@ static void mark_boundary_out(mt__build *b)
  * one entering v.) A vertex whose walk fails goes to split_fans.
  *
  * Each step of a walk waits for the load of the step before, so several
- * vertices are walked at once, MT__FAN_WALKS loads in flight instead of
- * one: on a mesh larger than the cache that is most of this phase's time. */
+ * vertices are walked at once, each step fetching ahead what its walk's
+ * next step reads: MT__FAN_WALKS loads in flight instead of one. On a mesh
+ * larger than the cache that is most of this phase's time. */
 #define MT__FAN_WALKS 16
 
 typedef struct fan_walk {
@@ -196,6 +197,7 @@ static int walk_begin(mt__build *b, mt__part *p, uint32_t v, fan_walk *w)
             atomic_load_explicit(&b->fan_start[v], memory_order_relaxed);
         w->steps = 0;
     }
+    __builtin_prefetch(&m->he_next[w->h ^ 1u]);
     return 1;
 }
 
@@ -229,6 +231,7 @@ static int walk_step(mt__build *b, mt__part *p, fan_walk *w)
         }
         w->h = next;
         w->steps++;
+        __builtin_prefetch(&he_next[next ^ 1u]);
         return 1;
     }
     if (next == MT_NONE) { /* a half-edge without a face enters v */
@@ -238,7 +241,10 @@ static int walk_step(mt__build *b, mt__part *p, fan_walk *w)
     w->h = next;
     w->steps++;
     w->smallest = next < w->smallest ? next : w->smallest;
-    if (next != w->start && w->steps < w->n) return 1;
+    if (next != w->start && w->steps < w->n) {
+        __builtin_prefetch(&he_next[next ^ 1u]);
+        return 1;
+    }
     if (next == w->start && w->steps == w->n)
         closed_fan_done(b, p, w);
     else

@@ -34,6 +34,9 @@
  * per block cheap. */
 #define MT__BLOCK_MIN_SHIFT 12
 #define MT__MAX_BLOCKS 4096u
+/* Face sides ahead of the one at hand whose random accesses are fetched
+ * early (vertex counts, half-edges of a shuffled mesh). */
+#define MT__PREFETCH_DISTANCE 16
 /* Threads a build uses at most (the machines it targets have two cores). */
 #define MT__MAX_PARTS 2
 /* Below this many face sides one thread is faster than starting another. */

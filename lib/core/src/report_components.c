@@ -116,12 +116,24 @@ static void shared_union(_Atomic uint32_t *parent, uint32_t x, uint32_t y)
     }
 }
 
+/* Edges ahead of the one joined whose vertices are fetched (they are
+ * anywhere in the parent array on a shuffled mesh). */
+#define MT__JOIN_PREFETCH 16
+
 static void join_edges_part(mt__build *b, uint32_t t)
 {
     const mt_mesh *m = b->m;
+    const uint32_t *head = m->he_head;
+    _Atomic uint32_t *parent = b->shared_parent;
     const uint64_t num_edges = m->num_half_edges / 2;
-    for (uint64_t e = num_edges * t / b->parts, end = num_edges * (t + 1) / b->parts; e < end; e++)
-        shared_union(b->shared_parent, m->he_head[2 * e], m->he_head[2 * e + 1]);
+    const uint64_t end = num_edges * (t + 1) / b->parts;
+    for (uint64_t e = num_edges * t / b->parts; e < end; e++) {
+        if (e + MT__JOIN_PREFETCH < end) {
+            __builtin_prefetch(&parent[head[2 * (e + MT__JOIN_PREFETCH)]]);
+            __builtin_prefetch(&parent[head[2 * (e + MT__JOIN_PREFETCH) + 1]]);
+        }
+        shared_union(parent, head[2 * e], head[2 * e + 1]);
+    }
 }
 
 mt_status mt__report_components(mt__build *b)
