@@ -133,7 +133,6 @@ static mt_status classify_faces(mt__build *b, mt__part *p)
     const mt_face_list *in = b->in;
     const uint32_t nv = in->num_verts;
     uint32_t *face_he = b->m->face_he, *degree = p->degree, *block_sides = p->block_sides;
-    const uint32_t *indices_end = in->face_indices + in->num_indices;
     uint32_t offset = p->index_begin;
     for (uint32_t f = p->face_begin; f < p->face_end; f++) {
         const uint32_t n = in->face_sizes[f];
@@ -154,8 +153,8 @@ static mt_status classify_faces(mt__build *b, mt__part *p)
         face_he[f] = 0;
         for (uint32_t i = 0; i < n; i++) {
             const uint32_t tail = idx[i], head = idx[i + 1 < n ? i + 1 : 0];
-            if (idx + i + MT__PREFETCH_DISTANCE < indices_end) {
-                const uint32_t ahead = idx[i + MT__PREFETCH_DISTANCE];
+            if (offset - n + i + MT__PREFETCH_DISTANCE < in->num_indices) {
+                const uint32_t ahead = in->face_indices[offset - n + i + MT__PREFETCH_DISTANCE];
                 __builtin_prefetch(&degree[ahead < nv ? ahead : 0], 1);
             }
             degree[tail]++;
