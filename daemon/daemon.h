@@ -69,6 +69,11 @@ typedef struct mtd_daemon {
     pthread_mutex_t spare_lock;
     void *spare_content;
     size_t spare_capacity;
+    /* The build workspace of the last build, kept for the next one
+     * (submit.c): a build's scratch arrays are its largest allocations, and
+     * fresh pages cost more than the build. Guarded by spare_lock; a build
+     * that finds it taken makes its own. */
+    mt_build_workspace *spare_workspace;
     pthread_mutex_t error_lock;
     char last_error[MTD_ERROR_MAX];
     int64_t last_error_utime;

@@ -346,6 +346,7 @@ void mtd_daemon_destroy(mtd_daemon *d)
     mtd_pool_destroy(d->pool);
     mtd_archiver_free(d);
     mtd_transfers_free(d);
+    mt_build_workspace_destroy(d->spare_workspace);
     pthread_mutex_destroy(&d->transfer_lock);
     pthread_mutex_destroy(&d->spare_lock);
     mtd_reqcache_destroy(d->cache);

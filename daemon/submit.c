@@ -134,6 +134,32 @@ static void send_ack_with_report(mtd_daemon *d, const meshtopo_mesh_t *m, int32_
                    error);
 }
 
+/* The kept build workspace, or a new one (NULL when out of memory: the
+ * build then allocates its own scratch). */
+static mt_build_workspace *workspace_take(mtd_daemon *d)
+{
+    pthread_mutex_lock(&d->spare_lock);
+    mt_build_workspace *w = d->spare_workspace;
+    d->spare_workspace = NULL;
+    pthread_mutex_unlock(&d->spare_lock);
+    return w ? w : mt_build_workspace_create();
+}
+
+/* Keeps a workspace for the next build; of two, the larger. */
+static void workspace_release(mtd_daemon *d, mt_build_workspace *w)
+{
+    pthread_mutex_lock(&d->spare_lock);
+    mt_build_workspace *other = d->spare_workspace;
+    if (other && mt_build_workspace_bytes(other) > mt_build_workspace_bytes(w)) {
+        mt_build_workspace *swap = w;
+        w = other;
+        other = swap;
+    }
+    d->spare_workspace = w;
+    pthread_mutex_unlock(&d->spare_lock);
+    mt_build_workspace_destroy(other);
+}
+
 static void build_job(void *arg, bool cancelled)
 {
     submit_job *job = arg;
@@ -156,13 +182,14 @@ static void build_job(void *arg, bool cancelled)
         .face_sizes = (uint32_t *)m->face_vertex_counts,
         .face_indices = (uint32_t *)m->face_vertex_indices,
     };
-    mt_build_options options = {.strict = false, .threads = 1};
+    mt_build_options options = {.strict = false, .threads = 1, .workspace = workspace_take(d)};
     mt_mesh *mesh = NULL;
     mt_diag diag;
     char error[MTD_ERROR_MAX];
     int64_t start = mtd_now_utime();
     mt_status s = mt_mesh_build(&list, &options, &mesh, &diag);
     int64_t duration = mtd_now_utime() - start;
+    if (options.workspace) workspace_release(d, options.workspace);
     atomic_fetch_add(&d->builds, 1);
     if (s != MT_OK) {
         snprintf(error, sizeof error, "build failed: %.400s", diag.message);

@@ -517,6 +517,79 @@ static void test_thread_counts_agree_across_blocks(void)
     mt_face_list_free(&fl);
 }
 
+/* A workspace kept across builds of different sizes, on one and two
+ * threads, changes nothing in the result (its arrays hold the last build's
+ * values, not zeros); it grows to the largest build and then stays. */
+static void test_workspace_reuse(void)
+{
+    mt_build_workspace *ws = mt_build_workspace_create();
+    CHECK(ws != NULL);
+    CHECK_EQ(mt_build_workspace_bytes(NULL), 0);
+    mt_face_list small, large;
+    messy_list(&small);
+    messy_grid(&large);
+    const mt_face_list *order[] = {&small, &large, &small, &large};
+    size_t sized = 0;
+    for (int i = 0; i < 4 && ws; i++) {
+        for (uint32_t threads = 1; threads <= 2; threads++) {
+            mt_build_options fresh = {.threads = threads};
+            mt_build_options kept = {.threads = threads, .workspace = ws};
+            mt_mesh *a = NULL, *b = NULL;
+            CHECK_OK(mt_mesh_build(order[i], &fresh, &a, NULL));
+            CHECK_OK(mt_mesh_build(order[i], &kept, &b, NULL));
+            if (a && b) {
+                CHECK_OK(mt_mesh_validate(b, NULL));
+                check_same_mesh(a, b);
+            }
+            mt_mesh_destroy(a);
+            mt_mesh_destroy(b);
+        }
+        if (i == 1) sized = mt_build_workspace_bytes(ws);
+        if (i > 1) CHECK_EQ(mt_build_workspace_bytes(ws), sized);
+    }
+    /* The sides alone take 16 bytes per side of the large list. */
+    CHECK(sized > 16 * large.num_indices);
+    mt_build_workspace_destroy(ws);
+    mt_build_workspace_destroy(NULL);
+    mt_face_list_free(&small);
+    mt_face_list_free(&large);
+}
+
+/* A build with a workspace fails cleanly at every allocation, and the
+ * workspace serves the next build. */
+static void test_workspace_allocation_failures(void)
+{
+    mt_face_list fl;
+    messy_list(&fl);
+    mt_mesh *ref = build_ok(&fl);
+    int succeeded = 0;
+    for (long n = 0; n < 200 && !succeeded && ref; n++) {
+        mt_build_workspace *ws = mt_build_workspace_create();
+        CHECK(ws != NULL);
+        if (!ws) break;
+        mt_build_options o = {.threads = 1, .workspace = ws};
+        mt_mesh *m = NULL;
+        mt_diag d;
+        mt__test_fail_alloc_after(n);
+        mt_status s = mt_mesh_build(&fl, &o, &m, &d);
+        mt__test_fail_alloc_after(-1);
+        if (s == MT_OK) {
+            succeeded = 1;
+            check_same_mesh(ref, m);
+        } else {
+            CHECK_EQ(s, MT_ERR_NOMEM);
+            CHECK(m == NULL);
+            CHECK_OK(mt_mesh_build(&fl, &o, &m, NULL));
+            if (m) check_same_mesh(ref, m);
+        }
+        mt_mesh_destroy(m);
+        mt_build_workspace_destroy(ws);
+    }
+    CHECK(succeeded);
+    mt_mesh_destroy(ref);
+    mt_face_list_free(&fl);
+}
+
 /* Memory stays within 56 bytes per face on a large triangle grid. */
 static void test_memory_per_face(void)
 {
@@ -543,6 +616,8 @@ static const mt_test_case cases[] = {
     {"build_allocation_failures", test_allocation_failures},
     {"build_thread_counts_agree", test_thread_counts_agree},
     {"build_thread_counts_agree_across_blocks", test_thread_counts_agree_across_blocks},
+    {"build_workspace_reuse", test_workspace_reuse},
+    {"build_workspace_allocation_failures", test_workspace_allocation_failures},
     {"build_memory_per_face", test_memory_per_face},
 };
 const mt_test_table mt_tests_build = {cases, sizeof cases / sizeof cases[0]};

@@ -2331,7 +2331,7 @@ static void test_degenerate_inputs(void)
     CHECK_STATUS(mt_mesh_build(NULL, NULL, NULL, NULL), MT_ERR_INVALID_ARG);
 
     /* Many threads asked for: still the same answer. */
-    mt_build_options many = {false, 1000};
+    mt_build_options many = {.strict = false, .threads = 1000};
     m = NULL;
     CHECK_OK(mt_mesh_build(&tet, &many, &m, NULL));
     if (m) {

@@ -134,13 +134,13 @@ static mt_status alloc_half_edges(mt_mesh *m)
 static void build_free_temporaries(mt__build *b)
 {
     mt__free(b->block_start);
-    mt__free(b->sides);
+    mt__scratch_put(b, b->sides);
     mt__free(b->block_half_edges);
-    mt__free(b->c2h);
-    mt__free((void *)b->fan_start);
+    mt__scratch_put(b, b->c2h);
+    mt__scratch_put(b, (void *)b->fan_start);
     for (uint32_t t = 0; t < MT__MAX_PARTS; t++) {
         mt__part *p = &b->part[t];
-        mt__free(p->degree);
+        mt__scratch_put(b, p->degree);
         mt__free(p->block_sides);
         mt__vec_free(&p->large_sizes);
         mt__vec_free(&p->invalid_refs);
@@ -238,7 +238,8 @@ static mt_status build(mt__build *b)
     while ((in->num_verts >> b->block_shift) >= MT__MAX_BLOCKS) b->block_shift++;
     b->num_blocks = (in->num_verts >> b->block_shift) + 1;
     for (uint32_t t = 0; t < b->parts; t++) {
-        b->part[t].degree = mt__calloc((size_t)in->num_verts + 1, sizeof(uint32_t));
+        b->part[t].degree = mt__scratch_get(b, MT__SCRATCH_DEGREE + t, (size_t)in->num_verts + 1,
+                                            sizeof(uint32_t), 1);
         b->part[t].block_sides = mt__calloc(b->num_blocks, sizeof(uint32_t));
         if (!b->part[t].degree || !b->part[t].block_sides) return MT_ERR_NOMEM;
     }
@@ -246,10 +247,10 @@ static mt_status build(mt__build *b)
     mt_status s = mt__build_faces(b);
     if (s != MT_OK) return s;
 
-    b->sides = alloc_array(b->num_corners, sizeof(mt__side), 0);
+    b->sides = mt__scratch_get(b, MT__SCRATCH_SIDES, b->num_corners, sizeof(mt__side), 0);
     b->block_start = alloc_array((size_t)b->num_blocks + 1, sizeof(uint32_t), 0);
     b->block_half_edges = alloc_array(b->num_blocks, sizeof(uint32_t), 0);
-    b->c2h = alloc_array(in->num_indices, sizeof(uint32_t), 0);
+    b->c2h = mt__scratch_get(b, MT__SCRATCH_C2H, in->num_indices, sizeof(uint32_t), 0);
     if (!b->sides || !b->block_start || !b->block_half_edges || !b->c2h) return MT_ERR_NOMEM;
     s = mt__build_edges(b);
     if (s != MT_OK) return s;
@@ -257,21 +258,21 @@ static mt_status build(mt__build *b)
     m->num_half_edges = 2 * b->num_internal_edges;
     if (alloc_half_edges(m) != MT_OK) return MT_ERR_NOMEM;
     mt__build_edges_publish(b);
-    mt__free(b->sides);
+    mt__scratch_put(b, b->sides);
     b->sides = NULL;
 
     m->vert_he = alloc_array(in->num_verts, sizeof(uint32_t), 1);
     b->vert_capacity = in->num_verts;
-    b->fan_start = alloc_array(in->num_verts, sizeof(uint32_t), 0);
+    b->fan_start = mt__scratch_get(b, MT__SCRATCH_FAN_START, in->num_verts, sizeof(uint32_t), 0);
     if (!m->vert_he || !b->fan_start) return MT_ERR_NOMEM;
     mt__parallel_run(b, link_part);
-    mt__free(b->c2h);
+    mt__scratch_put(b, b->c2h);
     b->c2h = NULL;
 
     s = mt__build_fans(b);
     if (s != MT_OK) return s;
     for (uint32_t t = 0; t < b->parts; t++) {
-        mt__free(b->part[t].degree);
+        mt__scratch_put(b, b->part[t].degree);
         b->part[t].degree = NULL;
     }
     return mt__build_report(b);
@@ -287,6 +288,7 @@ mt_status mt_mesh_build(const mt_face_list *in, const mt_build_options *options,
     memset(&b, 0, sizeof b);
     b.in = in;
     b.diag = diag;
+    b.workspace = options ? options->workspace : NULL;
     plan_parts(&b, options ? options->threads : 0);
     b.large_sizes.elem_size = b.invalid_refs.elem_size = sizeof(uint32_t);
     b.large_uses.elem_size = sizeof(uint32_t);

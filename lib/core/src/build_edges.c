@@ -268,12 +268,12 @@ static void match_part(mt__build *b, uint32_t t)
         const uint32_t n = b->block_start[k + 1] - b->block_start[k];
         if (n > largest) largest = n;
     }
-    mt__side *sorted = mt__malloc((size_t)largest * sizeof *sorted);
+    mt__side *sorted = mt__scratch_get(b, MT__SCRATCH_SORTED + t, largest, sizeof *sorted, 0);
     uint32_t *count = mt__malloc(((size_t)1 << b->block_shift) * sizeof *count + sizeof *count);
     if (!sorted || !count) p->status = MT_ERR_NOMEM;
     for (uint32_t k = p->block_begin; k < p->block_end && p->status == MT_OK; k++)
         p->status = match_block(b, p, k, sorted, count);
-    mt__free(sorted);
+    mt__scratch_put(b, sorted);
     mt__free(count);
 }
 

@@ -51,6 +51,22 @@ typedef struct mt__side {
 
 #define MT__SIDE_DOWN 0x80000000u
 
+/* The scratch arrays a workspace keeps (build_workspace.c); the last two
+ * kinds have one array per part. */
+typedef enum mt__scratch {
+    MT__SCRATCH_SIDES,
+    MT__SCRATCH_C2H,
+    MT__SCRATCH_FAN_START,
+    MT__SCRATCH_DEGREE,
+    MT__SCRATCH_SORTED = MT__SCRATCH_DEGREE + MT__MAX_PARTS,
+    MT__SCRATCH_KINDS = MT__SCRATCH_SORTED + MT__MAX_PARTS
+} mt__scratch;
+
+struct mt_build_workspace {
+    void *array[MT__SCRATCH_KINDS];
+    size_t bytes[MT__SCRATCH_KINDS];
+};
+
 /* What one thread of a parallel phase owns: its range of faces or vertices
  * and everything it counts or collects; merged by the calling thread. */
 typedef struct mt__part {
@@ -92,6 +108,7 @@ typedef struct mt__build {
     const mt_face_list *in;
     mt_mesh *m;
     mt_diag *diag;
+    mt_build_workspace *workspace; /* NULL: scratch is the build's own */
     uint32_t parts;
     mt__part part[MT__MAX_PARTS];
 
@@ -147,6 +164,14 @@ static inline uint32_t mt__edge_gap(const mt__build *b, uint32_t he)
 {
     return he - (he >= b->gap_first_he ? b->gap_shift : 0u);
 }
+
+/* A scratch array of count * size bytes, zeroed if asked: the workspace's
+ * (grown when too small), or a fresh allocation when the build has none.
+ * NULL when out of memory or when the size overflows. */
+void *mt__scratch_get(mt__build *b, mt__scratch which, size_t count, size_t size, int zero);
+
+/* Gives a scratch array back: kept by the workspace, or freed. NULL-safe. */
+void mt__scratch_put(mt__build *b, void *array);
 
 /* Online processor cores (at least 1). */
 long mt__online_cores(void);

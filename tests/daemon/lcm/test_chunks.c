@@ -677,6 +677,33 @@ static void test_counts_that_do_not_fit(void)
     fixture_free(&fx);
 }
 
+/* A build leaves its workspace for the next one, which takes the same
+ * (over memq the daemon builds on this thread, one build at a time). */
+static void test_builds_keep_a_workspace(void)
+{
+    fixture fx;
+    fixture_init(&fx, "64M", "10000");
+    sent_mesh s;
+    sent_mesh_make(&s, "kept", 30, 30);
+    CHECK(fx.daemon->spare_workspace == NULL);
+    for (size_t k = 0; k < num_chunks(&s); k++) send_chunk(&fx, &s, REPLY, 50, k, false);
+    expect_stored(&fx, &s, expect_ack(&fx, &s, 50, __LINE__), __LINE__);
+    pthread_mutex_lock(&fx.daemon->spare_lock);
+    mt_build_workspace *kept = fx.daemon->spare_workspace;
+    const size_t bytes = mt_build_workspace_bytes(kept);
+    pthread_mutex_unlock(&fx.daemon->spare_lock);
+    CHECK(kept != NULL);
+    CHECK(bytes > 16 * s.list.num_indices); /* the sides alone */
+    for (size_t k = 0; k < num_chunks(&s); k++) send_chunk(&fx, &s, REPLY, 51, k, false);
+    expect_stored(&fx, &s, expect_ack(&fx, &s, 51, __LINE__), __LINE__);
+    pthread_mutex_lock(&fx.daemon->spare_lock);
+    CHECK(fx.daemon->spare_workspace == kept);
+    CHECK_EQ(mt_build_workspace_bytes(fx.daemon->spare_workspace), bytes);
+    pthread_mutex_unlock(&fx.daemon->spare_lock);
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+}
+
 static void on_progress(uint64_t done, uint64_t total, void *user)
 {
     uint64_t *seen = user; /* [0] last done, [1] total, [2] calls, [3] went backwards */
@@ -742,6 +769,7 @@ static const mt_test_case cases[] = {
     {"over_limit", test_over_limit},
     {"client_chunks", test_client_chunks},
     {"odd_pieces", test_odd_pieces},
+    {"builds_keep_a_workspace", test_builds_keep_a_workspace},
     {"counts_that_do_not_fit", test_counts_that_do_not_fit},
 };
 const mt_test_table mt_tests_chunks = {cases, sizeof cases / sizeof cases[0]};

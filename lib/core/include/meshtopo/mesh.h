@@ -31,6 +31,24 @@ extern "C" {
 typedef struct mt_mesh mt_mesh;
 typedef struct mt_report mt_report;
 
+/* Scratch memory that builds keep for the next build. A build's largest
+ * allocations are its scratch arrays (about 70 bytes per triangle), and
+ * fresh pages cost the kernel's zeroing on first touch; a program that
+ * builds mesh after mesh (meshtopod, a loop over a scan) passes the same
+ * workspace each time and skips that. It grows to the largest build it has
+ * served and keeps that memory until destroyed. One build at a time may use
+ * a workspace; it never changes the result. */
+typedef struct mt_build_workspace mt_build_workspace;
+
+/* A new, empty workspace; NULL when out of memory. */
+mt_build_workspace *mt_build_workspace_create(void);
+
+/* Frees a workspace and the memory it holds. NULL-safe. */
+void mt_build_workspace_destroy(mt_build_workspace *workspace);
+
+/* Bytes a workspace holds. */
+size_t mt_build_workspace_bytes(const mt_build_workspace *workspace);
+
 /* Build options; a zeroed struct (or NULL) gives the defaults. */
 typedef struct mt_build_options {
     /* Refuse any defect (bad index, degenerate or duplicate face, non-manifold
@@ -42,6 +60,9 @@ typedef struct mt_build_options {
      * the calling thread, 2 or more = two threads. The result is the same
      * whatever the count. */
     uint32_t threads;
+    /* Scratch memory kept between builds (see mt_build_workspace); NULL:
+     * the build allocates its scratch and frees it before returning. */
+    mt_build_workspace *workspace;
 } mt_build_options;
 
 /* Builds a half-edge mesh and its topology report from a face list.
