@@ -457,15 +457,10 @@ int mt__bench_command(int argc, char **argv)
 
     int exit_code = 0;
     mt__bench_case cases[MT__BENCH_MAX_CASES];
-    uint32_t num_cases = 0;
+    const uint32_t num_cases = 2 * mt__bench_num_meshes(&options);
+    memset(cases, 0, sizeof cases);
     char err[512];
-    fprintf(stderr, "meshtopo-bench: making the input in %s\n", dir);
-    if (!mt__bench_cases_make(&options, dir, cases, &num_cases, err, sizeof err)) {
-        fprintf(stderr, "meshtopo-bench: %s\n", err);
-        mt__bench_cases_free(cases, num_cases);
-        rmdir(dir);
-        return 1;
-    }
+    fprintf(stderr, "meshtopo-bench: the input goes to %s\n", dir);
 
     /* One runner per case and library: runners[c * num_runners + k]. */
     mt__bench_runner prototype[MT__BENCH_MAX_RUNNERS];
@@ -477,14 +472,26 @@ int mt__bench_command(int argc, char **argv)
         fprintf(stderr, "meshtopo-bench: out of memory\n");
         free(runners);
         free(results);
-        mt__bench_cases_free(cases, num_cases);
         rmdir(dir);
         return 1;
     }
-    for (uint32_t c = 0; c < num_cases; c++) {
-        memcpy(&runners[(size_t)c * num_runners], prototype, sizeof prototype[0] * num_runners);
-        case_run(&options, &cases[c], &runners[(size_t)c * num_runners],
-                 &results[(size_t)c * num_runners], num_runners);
+    for (uint32_t c = 0; c < num_cases; c += 2) {
+        if (!mt__bench_mesh_cases_make(&options, dir, c / 2, &cases[c], err, sizeof err)) {
+            fprintf(stderr, "meshtopo-bench: %s\n", err);
+            mt__bench_case_release(&cases[c]);
+            mt__bench_case_release(&cases[c + 1]);
+            free(runners);
+            free(results);
+            rmdir(dir);
+            return 1;
+        }
+        for (uint32_t k = c; k < c + 2; k++) {
+            memcpy(&runners[(size_t)k * num_runners], prototype, sizeof prototype[0] * num_runners);
+            case_run(&options, &cases[k], &runners[(size_t)k * num_runners],
+                     &results[(size_t)k * num_runners], num_runners);
+        }
+        mt__bench_case_release(&cases[c]);
+        mt__bench_case_release(&cases[c + 1]);
     }
     rmdir(dir);
     for (size_t i = 0; i < num_slots; i++) {
@@ -516,6 +523,5 @@ int mt__bench_command(int argc, char **argv)
 
     free(runners);
     free(results);
-    mt__bench_cases_free(cases, num_cases);
     return exit_code;
 }

@@ -137,15 +137,19 @@ double mt__bench_quantile(double *values, uint32_t n, double q); /* nearest rank
 double mt__bench_now_ms(void);
 int64_t mt__bench_heap_bytes(void);
 
-/* bench_input.c: builds the cases (all: bunny, a closed corpus mesh, the
- * grid and the torus; otherwise the grid), each ordered and permuted, and
- * writes their raw files into dir. */
-bool mt__bench_cases_make(const mt__bench_options *options, const char *dir, mt__bench_case *cases,
-                          uint32_t *out_num_cases, char *err, size_t err_size);
-/* Removes the raw file of a case (its peers have read it once started);
- * free removes them too and releases the face lists. */
+/* bench_input.c: the meshes of a run (all: bunny, a closed corpus mesh,
+ * the grid and the torus; otherwise the grid), each measured ordered and
+ * permuted. A mesh's two cases are made (and their raw files written into
+ * dir) just before they run, into cases[0] and cases[1], and released
+ * after, so that one mesh's input never sits beside another's. */
+uint32_t mt__bench_num_meshes(const mt__bench_options *options);
+bool mt__bench_mesh_cases_make(const mt__bench_options *options, const char *dir, uint32_t m,
+                               mt__bench_case *cases, char *err, size_t err_size);
+/* Removes the raw file of a case (its peers have read it once started). */
 void mt__bench_case_remove_file(mt__bench_case *bench_case);
-void mt__bench_cases_free(mt__bench_case *cases, uint32_t num_cases);
+/* Frees a case's arrays and file, keeping its names and counts for the
+ * tables. */
+void mt__bench_case_release(mt__bench_case *bench_case);
 bool mt__bench_input_write(const mt_face_list *list, const char *path, char *err, size_t err_size);
 
 /* bench_meshtopo.c, bench_peer.c and bench_floor.c */

@@ -18,6 +18,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "bench.h"
@@ -155,41 +156,39 @@ static bool mesh_make(const mt__bench_options *options, uint32_t which, mt__benc
     return true;
 }
 
-bool mt__bench_cases_make(const mt__bench_options *options, const char *dir, mt__bench_case *cases,
-                          uint32_t *out_num_cases, char *err, size_t err_size)
-{
-    /* Meshes by size: bunny, fertility, grid, torus for all; else the grid. */
-    static const uint32_t all_meshes[] = {2, 3, 0, 1};
-    static const uint32_t grid_only[] = {0};
-    const uint32_t *meshes = options->all ? all_meshes : grid_only;
-    uint32_t num_meshes = options->all ? 4 : 1;
-    *out_num_cases = 0;
-    for (uint32_t m = 0; m < num_meshes; m++) {
-        mt__bench_case *ordered = &cases[2 * m];
-        mt__bench_case *permuted = &cases[2 * m + 1];
-        memset(ordered, 0, sizeof *ordered);
-        memset(permuted, 0, sizeof *permuted);
-        if (!mesh_make(options, meshes[m], ordered, err, err_size)) return false;
-        snprintf(ordered->order, sizeof ordered->order, "ordered");
-        *out_num_cases = 2 * m + 1;
-        if (!face_list_copy(&ordered->list, &permuted->list, err, err_size)) return false;
-        *out_num_cases = 2 * m + 2;
-        mt_diag diag;
-        mt_diag_clear(&diag);
-        mt_status st = mt_face_list_permute(&permuted->list, options->seed, &diag);
-        if (st != MT_OK) {
-            snprintf(err, err_size, "mt_face_list_permute failed: %s", diag.message);
-            return false;
-        }
-        snprintf(permuted->mesh, sizeof permuted->mesh, "%s", ordered->mesh);
-        snprintf(permuted->order, sizeof permuted->order, "permuted");
-    }
+/* Meshes by size: bunny, fertility, grid, torus for all; else the grid. */
+static const uint32_t all_meshes[] = {2, 3, 0, 1};
 
-    for (uint32_t i = 0; i < *out_num_cases; i++) {
-        int n = snprintf(cases[i].path, sizeof cases[i].path, "%s/case%u-%s.mtbench", dir, i,
-                         cases[i].order);
+uint32_t mt__bench_num_meshes(const mt__bench_options *options)
+{
+    return options->all ? (uint32_t)(sizeof all_meshes / sizeof all_meshes[0]) : 1;
+}
+
+bool mt__bench_mesh_cases_make(const mt__bench_options *options, const char *dir, uint32_t m,
+                               mt__bench_case *cases, char *err, size_t err_size)
+{
+    mt__bench_case *ordered = &cases[0];
+    mt__bench_case *permuted = &cases[1];
+    memset(cases, 0, 2 * sizeof *cases);
+    if (!mesh_make(options, options->all ? all_meshes[m] : 0, ordered, err, err_size)) return false;
+    snprintf(ordered->order, sizeof ordered->order, "ordered");
+    if (!face_list_copy(&ordered->list, &permuted->list, err, err_size)) return false;
+    mt_diag diag;
+    mt_diag_clear(&diag);
+    mt_status st = mt_face_list_permute(&permuted->list, options->seed, &diag);
+    if (st != MT_OK) {
+        snprintf(err, err_size, "mt_face_list_permute failed: %s", diag.message);
+        return false;
+    }
+    snprintf(permuted->mesh, sizeof permuted->mesh, "%s", ordered->mesh);
+    snprintf(permuted->order, sizeof permuted->order, "permuted");
+
+    for (uint32_t i = 0; i < 2; i++) {
+        int n = snprintf(cases[i].path, sizeof cases[i].path, "%s/case%u-%s.mtbench", dir,
+                         2 * m + i, cases[i].order);
         if (n < 0 || (size_t)n >= sizeof cases[i].path) {
             snprintf(err, err_size, "temporary directory path too long: %s", dir);
+            cases[i].path[0] = '\0';
             return false;
         }
         if (!mt__bench_input_write(&cases[i].list, cases[i].path, err, err_size)) {
@@ -200,16 +199,20 @@ bool mt__bench_cases_make(const mt__bench_options *options, const char *dir, mt_
     return true;
 }
 
+void mt__bench_case_release(mt__bench_case *bench_case)
+{
+    mt__bench_case_remove_file(bench_case);
+    mt_face_list *l = &bench_case->list;
+    free(l->positions);
+    free(l->face_sizes);
+    free(l->face_indices);
+    l->positions = NULL;
+    l->face_sizes = NULL;
+    l->face_indices = NULL;
+}
+
 void mt__bench_case_remove_file(mt__bench_case *bench_case)
 {
     if (bench_case->path[0]) remove(bench_case->path);
     bench_case->path[0] = '\0';
-}
-
-void mt__bench_cases_free(mt__bench_case *cases, uint32_t num_cases)
-{
-    for (uint32_t i = 0; i < num_cases; i++) {
-        mt__bench_case_remove_file(&cases[i]);
-        mt_face_list_free(&cases[i].list);
-    }
 }
