@@ -590,6 +590,119 @@ static void test_workspace_allocation_failures(void)
     mt_face_list_free(&fl);
 }
 
+/* Builds `list` with the workspace on two threads and checks the result
+ * against `ref`; NULL when the build failed. */
+static mt_mesh *build_with(const mt_face_list *list, mt_build_workspace *ws, const mt_mesh *ref)
+{
+    mt_build_options o = {.threads = 2, .workspace = ws};
+    mt_mesh *m = NULL;
+    CHECK_OK(mt_mesh_build(list, &o, &m, NULL));
+    if (!m) return NULL;
+    CHECK_OK(mt_mesh_validate(m, NULL));
+    check_same_mesh(ref, m);
+    CHECK(memcmp(m->positions, list->positions, 3 * sizeof(double) * list->num_verts) == 0);
+    return m;
+}
+
+/* The four large arrays of a mesh, as recycling keeps them. */
+typedef struct mesh_arrays {
+    const void *he_block, *face_he, *vert_he, *positions;
+} mesh_arrays;
+
+static mesh_arrays arrays_of(const mt_mesh *m)
+{
+    mesh_arrays a = {m->he_head, m->face_he, m->vert_he, m->positions};
+    return a;
+}
+
+/* How many of got's arrays are among kept's. */
+static int arrays_reused(const mesh_arrays *got, const mesh_arrays *kept)
+{
+    const void *g[4] = {got->he_block, got->face_he, got->vert_he, got->positions};
+    const void *k[4] = {kept->he_block, kept->face_he, kept->vert_he, kept->positions};
+    int reused = 0;
+    for (int i = 0; i < 4; i++) {
+        for (int j = 0; j < 4; j++) reused += g[i] == k[j];
+    }
+    return reused;
+}
+
+/* A recycled mesh's arrays serve the next build with the workspace (the
+ * same memory, and the mesh a fresh build gives); a build of less than half
+ * their size leaves them kept; an edited mesh's grown arrays serve a build
+ * too. Under AddressSanitizer a recycled array whose size was overstated
+ * shows as an overflow when the next build fills it. */
+static void test_workspace_recycle(void)
+{
+    mt_build_workspace *ws = mt_build_workspace_create();
+    mt_face_list large, small, tiny;
+    CHECK_OK(mt_gen_grid(120, 90, true, &large));
+    CHECK_OK(mt_face_list_permute(&large, 5, NULL));
+    CHECK_OK(mt_gen_grid(30, 30, true, &small));
+    CHECK_OK(mt_gen_grid(10, 10, true, &tiny));
+    mt_mesh *ref_large = build_ok(&large), *ref_small = build_ok(&small);
+    mt_mesh *ref_tiny = build_ok(&tiny);
+    mt_mesh *a =
+        ws && ref_large && ref_small && ref_tiny ? build_with(&large, ws, ref_large) : NULL;
+    if (a) {
+        const size_t scratch = mt_build_workspace_bytes(ws);
+        const mesh_arrays kept = arrays_of(a);
+        mt_build_workspace_recycle(ws, a);
+        /* Half-edges, faces, vertices and positions: 12 + 4 + 4 + 24 bytes. */
+        const size_t mesh_bytes = 12 * (size_t)ref_large->num_half_edges +
+                                  4 * (size_t)large.num_faces + 28 * (size_t)large.num_verts;
+        CHECK(mt_build_workspace_bytes(ws) >= scratch + mesh_bytes);
+
+        mt_mesh *b = build_with(&large, ws, ref_large);
+        if (b) {
+            const mesh_arrays got = arrays_of(b);
+            CHECK(memcmp(&got, &kept, sizeof got) == 0);
+            CHECK_EQ(mt_build_workspace_bytes(ws), scratch);
+        }
+        mt_build_workspace_recycle(ws, b);
+        mt_mesh *c = build_with(&tiny, ws, ref_tiny);
+        if (c) {
+            const mesh_arrays got = arrays_of(c);
+            CHECK_EQ(arrays_reused(&got, &kept), 0);
+            CHECK(mt_build_workspace_bytes(ws) >= scratch + mesh_bytes);
+        }
+        mt_mesh_destroy(c);
+    }
+    /* An edit doubles every array of the small grid; the same grid built
+     * next takes three of them: its faces the closest fit, the doubled
+     * vertex array; its half-edges and positions their own; its vertex array
+     * is new, as the doubled face array is over twice its size. */
+    mt_build_workspace *edited_ws = mt_build_workspace_create();
+    mt_mesh *edited = ref_small ? build_ok(&small) : NULL;
+    if (edited && edited_ws) {
+        const double middle[3] = {0.5, 0.5, 0.0};
+        CHECK_OK(mt_edge_split(edited, 32, 33, middle, NULL, NULL));
+        CHECK(edited->cap_half_edges > 0 && edited->cap_faces > 0 && edited->cap_verts > 0);
+        const mesh_arrays kept = arrays_of(edited);
+        mt_build_workspace_recycle(edited_ws, edited);
+        mt_mesh *d = build_with(&small, edited_ws, ref_small);
+        if (d) {
+            const mesh_arrays got = arrays_of(d);
+            CHECK_EQ(arrays_reused(&got, &kept), 3);
+            CHECK(d->he_head == kept.he_block && d->face_he == kept.vert_he);
+            CHECK(d->positions == kept.positions);
+        }
+        mt_mesh_destroy(d);
+    } else {
+        mt_mesh_destroy(edited);
+    }
+    mt_build_workspace_recycle(NULL, build_ok(&small)); /* destroys it */
+    mt_build_workspace_recycle(ws, NULL);
+    mt_build_workspace_destroy(edited_ws);
+    mt_build_workspace_destroy(ws);
+    mt_mesh_destroy(ref_large);
+    mt_mesh_destroy(ref_small);
+    mt_mesh_destroy(ref_tiny);
+    mt_face_list_free(&large);
+    mt_face_list_free(&small);
+    mt_face_list_free(&tiny);
+}
+
 /* Memory stays within 56 bytes per face on a large triangle grid. */
 static void test_memory_per_face(void)
 {
@@ -618,6 +731,7 @@ static const mt_test_case cases[] = {
     {"build_thread_counts_agree_across_blocks", test_thread_counts_agree_across_blocks},
     {"build_workspace_reuse", test_workspace_reuse},
     {"build_workspace_allocation_failures", test_workspace_allocation_failures},
+    {"build_workspace_recycle", test_workspace_recycle},
     {"build_memory_per_face", test_memory_per_face},
 };
 const mt_test_table mt_tests_build = {cases, sizeof cases / sizeof cases[0]};

@@ -333,16 +333,18 @@ static void provenance_fill(mt__bench_options *o, int argc, char **argv)
              have_uname ? u.release : "?");
 }
 
-/* The rows of every case: meshtopo (1 and 2 threads, or --threads), the
- * peers, the two memcpy floors. Returns the count. */
+/* The rows of every case: meshtopo (1 and 2 threads recycling each mesh
+ * into the workspace and 2 threads building into new memory, or one row of
+ * --threads), the peers, the two memcpy floors. Returns the count. */
 static uint32_t runners_make(const mt__bench_options *o, mt__bench_runner *out)
 {
     uint32_t n = 0;
     if (o->threads_given) {
-        mt__bench_runner_meshtopo(&out[n++], o->threads);
+        mt__bench_runner_meshtopo(&out[n++], o->threads, true);
     } else {
-        mt__bench_runner_meshtopo(&out[n++], 1);
-        mt__bench_runner_meshtopo(&out[n++], 2);
+        mt__bench_runner_meshtopo(&out[n++], 1, true);
+        mt__bench_runner_meshtopo(&out[n++], 2, true);
+        mt__bench_runner_meshtopo(&out[n++], 2, false);
     }
     for (size_t p = 0; p < MT__BENCH_NUM_PEERS; p++) {
         mt__bench_runner_peer(&out[n++], peer_names[p][0], peer_names[p][2]);

@@ -115,7 +115,7 @@ struct mt__bench_runner {
     mt__bench_kind kind;
     bool is_meshtopo;
     uint32_t threads;      /* meshtopo: mt_build_options.threads */
-    bool fresh;            /* floor: into freshly allocated memory each repetition */
+    bool fresh;            /* floor, meshtopo: into freshly allocated memory each repetition */
     const char *peer_flag; /* peer: extra argument ("--soup") or NULL */
     bool (*start)(mt__bench_runner *runner, const mt__bench_case *bench_case,
                   const mt__bench_options *options, mt__bench_result *result);
@@ -153,7 +153,7 @@ void mt__bench_case_release(mt__bench_case *bench_case);
 bool mt__bench_input_write(const mt_face_list *list, const char *path, char *err, size_t err_size);
 
 /* bench_meshtopo.c, bench_peer.c and bench_floor.c */
-void mt__bench_runner_meshtopo(mt__bench_runner *out, uint32_t threads);
+void mt__bench_runner_meshtopo(mt__bench_runner *out, uint32_t threads, bool recycle);
 void mt__bench_runner_peer(mt__bench_runner *out, const char *library, const char *peer_flag);
 void mt__bench_runner_floor(mt__bench_runner *out, bool fresh);
 

@@ -2,13 +2,17 @@
  * with 1 or 2 threads and a build workspace kept across the repetitions (as
  * meshtopod keeps one: a program that builds repeatedly does not pay for
  * fresh scratch pages each time, as OpenMesh and CGAL get their memory
- * back from malloc), then a one-ring sweep over every internal vertex
- * (MT_FOR_VERT_OUT over the raw view), a face-adjacency sweep over every
- * face (its half-edge ring, the face across each twin), boundary loops with
- * mt_boundary_loops and the component of every face with mt_face_component.
- * Sweeps sum the ids they visit so no loop can be optimised away. The
- * warm-up build is validated and its report gives the counts the peers are
- * checked against. A failing build is reported, never fatal. */
+ * back from malloc). The main rows hand each mesh back to the workspace
+ * once measured (mt_build_workspace_recycle), as a loop that builds a mesh
+ * per frame would, so the next build writes into its arrays; the "-new"
+ * row destroys it, so every mesh is new memory. Then a one-ring sweep over
+ * every internal vertex (MT_FOR_VERT_OUT over the raw view), a face-
+ * adjacency sweep over every face (its half-edge ring, the face across each
+ * twin), boundary loops with mt_boundary_loops and the component of every
+ * face with mt_face_component. Sweeps sum the ids they visit so no loop can
+ * be optimised away. The warm-up build is validated and its report gives
+ * the counts the peers are checked against. A failing build is reported,
+ * never fatal. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,7 +30,18 @@ typedef struct meshtopo_state {
     const mt__bench_case *bench_case;
     mt_build_options build_options;
     mt_build_workspace *workspace;
+    bool recycle; /* meshes go back to the workspace, not to malloc */
 } meshtopo_state;
+
+/* Done with a mesh: recycled into the workspace or destroyed. */
+static void mesh_release(meshtopo_state *s, mt_mesh *mesh)
+{
+    if (s->recycle) {
+        mt_build_workspace_recycle(s->workspace, mesh);
+    } else {
+        mt_mesh_destroy(mesh);
+    }
+}
 
 static void ring_sweep(const mt_mesh *mesh, mt__bench_topology *seen)
 {
@@ -158,6 +173,7 @@ static bool meshtopo_start(mt__bench_runner *runner, const mt__bench_case *bench
     }
     runner->state = s;
     s->bench_case = bench_case;
+    s->recycle = !runner->fresh;
     s->build_options.threads = runner->threads;
     s->build_options.workspace = s->workspace = mt_build_workspace_create();
     if (!s->workspace) {
@@ -195,23 +211,28 @@ static bool meshtopo_start(mt__bench_runner *runner, const mt__bench_case *bench
     t->rejected_faces = report->num_faces - report->num_faces_valid;
     result->structure_bytes = mt_mesh_memory_bytes(mesh);
     result->report_bytes = mt_mesh_report_memory_bytes(mesh);
-    mt_mesh_destroy(mesh);
+    mesh_release(s, mesh);
     return true;
 }
 
+/* heap_bytes: the heap's growth over the build less the workspace's (a
+ * recycled array taken for the mesh moves from one to the other), which is
+ * what the new mesh holds either way. */
 static bool meshtopo_rep(mt__bench_runner *runner, mt__bench_sample *out, mt__bench_result *result)
 {
     meshtopo_state *s = runner->state;
     mt_mesh *mesh = NULL;
     int64_t heap0 = mt__bench_heap_bytes();
+    int64_t kept0 = (int64_t)mt_build_workspace_bytes(s->workspace);
     double t0 = mt__bench_now_ms();
     if (!build(s, &mesh, result)) return false;
     double t1 = mt__bench_now_ms();
     int64_t heap1 = mt__bench_heap_bytes();
+    int64_t kept1 = (int64_t)mt_build_workspace_bytes(s->workspace);
     bool ok = queries_run(mesh, out, result);
-    mt_mesh_destroy(mesh);
+    mesh_release(s, mesh);
     out->build_ms = t1 - t0;
-    out->heap_bytes = heap0 < 0 || heap1 < 0 ? -1 : heap1 - heap0;
+    out->heap_bytes = heap0 < 0 || heap1 < 0 ? -1 : (heap1 - heap0) - (kept1 - kept0);
     return ok;
 }
 
@@ -223,14 +244,16 @@ static void meshtopo_stop(mt__bench_runner *runner)
     runner->state = NULL;
 }
 
-void mt__bench_runner_meshtopo(mt__bench_runner *out, uint32_t threads)
+void mt__bench_runner_meshtopo(mt__bench_runner *out, uint32_t threads, bool recycle)
 {
     memset(out, 0, sizeof *out);
+    const char *suffix = recycle ? "" : "-new";
     if (threads == 0) {
-        snprintf(out->library, sizeof out->library, "meshtopo-auto");
+        snprintf(out->library, sizeof out->library, "meshtopo-auto%s", suffix);
     } else {
-        snprintf(out->library, sizeof out->library, "meshtopo-%ut", threads);
+        snprintf(out->library, sizeof out->library, "meshtopo-%ut%s", threads, suffix);
     }
+    out->fresh = !recycle;
     out->kind = MT__BENCH_LIBRARY;
     out->is_meshtopo = true;
     out->threads = threads;

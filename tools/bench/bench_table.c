@@ -157,19 +157,19 @@ void mt__bench_table_print(FILE *out, const mt__bench_options *options,
         const mt_face_list *l = &row->bench_case->list;
         fprintf(out, "\n%s, %s: %u vertices, %u faces\n", row->bench_case->mesh,
                 row->bench_case->order, l->num_verts, l->num_faces);
-        fprintf(out, "  %-13s %-7s %3s %9s %6s %7s %9s %9s %6s %8s %8s\n", "library", "version",
+        fprintf(out, "  %-15s %-7s %3s %9s %6s %7s %9s %9s %6s %8s %8s\n", "library", "version",
                 "thr", "build ms", "ratio", "ns/face", "ring/s", "adj/s", "B/face", "loops ms",
                 "comp ms");
         for (uint32_t k = 0; k < num_runners; k++) {
             const mt__bench_result *r = &row[k];
             mt__bench_row v = mt__bench_row_compute(r, base);
             if (!v.ok) {
-                fprintf(out, "  %-13s %s: %s\n", r->library,
+                fprintf(out, "  %-15s %s: %s\n", r->library,
                         r->state == MT__BENCH_SKIPPED ? "skipped" : "FAILED", r->message);
                 continue;
             }
             char b[10][32];
-            fprintf(out, "  %-13s %-7.7s %3s %9s %6s %7s %9s %9s %6s %8s %8s\n", r->library,
+            fprintf(out, "  %-15s %-7.7s %3s %9s %6s %7s %9s %9s %6s %8s %8s\n", r->library,
                     r->version, mt__bench_threads_text(r, b[0], 32),
                     mt__bench_ms(b[1], 32, v.build_ms), mt__bench_num(b[2], 32, v.build_ratio, 2),
                     mt__bench_num(b[3], 32, v.ns_per_face, 1),

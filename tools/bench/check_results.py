@@ -1,7 +1,8 @@
 # Checks the files `meshtopo-bench all` wrote into one directory: bench.md
 # has the table (one row per case and library), bench.csv has the expected
 # columns and one row per library and case with every library measured,
-# build-time.svg parses as XML and holds one polyline per library and order.
+# build-time.svg parses as XML and holds one polyline per library and order;
+# meshtopo's heap growth per face matches its structure's size.
 # Used by the bench.all_quick ctest: check_results.py DIR. Exit 0 when well-formed.
 import csv
 import sys
@@ -16,7 +17,7 @@ COLUMNS = (
 ).split(",")
 MESHES = ("npm_bunny", "igl_fertility", "grid", "torus")
 ORDERS = ("ordered", "permuted")
-ALWAYS = ("meshtopo-1t", "meshtopo-2t", "memcpy-fresh", "memcpy-reused")
+ALWAYS = ("meshtopo-1t", "meshtopo-2t", "meshtopo-2t-new", "memcpy-fresh", "memcpy-reused")
 PEERS = ("OpenMesh", "CGAL", "CGAL-soup")
 
 
@@ -60,6 +61,14 @@ def main():
                 for col in ("verts", "faces_built", "ring_neighbours_per_s", "adj_neighbours_per_s"):
                     if not float(r[col]) > 0:
                         fail("%s is empty for %s" % (col, key))
+            # The heap a meshtopo mesh holds is its structure, whether its arrays are
+            # new memory or were recycled through the build workspace.
+            if r["library"].startswith("meshtopo"):
+                heap = float(r["heap_bytes_per_face"])
+                structure = float(r["structure_bytes_per_face"])
+                if abs(heap - structure) > 0.1 * structure:
+                    fail("%s holds %.1f heap bytes per face, its structure %.1f"
+                         % (key, heap, structure))
     if len(cases) != len(MESHES) * len(ORDERS):
         fail("bench.csv has %d cases, expected %d: %s" % (len(cases), 8, cases))
     for mesh in MESHES:

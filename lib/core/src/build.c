@@ -104,26 +104,24 @@ static void link_part(mt__build *b, uint32_t t)
     }
 }
 
-/* Bytes between the half-edge arrays in their block: a page and three lines. */
-#define MT__HE_STAGGER (4096 + 3 * 64)
-
-static void *alloc_array(size_t count, size_t elem, int fill_none)
+/* A mesh array of count * elem bytes, every byte 0xff if asked: an array
+ * the workspace kept from a recycled mesh when one fits, else new memory. */
+static void *mesh_array(mt__build *b, size_t count, size_t elem, int fill_none)
 {
     size_t bytes;
     if (!mt__mul_size(count, elem, &bytes)) return NULL;
-    void *p = mt__malloc(bytes);
+    void *p = mt__kept_array_take(b->workspace, bytes);
+    if (!p) p = mt__malloc(bytes);
     if (p && fill_none) memset(p, 0xff, bytes);
     return p;
 }
 
-/* The three half-edge arrays live in one block, staggered so that entry h
- * of each falls in a different cache set: the build and the queries touch
- * all three at the same index, and equal offsets modulo the page size made
- * them evict one another. */
-static mt_status alloc_half_edges(mt_mesh *m)
+/* The half-edge block (see MT__HE_STAGGER). */
+static mt_status alloc_half_edges(mt__build *b)
 {
+    mt_mesh *m = b->m;
     const size_t n = m->num_half_edges, stagger = MT__HE_STAGGER / sizeof(uint32_t);
-    uint32_t *block = alloc_array(3 * n + 2 * stagger, sizeof(uint32_t), 0);
+    uint32_t *block = mesh_array(b, 3 * n + 2 * stagger, sizeof(uint32_t), 0);
     if (!block) return MT_ERR_NOMEM;
     m->he_head = block;
     m->he_next = block + n + stagger;
@@ -231,8 +229,8 @@ static mt_status build(mt__build *b)
     mt_mesh *m = b->m;
     m->num_verts = m->num_verts_internal = in->num_verts;
     m->num_faces = in->num_faces;
-    m->face_he = alloc_array(in->num_faces, sizeof(uint32_t), 0);
-    if (in->positions) m->positions = alloc_array(in->num_verts, 3 * sizeof(double), 0);
+    m->face_he = mesh_array(b, in->num_faces, sizeof(uint32_t), 0);
+    if (in->positions) m->positions = mesh_array(b, in->num_verts, 3 * sizeof(double), 0);
     if (!m->face_he || (in->positions && !m->positions)) return MT_ERR_NOMEM;
     b->block_shift = MT__BLOCK_MIN_SHIFT;
     while ((in->num_verts >> b->block_shift) >= MT__MAX_BLOCKS) b->block_shift++;
@@ -248,20 +246,20 @@ static mt_status build(mt__build *b)
     if (s != MT_OK) return s;
 
     b->sides = mt__scratch_get(b, MT__SCRATCH_SIDES, b->num_corners, sizeof(mt__side), 0);
-    b->block_start = alloc_array((size_t)b->num_blocks + 1, sizeof(uint32_t), 0);
-    b->block_half_edges = alloc_array(b->num_blocks, sizeof(uint32_t), 0);
+    b->block_start = mt__malloc(((size_t)b->num_blocks + 1) * sizeof(uint32_t));
+    b->block_half_edges = mt__malloc((size_t)b->num_blocks * sizeof(uint32_t));
     b->c2h = mt__scratch_get(b, MT__SCRATCH_C2H, in->num_indices, sizeof(uint32_t), 0);
     if (!b->sides || !b->block_start || !b->block_half_edges || !b->c2h) return MT_ERR_NOMEM;
     s = mt__build_edges(b);
     if (s != MT_OK) return s;
 
     m->num_half_edges = 2 * b->num_internal_edges;
-    if (alloc_half_edges(m) != MT_OK) return MT_ERR_NOMEM;
+    if (alloc_half_edges(b) != MT_OK) return MT_ERR_NOMEM;
     mt__build_edges_publish(b);
     mt__scratch_put(b, b->sides);
     b->sides = NULL;
 
-    m->vert_he = alloc_array(in->num_verts, sizeof(uint32_t), 1);
+    m->vert_he = mesh_array(b, in->num_verts, sizeof(uint32_t), 1);
     b->vert_capacity = in->num_verts;
     b->fan_start = mt__scratch_get(b, MT__SCRATCH_FAN_START, in->num_verts, sizeof(uint32_t), 0);
     if (!m->vert_he || !b->fan_start) return MT_ERR_NOMEM;

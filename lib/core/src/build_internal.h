@@ -62,9 +62,15 @@ typedef enum mt__scratch {
     MT__SCRATCH_KINDS = MT__SCRATCH_SORTED + MT__MAX_PARTS
 } mt__scratch;
 
+/* How many arrays of recycled meshes a workspace keeps at most: the four
+ * large arrays of one mesh (half-edges, faces, vertices, positions), twice. */
+#define MT__KEPT_ARRAYS 8
+
 struct mt_build_workspace {
     void *array[MT__SCRATCH_KINDS];
     size_t bytes[MT__SCRATCH_KINDS];
+    void *kept[MT__KEPT_ARRAYS]; /* arrays of recycled meshes, NULL when free */
+    size_t kept_bytes[MT__KEPT_ARRAYS];
 };
 
 /* What one thread of a parallel phase owns: its range of faces or vertices
@@ -172,6 +178,12 @@ void *mt__scratch_get(mt__build *b, mt__scratch which, size_t count, size_t size
 
 /* Gives a scratch array back: kept by the workspace, or freed. NULL-safe. */
 void mt__scratch_put(mt__build *b, void *array);
+
+/* An array of at least `bytes` kept from a recycled mesh, now the caller's:
+ * the smallest that fits, if it is no more than twice the size (a small mesh
+ * does not hold on to a large one's memory). NULL when none fits or the
+ * workspace is NULL. Contents are undefined. */
+void *mt__kept_array_take(mt_build_workspace *workspace, size_t bytes);
 
 /* Online processor cores (at least 1). */
 long mt__online_cores(void);

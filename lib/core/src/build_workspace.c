@@ -2,7 +2,9 @@
  * free (its sides, their half-edges, the vertex counts and fan starts, the
  * matching buffers), kept between builds so that a program building mesh
  * after mesh does not pay for fresh pages each time. A workspace only
- * grows: an array is replaced when a build needs a larger one. */
+ * grows: an array is replaced when a build needs a larger one. It also
+ * keeps the large arrays of meshes recycled into it, which the next build
+ * takes for its own mesh. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -17,6 +19,7 @@ void mt_build_workspace_destroy(mt_build_workspace *workspace)
 {
     if (!workspace) return;
     for (int k = 0; k < MT__SCRATCH_KINDS; k++) mt__free(workspace->array[k]);
+    for (int k = 0; k < MT__KEPT_ARRAYS; k++) mt__free(workspace->kept[k]);
     mt__free(workspace);
 }
 
@@ -25,6 +28,7 @@ size_t mt_build_workspace_bytes(const mt_build_workspace *workspace)
     if (!workspace) return 0;
     size_t total = sizeof *workspace;
     for (int k = 0; k < MT__SCRATCH_KINDS; k++) total += workspace->bytes[k];
+    for (int k = 0; k < MT__KEPT_ARRAYS; k++) total += workspace->kept_bytes[k];
     return total;
 }
 
@@ -51,4 +55,66 @@ void *mt__scratch_get(mt__build *b, mt__scratch which, size_t count, size_t size
 void mt__scratch_put(mt__build *b, void *array)
 {
     if (!b->workspace) mt__free(array);
+}
+
+void *mt__kept_array_take(mt_build_workspace *w, size_t bytes)
+{
+    if (!w) return NULL;
+    int best = -1;
+    for (int k = 0; k < MT__KEPT_ARRAYS; k++) {
+        size_t size = w->kept_bytes[k];
+        if (!w->kept[k] || size < bytes || size / 2 > bytes) continue;
+        if (best < 0 || size < w->kept_bytes[best]) best = k;
+    }
+    if (best < 0) return NULL;
+    void *array = w->kept[best];
+    w->kept[best] = NULL;
+    w->kept_bytes[best] = 0;
+    return array;
+}
+
+/* Keeps an array of `bytes` in a free slot, or in place of the smallest
+ * kept array if that is smaller; otherwise frees it. NULL-safe. */
+static void keep_array(mt_build_workspace *w, void *array, size_t bytes)
+{
+    if (!array) return;
+    int slot = 0;
+    for (int k = 1; k < MT__KEPT_ARRAYS && w->kept[slot]; k++) {
+        if (!w->kept[k] || w->kept_bytes[k] < w->kept_bytes[slot]) slot = k;
+    }
+    if (w->kept[slot] && w->kept_bytes[slot] >= bytes) {
+        mt__free(array);
+        return;
+    }
+    mt__free(w->kept[slot]);
+    w->kept[slot] = array;
+    w->kept_bytes[slot] = bytes;
+}
+
+/* Capacity of an array of the mesh: what an edit grew it to, else its
+ * count. Edits raise the capacity only once every array has been grown, so
+ * this never overstates an array's size. */
+static size_t capacity_or(uint32_t capacity, uint32_t count)
+{
+    return capacity ? capacity : count;
+}
+
+void mt_build_workspace_recycle(mt_build_workspace *workspace, mt_mesh *mesh)
+{
+    if (mesh && workspace) {
+        size_t he_words = mesh->cap_half_edges ? 3 * (size_t)mesh->cap_half_edges
+                                               : 3 * (size_t)mesh->num_half_edges +
+                                                     2 * MT__HE_STAGGER / sizeof(uint32_t);
+        size_t verts = capacity_or(mesh->cap_verts, mesh->num_verts_internal);
+        size_t position_verts = capacity_or(mesh->cap_verts, mesh->num_verts);
+        keep_array(workspace, mesh->he_head, he_words * sizeof(uint32_t));
+        keep_array(workspace, mesh->face_he,
+                   capacity_or(mesh->cap_faces, mesh->num_faces) * sizeof(uint32_t));
+        keep_array(workspace, mesh->vert_he, verts * sizeof(uint32_t));
+        keep_array(workspace, mesh->positions, position_verts * 3 * sizeof(double));
+        mesh->he_head = mesh->he_next = mesh->he_face = NULL;
+        mesh->face_he = mesh->vert_he = NULL;
+        mesh->positions = NULL;
+    }
+    mt_mesh_destroy(mesh);
 }

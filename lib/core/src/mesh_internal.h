@@ -94,6 +94,14 @@ mt_status mt__fail(mt_diag *diag, mt_status status, uint32_t element, const char
 #endif
     ;
 
+/* The three half-edge arrays share one allocation starting at he_head,
+ * he_head, he_next and he_face in turn with this many bytes between them
+ * (a page and three lines), so that entry h of each falls in a different
+ * cache set: builds and queries touch all three at the same index, and equal
+ * offsets modulo the page size made them evict one another. Edits that grow
+ * the block drop the gap (cap_half_edges). */
+#define MT__HE_STAGGER (4096 + 3 * 64)
+
 /* Allocation (alloc.c): plain malloc family with a test hook that makes the
  * Nth allocation fail. Sizes of 0 allocate 1 byte so NULL always means failure. */
 void *mt__malloc(size_t bytes);

@@ -10,10 +10,6 @@
 #include "meshtopo/mesh_parts.h"
 #include "meshtopo/validate.h"
 
-/* Bytes between the half-edge arrays in their block, as build.c lays them
- * out (entry h of the three arrays falls in different cache sets). */
-#define RESTORE_HE_STAGGER (4096 + 3 * 64)
-
 void mt_mesh_get_parts(const mt_mesh *mesh, mt_mesh_parts *out_parts)
 {
     if (!out_parts) return;
@@ -179,7 +175,7 @@ mt_status mt_mesh_restore_begin(const mt_mesh_shape *shape, mt_mesh **out_pendin
     /* The three half-edge arrays in one staggered block, as build.c lays
      * them out (mt_mesh_destroy and the edits rely on it). */
     bool ok = true;
-    const size_t n = s->num_half_edges, stagger = RESTORE_HE_STAGGER / sizeof(uint32_t);
+    const size_t n = s->num_half_edges, stagger = MT__HE_STAGGER / sizeof(uint32_t);
     uint32_t *block = alloc_array(3 * n + 2 * stagger, sizeof(uint32_t), &ok);
     if (block) {
         m->he_head = block;

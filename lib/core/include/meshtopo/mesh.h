@@ -31,13 +31,16 @@ extern "C" {
 typedef struct mt_mesh mt_mesh;
 typedef struct mt_report mt_report;
 
-/* Scratch memory that builds keep for the next build. A build's largest
+/* Memory that builds keep for the next build. A build's largest
  * allocations are its scratch arrays (about 70 bytes per triangle), and
- * fresh pages cost the kernel's zeroing on first touch; a program that
- * builds mesh after mesh (meshtopod, a loop over a scan) passes the same
- * workspace each time and skips that. It grows to the largest build it has
- * served and keeps that memory until destroyed. One build at a time may use
- * a workspace; it never changes the result. */
+ * fresh pages cost the kernel's zeroing on first touch (and, in a virtual
+ * machine whose host takes freed memory back, the host's too); a program
+ * that builds mesh after mesh (meshtopod, a loop over a scan) passes the
+ * same workspace each time and skips that. It grows to the largest build it
+ * has served and keeps that memory until destroyed. A mesh that is no longer
+ * needed can also be handed to it (mt_build_workspace_recycle) so that the
+ * next build's mesh reuses its arrays. One build or recycle at a time may
+ * use a workspace; it never changes the result. */
 typedef struct mt_build_workspace mt_build_workspace;
 
 /* A new, empty workspace; NULL when out of memory. */
@@ -46,8 +49,18 @@ mt_build_workspace *mt_build_workspace_create(void);
 /* Frees a workspace and the memory it holds. NULL-safe. */
 void mt_build_workspace_destroy(mt_build_workspace *workspace);
 
-/* Bytes a workspace holds. */
+/* Bytes a workspace holds, kept mesh arrays included. */
 size_t mt_build_workspace_bytes(const mt_build_workspace *workspace);
+
+/* Destroys a mesh like mt_mesh_destroy, but keeps its large arrays (half-
+ * edges, faces, vertices, positions) in the workspace: the next build using
+ * the workspace takes each one that fits instead of new memory, the
+ * smallest that holds what it needs and no more than twice that. A workspace
+ * keeps at most eight such arrays, the largest ones. For a loop that builds
+ * a new mesh each frame and drops the last. A NULL workspace destroys the
+ * mesh; a NULL mesh does nothing. Any mesh may be recycled, built, restored
+ * or edited. */
+void mt_build_workspace_recycle(mt_build_workspace *workspace, mt_mesh *mesh);
 
 /* Build options; a zeroed struct (or NULL) gives the defaults. */
 typedef struct mt_build_options {
