@@ -456,7 +456,7 @@ static void test_thread_counts_agree(void)
     mt_face_list_free(&fl);
 }
 
-/* A shuffled grid of several matching blocks (over 4096 vertices each)
+/* A shuffled grid of several matching blocks (of 2048 vertices or more each)
  * with defects spread over them: fins, flipped and repeated faces, and a
  * hub vertex with two fans of many triangles (more sides on one vertex
  * than a short sort takes). */
