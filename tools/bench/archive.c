@@ -161,8 +161,8 @@ static bool run_layout(const options *o, mt_archive *archive, const mt_face_list
         char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
         mt_archive_file_name(id, meta.version, name, sizeof name);
         /* The first read after a write pays for memory the write left
-         * behind (transparent huge pages zeroed and compacted): the read
-         * steps take turns at going first. */
+         * behind (pages zeroed anew): the read steps take turns at going
+         * first. */
         for (int k = 0; k < 4; k++) {
             int step = (k + (int)r) % 4;
             if (!read_step(archive, name, mesh, set, bare_path, step, r, res)) return false;

@@ -96,8 +96,12 @@ bool mt__bench_markdown_write(const char *path, const mt__bench_options *options
             "- medians of %u repetitions after one warm-up; OpenMesh and CGAL %s\n"
             "- ratio: the row's median time over the fastest meshtopo row's (above 1: "
             "meshtopo is faster); one-ring/s and face-adj/s: neighbours visited per second; "
-            "bytes/face: heap growth over the build (mallinfo2), positions included; memcpy "
-            "rows: the bandwidth floor (input bytes read, meshtopo's structure bytes written)\n",
+            "bytes/face: heap growth over the build (mallinfo2), positions included (for "
+            "meshtopo, less what its workspace holds); memcpy rows: the bandwidth floor (input "
+            "bytes read, meshtopo's structure bytes written)\n"
+            "- meshtopo rows keep a build workspace across the repetitions; meshtopo-1t and -2t "
+            "hand each mesh back to it (mt_build_workspace_recycle), so the next build reuses "
+            "its arrays, while meshtopo-2t-new builds every mesh into new memory\n",
             options->reps,
             options->peer_no_reserve ? "do not reserve()"
                                      : "reserve() the V, E, F of their warm-up build");

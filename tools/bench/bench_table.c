@@ -188,8 +188,10 @@ void mt__bench_table_print(FILE *out, const mt__bench_options *options,
     fprintf(out,
             "\nring/s, adj/s: neighbours visited per second by the one-ring and the "
             "face-adjacency sweep.\nB/face: heap growth over the build (mallinfo2), positions "
-            "included (- when unknown).\nmemcpy rows: the bandwidth floor (input bytes read, "
-            "meshtopo's structure bytes written).\n");
+            "included (- when unknown), for meshtopo less what its workspace holds.\n"
+            "meshtopo-Nt: each mesh recycled into the build workspace for the next build;\n"
+            "meshtopo-Nt-new: each mesh built into new memory.\nmemcpy rows: the bandwidth "
+            "floor (input bytes read, meshtopo's structure bytes written).\n");
 }
 
 /* The benchmark issue's build targets, by library and order. */
