@@ -160,9 +160,9 @@ static void mark_boundary_out(mt__build *b)
  * next step reads: MT__FAN_WALKS loads in flight instead of one. On a mesh
  * larger than the cache that is most of this phase's time. A round over
  * the walks must take longer than a load from memory, or the step waits
- * for its own prefetch: on the shuffled 4M-triangle torus, two threads
- * walked its fans in 69 ms with 16 walks, 44 with 32, 29 with 64 and 20
- * with 128, and no faster with more. */
+ * for its own prefetch: on a shuffled mesh of millions of triangles the
+ * phase ran about three times as fast with 128 walks as with 16, and no
+ * faster with more. */
 #define MT__FAN_WALKS 128
 
 typedef struct fan_walk {

@@ -31,15 +31,15 @@
 /* Sides are filed in blocks of 2^shift consecutive smaller vertices: at
  * least 2^MT__BLOCK_MIN_SHIFT (a block's sides then stay in a core's cache
  * while they are matched: about 6 sides of 16 bytes per vertex, twice with
- * the sorted copy; 2^11 matched the shuffled 1M grid in 27 ms where 2^12
- * took 30), and few enough blocks to keep one write stream per block
+ * the sorted copy, so 2^11 vertices leave room in a core's L2 where 2^12
+ * filled it), and few enough blocks to keep one write stream per block
  * cheap. */
 #define MT__BLOCK_MIN_SHIFT 11
 #define MT__MAX_BLOCKS 4096u
 /* Face sides ahead of the one at hand whose random accesses are fetched
- * early (vertex counts, half-edges of a shuffled mesh). Counting the
- * corners of the shuffled torus took 26 ms on two threads at 16, 17 at 64,
- * no less further ahead. */
+ * early (vertex counts, half-edges of a shuffled mesh): far enough that
+ * the load has arrived when its side comes up (64 counted a shuffled mesh's
+ * corners a third faster than 16; further ahead gained nothing). */
 #define MT__PREFETCH_DISTANCE 64
 /* Threads a build uses at most (the machines it targets have two cores). */
 #define MT__MAX_PARTS 2
