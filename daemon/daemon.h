@@ -71,8 +71,10 @@ typedef struct mtd_daemon {
     size_t spare_capacity;
     /* The build workspace of the last build, kept for the next one
      * (submit.c): a build's scratch arrays are its largest allocations, and
-     * fresh pages cost more than the build. Guarded by spare_lock; a build
-     * that finds it taken makes its own. */
+     * fresh pages cost more than the build. Meshes the store drops are
+     * recycled into it (mtd_mesh_recycle), so a mesh id resubmitted frame
+     * after frame is built into the arrays of an earlier version. Guarded by
+     * spare_lock; a build that finds it taken makes its own. */
     mt_build_workspace *spare_workspace;
     pthread_mutex_t error_lock;
     char last_error[MTD_ERROR_MAX];
@@ -152,6 +154,11 @@ void mtd_submit_handle(mtd_daemon *daemon, meshtopo_mesh_t *msg, const void *enc
  * msg and content (given back with mtd_content_release). */
 void mtd_submit_handle_content(mtd_daemon *daemon, meshtopo_mesh_t *msg, void *content,
                                size_t content_capacity, uint64_t content_hash);
+
+/* Disposes of a mesh nobody holds any more (the store's dispose_mesh, with
+ * the daemon as ctx): its arrays go to the kept build workspace for the next
+ * build, or it is destroyed while a build has the workspace. */
+void mtd_mesh_recycle(void *daemon, mt_mesh *mesh);
 
 /* ---- chunked submissions (transfer.c) ---- */
 

@@ -300,6 +300,8 @@ mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **o
     mtd_store_options store_options = {
         .max_versions_per_id = config->max_versions,
         .max_bytes = (size_t)config->max_store_bytes,
+        .dispose_mesh = mtd_mesh_recycle,
+        .dispose_mesh_ctx = d,
     };
     if (mtd_store_create(&store_options, &d->store) != MT_OK) {
         mtd_daemon_destroy(d);
@@ -346,11 +348,11 @@ void mtd_daemon_destroy(mtd_daemon *d)
     mtd_pool_destroy(d->pool);
     mtd_archiver_free(d);
     mtd_transfers_free(d);
+    mtd_store_destroy(d->store); /* its meshes go to the workspace: destroyed next */
     mt_build_workspace_destroy(d->spare_workspace);
     pthread_mutex_destroy(&d->transfer_lock);
     pthread_mutex_destroy(&d->spare_lock);
     mtd_reqcache_destroy(d->cache);
-    mtd_store_destroy(d->store);
     pthread_mutex_destroy(&d->error_lock);
     free(d);
 }

@@ -31,6 +31,8 @@ struct mtd_mesh_entry {
     mtd_mesh_info info; /* info.id and info.source point into strings[] */
     mtd_entry_free_fn on_free;
     void *on_free_ctx;
+    mtd_mesh_dispose_fn dispose;
+    void *dispose_ctx;
     char strings[]; /* id NUL source NUL */
 };
 
@@ -129,7 +131,10 @@ void mtd_entry_release(mtd_mesh_entry *entry)
     /* acq_rel: every earlier use of the entry happens before the free. */
     if (atomic_fetch_sub_explicit(&entry->refs, 1, memory_order_acq_rel) != 1) return;
     if (entry->on_free) entry->on_free(entry->on_free_ctx, entry->mesh, &entry->info);
-    mt_mesh_destroy(entry->mesh);
+    if (entry->dispose)
+        entry->dispose(entry->dispose_ctx, entry->mesh);
+    else
+        mt_mesh_destroy(entry->mesh);
     free(entry);
 }
 
@@ -173,6 +178,8 @@ static mtd_mesh_entry *entry_new(const mtd_store *store, const char *id, mt_mesh
     e->info.memory_bytes = total;
     e->on_free = store->options.on_entry_free;
     e->on_free_ctx = store->options.on_entry_free_ctx;
+    e->dispose = store->options.dispose_mesh;
+    e->dispose_ctx = store->options.dispose_mesh_ctx;
     return e;
 }
 

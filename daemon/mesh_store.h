@@ -49,6 +49,11 @@ typedef struct mtd_mesh_entry mtd_mesh_entry;
  * It may read the mesh and info but must not keep them. */
 typedef void (*mtd_entry_free_fn)(void *ctx, const mt_mesh *mesh, const mtd_mesh_info *info);
 
+/* Takes over a mesh whose last reference was dropped (after on_entry_free),
+ * on that same thread, in place of mt_mesh_destroy: meshtopod recycles its
+ * arrays into a build workspace. */
+typedef void (*mtd_mesh_dispose_fn)(void *ctx, mt_mesh *mesh);
+
 /* Store options; a zeroed struct (or NULL) gives the defaults. */
 typedef struct mtd_store_options {
     /* Versions kept per id: adding one more drops the oldest (0 = keep all). */
@@ -60,6 +65,8 @@ typedef struct mtd_store_options {
     size_t max_bytes;
     mtd_entry_free_fn on_entry_free; /* optional */
     void *on_entry_free_ctx;
+    mtd_mesh_dispose_fn dispose_mesh; /* optional; NULL: mt_mesh_destroy */
+    void *dispose_mesh_ctx;
 } mtd_store_options;
 
 typedef struct mtd_store mtd_store;

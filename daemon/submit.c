@@ -160,6 +160,18 @@ static void workspace_release(mtd_daemon *d, mt_build_workspace *w)
     mt_build_workspace_destroy(other);
 }
 
+void mtd_mesh_recycle(void *daemon, mt_mesh *mesh)
+{
+    mtd_daemon *d = daemon;
+    pthread_mutex_lock(&d->spare_lock);
+    if (d->spare_workspace) {
+        mt_build_workspace_recycle(d->spare_workspace, mesh);
+        mesh = NULL;
+    }
+    pthread_mutex_unlock(&d->spare_lock);
+    mt_mesh_destroy(mesh);
+}
+
 static void build_job(void *arg, bool cancelled)
 {
     submit_job *job = arg;
@@ -217,7 +229,7 @@ static void build_job(void *arg, bool cancelled)
             mtd_send_ack_error(d, m->reply_channel, m->request_id, m->mesh_id, true,
                                MESHTOPO_STATUS_CODE_T_DEFECT_REFUSED, error);
         }
-        mt_mesh_destroy(mesh);
+        mtd_mesh_recycle(d, mesh);
         free_job(job);
         return;
     }
@@ -227,7 +239,7 @@ static void build_job(void *arg, bool cancelled)
     int32_t code = mtd_archiver_store(d, m, &list, mesh, job->content_hash, &version, &entry, error,
                                       sizeof error);
     if (code != MESHTOPO_STATUS_CODE_T_OK) {
-        mt_mesh_destroy(mesh);
+        mtd_mesh_recycle(d, mesh);
         mtd_send_ack_error(d, m->reply_channel, m->request_id, m->mesh_id, true, code, error);
         free_job(job);
         return;

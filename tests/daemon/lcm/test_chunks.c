@@ -68,9 +68,9 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *use
                                      NULL, 0) == 0;
 }
 
-static void fixture_init(fixture *fx, const char *max_transfer, const char *timeout_ms)
+/* The daemon's options: two workers, the given transfer limits. */
+static void fixture_config(mtd_config *config, const char *max_transfer, const char *timeout_ms)
 {
-    memset(fx, 0, sizeof *fx);
     char *argv[] = {"meshtopod",
                     "--workers",
                     "2",
@@ -80,17 +80,29 @@ static void fixture_init(fixture *fx, const char *max_transfer, const char *time
                     (char *)max_transfer,
                     "--transfer-timeout-ms",
                     (char *)timeout_ms};
-    mtd_config config;
     mtd_config_action action;
     mt_diag diag;
-    CHECK_OK(mtd_config_parse(9, argv, &config, &action, &diag));
-    mtd_log_set_level(config.log_level);
+    CHECK_OK(mtd_config_parse(9, argv, config, &action, &diag));
+}
+
+static void fixture_start(fixture *fx, const mtd_config *config)
+{
+    memset(fx, 0, sizeof *fx);
+    mt_diag diag;
+    mtd_log_set_level(config->log_level);
     fx->lcm = lcm_create("memq://");
     CHECK(fx->lcm != NULL);
-    CHECK_OK(mtd_daemon_create(&config, fx->lcm, &fx->daemon, &diag));
+    CHECK_OK(mtd_daemon_create(config, fx->lcm, &fx->daemon, &diag));
     lcm_subscribe(fx->lcm, REPLY, on_reply, fx);
     lcm_subscribe(fx->lcm, REPLY2, on_reply, fx);
     lcm_subscribe(fx->lcm, "MESHTOPO_STATUS", on_status, fx);
+}
+
+static void fixture_init(fixture *fx, const char *max_transfer, const char *timeout_ms)
+{
+    mtd_config config;
+    fixture_config(&config, max_transfer, timeout_ms);
+    fixture_start(fx, &config);
 }
 
 static void fixture_free(fixture *fx)
@@ -704,6 +716,56 @@ static void test_builds_keep_a_workspace(void)
     fixture_free(&fx);
 }
 
+/* The half-edge block of a stored version. */
+static const uint32_t *stored_half_edges(fixture *fx, const char *id, uint32_t version)
+{
+    mtd_mesh_entry *entry = NULL;
+    if (mtd_store_acquire(fx->daemon->store, id, version, &entry, NULL) != MT_OK) return NULL;
+    mt_mesh_view view;
+    mt_mesh_get_view(mtd_entry_mesh(entry), &view);
+    mtd_entry_release(entry);
+    return view.he_head;
+}
+
+/* With one version kept per id, each new version drops the one before,
+ * whose arrays go to the kept workspace: the version after next is built
+ * into them (the same half-edge block) and is still the right mesh. */
+static void test_dropped_meshes_are_recycled(void)
+{
+    mtd_config config;
+    fixture_config(&config, "64M", "10000");
+    config.max_versions = 1;
+    fixture fx;
+    fixture_start(&fx, &config);
+    sent_mesh s;
+    sent_mesh_make(&s, "frames", 30, 30);
+    const uint32_t *first_block = NULL;
+    size_t scratch_bytes = 0;
+    for (int32_t version = 1; version <= 3; version++) {
+        const int64_t request = 70 + version;
+        for (size_t k = 0; k < num_chunks(&s); k++) send_chunk(&fx, &s, REPLY, request, k, false);
+        const int32_t stored = expect_ack(&fx, &s, request, __LINE__);
+        CHECK_EQ(stored, version);
+        expect_stored(&fx, &s, stored, __LINE__);
+        pthread_mutex_lock(&fx.daemon->spare_lock);
+        const size_t bytes = mt_build_workspace_bytes(fx.daemon->spare_workspace);
+        pthread_mutex_unlock(&fx.daemon->spare_lock);
+        const uint32_t *block = stored_half_edges(&fx, "frames", (uint32_t)stored);
+        CHECK(block != NULL);
+        if (version == 1) {
+            first_block = block;
+            scratch_bytes = bytes;
+        } else {
+            /* The dropped version's arrays: three half-edges of 12 bytes per
+             * face, at least. */
+            CHECK(bytes > scratch_bytes + 36 * (size_t)s.list.num_faces);
+        }
+        if (version == 3) CHECK(block == first_block);
+    }
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+}
+
 static void on_progress(uint64_t done, uint64_t total, void *user)
 {
     uint64_t *seen = user; /* [0] last done, [1] total, [2] calls, [3] went backwards */
@@ -770,6 +832,7 @@ static const mt_test_case cases[] = {
     {"client_chunks", test_client_chunks},
     {"odd_pieces", test_odd_pieces},
     {"builds_keep_a_workspace", test_builds_keep_a_workspace},
+    {"dropped_meshes_are_recycled", test_dropped_meshes_are_recycled},
     {"counts_that_do_not_fit", test_counts_that_do_not_fit},
 };
 const mt_test_table mt_tests_chunks = {cases, sizeof cases / sizeof cases[0]};
