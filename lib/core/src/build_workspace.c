@@ -91,25 +91,19 @@ static void keep_array(mt_build_workspace *w, void *array, size_t bytes)
     w->kept_bytes[slot] = bytes;
 }
 
-/* Capacity of an array of the mesh: what an edit grew it to, else its
- * count. Edits raise the capacity only once every array has been grown, so
- * this never overstates an array's size. */
-static size_t capacity_or(uint32_t capacity, uint32_t count)
-{
-    return capacity ? capacity : count;
-}
-
+/* Array sizes come from the mesh's capacities (mt__cap_or), which never
+ * overstate what was allocated. */
 void mt_build_workspace_recycle(mt_build_workspace *workspace, mt_mesh *mesh)
 {
     if (mesh && workspace) {
         size_t he_words = mesh->cap_half_edges ? 3 * (size_t)mesh->cap_half_edges
                                                : 3 * (size_t)mesh->num_half_edges +
                                                      2 * MT__HE_STAGGER / sizeof(uint32_t);
-        size_t verts = capacity_or(mesh->cap_verts, mesh->num_verts_internal);
-        size_t position_verts = capacity_or(mesh->cap_verts, mesh->num_verts);
+        size_t verts = mt__cap_or(mesh->cap_verts, mesh->num_verts_internal);
+        size_t position_verts = mt__cap_or(mesh->cap_verts, mesh->num_verts);
         keep_array(workspace, mesh->he_head, he_words * sizeof(uint32_t));
         keep_array(workspace, mesh->face_he,
-                   capacity_or(mesh->cap_faces, mesh->num_faces) * sizeof(uint32_t));
+                   mt__cap_or(mesh->cap_faces, mesh->num_faces) * sizeof(uint32_t));
         keep_array(workspace, mesh->vert_he, verts * sizeof(uint32_t));
         keep_array(workspace, mesh->positions, position_verts * 3 * sizeof(double));
         mesh->he_head = mesh->he_next = mesh->he_face = NULL;

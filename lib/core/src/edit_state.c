@@ -24,11 +24,6 @@ void mt__edit_state_free(mt__edit_state *s)
     mt__free(s);
 }
 
-static uint32_t cap_or(uint32_t cap, uint32_t n)
-{
-    return cap ? cap : n;
-}
-
 static uint32_t grown(uint32_t cap, uint32_t need, uint32_t limit)
 {
     uint64_t c = (uint64_t)cap * 2;
@@ -42,7 +37,7 @@ static uint32_t grown(uint32_t cap, uint32_t need, uint32_t limit)
  * layout of the build, so mt_mesh_destroy frees it through he_head). */
 static mt_status grow_half_edges(mt_mesh *m, uint32_t need)
 {
-    uint32_t cap = cap_or(m->cap_half_edges, m->num_half_edges);
+    uint32_t cap = mt__cap_or(m->cap_half_edges, m->num_half_edges);
     if (need <= cap) return MT_OK;
     if (need > MT__MAX_HALF_EDGES) return MT_ERR_TOO_LARGE;
     cap = grown(cap, need, MT__MAX_HALF_EDGES);
@@ -64,7 +59,7 @@ static mt_status grow_half_edges(mt_mesh *m, uint32_t need)
 
 static mt_status grow_faces(mt_mesh *m, uint32_t need)
 {
-    uint32_t cap = cap_or(m->cap_faces, m->num_faces);
+    uint32_t cap = mt__cap_or(m->cap_faces, m->num_faces);
     if (need <= cap) return MT_OK;
     if (need > MT__MAX_IDS) return MT_ERR_TOO_LARGE;
     cap = grown(cap, need, MT__MAX_IDS);
@@ -80,7 +75,7 @@ static mt_status grow_faces(mt_mesh *m, uint32_t need)
  * the same contents. */
 static mt_status grow_verts(mt_mesh *m, mt__edit_state *s, uint32_t need)
 {
-    uint32_t cap = cap_or(m->cap_verts, m->num_verts_internal);
+    uint32_t cap = mt__cap_or(m->cap_verts, m->num_verts_internal);
     if (need <= cap) return MT_OK;
     if (need > MT__MAX_IDS) return MT_ERR_TOO_LARGE;
     cap = grown(cap, need, MT__MAX_IDS);
@@ -309,7 +304,7 @@ mt_status mt__edit_delete_vert(mt__edit *e, uint32_t v)
     mt_mesh *m = e->m;
     mt__edit_state *s = e->s;
     if (!s->vert_deleted) {
-        s->vert_deleted = mt__calloc(cap_or(m->cap_verts, m->num_verts_internal), 1);
+        s->vert_deleted = mt__calloc(mt__cap_or(m->cap_verts, m->num_verts_internal), 1);
         if (!s->vert_deleted) return MT_ERR_NOMEM;
     }
     mt__edit_set(e, MT__A_DEL, v, 1);

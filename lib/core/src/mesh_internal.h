@@ -102,6 +102,14 @@ mt_status mt__fail(mt_diag *diag, mt_status status, uint32_t element, const char
  * the block drop the gap (cap_half_edges). */
 #define MT__HE_STAGGER (4096 + 3 * 64)
 
+/* Length an array of the mesh was allocated for: the capacity an edit grew
+ * it to (cap_half_edges, cap_faces, cap_verts), else its count. Edits raise a
+ * capacity only once every array it covers has been grown. */
+static inline uint32_t mt__cap_or(uint32_t capacity, uint32_t count)
+{
+    return capacity ? capacity : count;
+}
+
 /* Allocation (alloc.c): plain malloc family with a test hook that makes the
  * Nth allocation fail. Sizes of 0 allocate 1 byte so NULL always means failure. */
 void *mt__malloc(size_t bytes);
