@@ -12,17 +12,6 @@
 
 #include "build_internal.h"
 
-mt_status mt__push_defect(mt__vec *defects, mt_defect_kind kind, uint32_t x, uint32_t y, uint32_t z)
-{
-    mt_defect d = {(uint32_t)kind, x, y, z};
-    return mt__vec_push(defects, &d);
-}
-
-mt_status mt__add_defect(mt__build *b, mt_defect_kind kind, uint32_t x, uint32_t y, uint32_t z)
-{
-    return mt__push_defect(&b->defects, kind, x, y, z);
-}
-
 static int compare_u32(const void *pa, const void *pb)
 {
     uint32_t a = *(const uint32_t *)pa, b = *(const uint32_t *)pb;

@@ -230,7 +230,7 @@ static inline void mt__uf_union(uint32_t *parent, uint32_t x, uint32_t y)
         parent[x] = y;
 }
 
-/* Adds a defect entry to a list; MT_ERR_NOMEM on failure. */
+/* Adds a defect entry to a list; MT_ERR_NOMEM on failure (build_defects.c). */
 mt_status mt__push_defect(mt__vec *defects, mt_defect_kind kind, uint32_t x, uint32_t y,
                           uint32_t z);
 

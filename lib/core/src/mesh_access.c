@@ -1,9 +1,15 @@
-/* Read access to a built mesh: the caller's counts, positions, the raw view,
- * and the two look-ups the queries need where the structure is not manifold
- * (the copies of a caller vertex, the bundle of an internal edge). Constant
- * time, or a binary search over the few copied vertices and bundled edges. */
+/* Read access to a built mesh: its report, the caller's counts, positions,
+ * the raw view, and the two look-ups the queries need where the structure is
+ * not manifold (the copies of a caller vertex, the bundle of an internal
+ * edge). Constant time, or a binary search over the few copied vertices and
+ * bundled edges. */
 #include "mesh_internal.h"
 #include "meshtopo/mesh.h"
+
+const mt_report *mt_mesh_report(const mt_mesh *mesh)
+{
+    return mesh ? &mesh->report : NULL;
+}
 
 uint32_t mt_mesh_num_verts(const mt_mesh *mesh)
 {

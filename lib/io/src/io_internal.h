@@ -121,6 +121,13 @@ static inline mt__num mt__parse_index(const unsigned char *s, size_t len, int64_
  * allowed) with a value that fits in 64 bits. */
 mt__num mt__parse_count(const unsigned char *s, size_t len, uint64_t *out);
 
+/* Shortest of %.15g, %.16g, %.17g that reads back to v; "nan", "inf" and
+ * "-inf" for non-finite values. Writes a NUL-terminated string of at most
+ * 31 characters into buf and returns its length. Needs the C locale. */
+size_t mt__format_double(double v, char *buf);
+/* Decimal text of v into buf (at least 21 bytes); returns its length. */
+size_t mt__format_i64(int64_t v, char *buf);
+
 /* Locale: number text is always read and written with '.' as the decimal
  * point, whatever the process locale, by switching this thread to the C
  * locale for the duration of a call. */
@@ -227,13 +234,6 @@ void mt__sink_write(mt__sink *s, const void *data, size_t n);
 mt_status mt__sink_close(mt__sink *s, mt_diag *diag);
 /* Removes the temporary file and frees the sink. */
 void mt__sink_abort(mt__sink *s);
-
-/* Shortest of %.15g, %.16g, %.17g that reads back to v; "nan", "inf" and
- * "-inf" for non-finite values. Writes a NUL-terminated string of at most
- * 31 characters into buf and returns its length. Needs the C locale. */
-size_t mt__format_double(double v, char *buf);
-/* Decimal text of v into buf (at least 21 bytes); returns its length. */
-size_t mt__format_i64(int64_t v, char *buf);
 
 /* Writers: list is checked (mt_face_list_check) and has at most
  * MT__IO_MAX_VERTS vertices. */

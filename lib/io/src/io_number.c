@@ -1,10 +1,13 @@
-/* Number text of meshtopo::io. Coordinates: plain decimals with at most 19
- * significant digits and a small exponent are converted exactly (Clinger's
- * fast path: both operands are exact doubles, so one IEEE multiplication or
- * division rounds correctly); anything else goes to strtod, run under the C
- * locale so that '.' is always the decimal point. Counts are plain digits. */
+/* Number text of meshtopo::io, read and written. Coordinates: plain decimals
+ * with at most 19 significant digits and a small exponent are read exactly
+ * (Clinger's fast path: one exact IEEE multiplication or division); anything
+ * else goes to strtod. Doubles are written as the shortest of %.15g/%.16g/
+ * %.17g that reads back bit for bit; counts are plain digits. All under the C
+ * locale, so that '.' is always the decimal point. */
 #include <errno.h>
 #include <float.h>
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "io_internal.h"
@@ -126,6 +129,47 @@ mt__num mt__parse_count(const unsigned char *s, size_t len, uint64_t *out)
     if (big) return MT__NUM_RANGE;
     *out = v;
     return MT__NUM_OK;
+}
+
+size_t mt__format_i64(int64_t v, char *buf)
+{
+    char tmp[24];
+    size_t n = 0, o = 0;
+    uint64_t u = v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
+    do {
+        tmp[n++] = (char)('0' + u % 10);
+        u /= 10;
+    } while (u);
+    if (v < 0) buf[o++] = '-';
+    while (n) buf[o++] = tmp[--n];
+    buf[o] = '\0';
+    return o;
+}
+
+size_t mt__format_double(double v, char *buf)
+{
+    if (isnan(v)) {
+        memcpy(buf, signbit(v) ? "-nan" : "nan", signbit(v) ? 5 : 4);
+        return signbit(v) ? 4 : 3;
+    }
+    if (isinf(v)) {
+        memcpy(buf, v < 0 ? "-inf" : "inf", v < 0 ? 5 : 4);
+        return v < 0 ? 4 : 3;
+    }
+    /* Small integers (the common 0, 1, -2 ...) print exactly as integers. */
+    if (fabs(v) < 1e15 && v == (double)(int64_t)v && !(v == 0 && signbit(v)))
+        return mt__format_i64((int64_t)v, buf);
+    int n = 0;
+    for (int precision = 15; precision <= 17; precision++) {
+        n = snprintf(buf, 32, "%.*g", precision, v);
+        if (precision == 17 || n <= 0) break;
+        /* Read it back exactly: the fast exact path, else strtod. */
+        double back;
+        const unsigned char *text = (const unsigned char *)buf;
+        if (mt__scan_decimal(text, text + n, &back) != (size_t)n) back = strtod(buf, NULL);
+        if (back == v) break;
+    }
+    return n > 0 ? (size_t)n : 0;
 }
 
 void mt__c_locale_enter(mt__locale_state *state)
