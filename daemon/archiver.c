@@ -1,16 +1,22 @@
-/* meshtopod's archive: the catalog of archived versions (a sorted array by
- * mesh id then version, one mutex), the writes (sync on the build worker,
- * async through one writer thread and a bounded queue), the loads (preload at
- * start, on demand on a worker) and the LRU eviction that keeps the store
- * within --memory-budget. Only archived versions are ever evicted, so an
- * eviction loses nothing: the next query loads the version again. */
+/* meshtopod's archive (archiver.h): the catalog of archived versions (a
+ * sorted array by mesh id then version, one mutex), the writes (sync on the
+ * build worker, async through one writer thread and a bounded queue), the
+ * loads (preload at start; on demand through the store's backing, on the
+ * worker that fetches) and the LRU eviction that keeps the store within
+ * --memory-budget. Only archived versions are ever evicted, so an eviction
+ * loses nothing: the next query loads the version again. Threads: the build
+ * workers (stores, loads), the writer thread, the LCM thread (the backing's
+ * catalog look-ups and listings, the heartbeat's stats). */
 #include "archiver.h"
 
 #include <inttypes.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
 #include "log.h"
 #include "meshtopo/archive.h"
 
@@ -35,8 +41,10 @@ typedef struct write_job {
     mt_face_list list;     /* a copy of the submitted face list */
 } write_job;
 
-typedef struct mtd_archiver {
-    mt_archive *archive;
+struct mtd_archiver {
+    mtd_store *store;         /* not owned */
+    mtd_error_log *error_log; /* not owned */
+    mt_archive *archive;      /* NULL without --archive */
     mtd_archive_mode mode;
     uint64_t budget;
 
@@ -54,27 +62,24 @@ typedef struct mtd_archiver {
     pthread_t writer;
 
     atomic_int_fast64_t writes, errors, loads, evictions;
-} mtd_archiver;
+};
 
-/* The loads a worker runs for a deferred query. */
-typedef struct load_job {
-    mtd_daemon *daemon;
-    meshtopo_query_t *query;
-    uint32_t version;
-} load_job;
-
-/* Set while a worker answers a query whose version it has just loaded: that
- * answer must not be deferred again. */
-static _Thread_local bool answering_loaded;
-
-static void note_error(mtd_daemon *d, const char *what, const char *message)
+/* Logs and counts an archive error that a reply to its requester reports
+ * (and notes in the error log). */
+static void count_error(mtd_archiver *a, const char *what, const char *message)
 {
     mtd_log(MTD_LOG_ERROR, what, "error=%s", message);
-    atomic_fetch_add(&d->archiver->errors, 1);
-    pthread_mutex_lock(&d->error_lock);
-    snprintf(d->last_error, sizeof d->last_error, "%.40s: %.400s", what, message);
-    d->last_error_utime = mtd_now_utime();
-    pthread_mutex_unlock(&d->error_lock);
+    atomic_fetch_add(&a->errors, 1);
+}
+
+/* count_error, for an archive error nobody is answered about: noted in the
+ * error log for the heartbeat. */
+static void note_error(mtd_archiver *a, const char *what, const char *message)
+{
+    count_error(a, what, message);
+    char text[MTD_ERROR_MAX];
+    snprintf(text, sizeof text, "%.40s: %.400s", what, message);
+    mtd_error_log_note(a->error_log, text);
 }
 
 /* ---- the catalog (caller holds a->lock) ----------------------------------- */
@@ -151,15 +156,14 @@ static bool cat_insert(mtd_archiver *a, const cat_entry *e)
 
 /* Drops the least recently used resident archived versions from the store
  * until it holds no more than the budget. */
-static void enforce_budget(mtd_daemon *d)
+static void enforce_budget(mtd_archiver *a)
 {
-    mtd_archiver *a = d->archiver;
-    if (!a || !a->budget) return;
+    if (!a->budget) return;
     for (;;) {
         mtd_store_totals totals;
-        mtd_store_get_totals(d->store, &totals);
+        mtd_store_get_totals(a->store, &totals);
         if (totals.memory_bytes <= a->budget) return;
-        char id[MTD_MESH_ID_MAX + 1];
+        char id[MESHTOPO_MESH_T_MESH_ID_MAX + 1];
         uint32_t version = 0;
         pthread_mutex_lock(&a->lock);
         cat_entry *victim = NULL;
@@ -173,7 +177,7 @@ static void enforce_budget(mtd_daemon *d)
         }
         pthread_mutex_unlock(&a->lock);
         if (!victim) return; /* nothing archived is in memory: the rest stays */
-        if (mtd_store_remove(d->store, id, version, NULL) == MT_OK) {
+        if (mtd_store_remove(a->store, id, version, NULL) == MT_OK) {
             atomic_fetch_add(&a->evictions, 1);
             mtd_log(MTD_LOG_DEBUG, "evicted", "mesh_id=%s version=%" PRIu32, id, version);
         }
@@ -195,10 +199,9 @@ static void touch(mtd_archiver *a, const char *id, uint32_t version)
 /* ---- writing ------------------------------------------------------------- */
 
 /* Archives one stored version and adds it to the catalog. */
-static mt_status write_version(mtd_daemon *d, const mtd_mesh_info *info, const mt_face_list *list,
+static mt_status write_version(mtd_archiver *a, const mtd_mesh_info *info, const mt_face_list *list,
                                const mt_mesh *mesh, bool resident, mt_diag *diag)
 {
-    mtd_archiver *a = d->archiver;
     mt_archive_meta meta = {.mesh_id = info->id,
                             .version = info->version,
                             .utime = info->utime,
@@ -232,8 +235,7 @@ static mt_status write_version(mtd_daemon *d, const mtd_mesh_info *info, const m
 
 static void *writer_main(void *arg)
 {
-    mtd_daemon *d = arg;
-    mtd_archiver *a = d->archiver;
+    mtd_archiver *a = arg;
     for (;;) {
         pthread_mutex_lock(&a->queue_lock);
         while (!a->head && !a->writer_stop) pthread_cond_wait(&a->queue_filled, &a->queue_lock);
@@ -246,11 +248,11 @@ static void *writer_main(void *arg)
         if (!job) return NULL; /* stopping and the queue is empty */
         const mtd_mesh_info *info = mtd_entry_info(job->entry);
         mt_diag diag;
-        if (write_version(d, info, &job->list, mtd_entry_mesh(job->entry), true, &diag) != MT_OK) {
+        if (write_version(a, info, &job->list, mtd_entry_mesh(job->entry), true, &diag) != MT_OK) {
             char text[MTD_ERROR_MAX];
             snprintf(text, sizeof text, "mesh '%.255s' version %" PRIu32 ": %.200s", info->id,
                      info->version, diag.message);
-            note_error(d, "archive_write", text);
+            note_error(a, "archive_write", text);
         }
         mtd_entry_release(job->entry);
         mt_face_list_free(&job->list);
@@ -259,15 +261,14 @@ static void *writer_main(void *arg)
         a->queued--;
         pthread_cond_broadcast(&a->queue_drained);
         pthread_mutex_unlock(&a->queue_lock);
-        enforce_budget(d);
+        enforce_budget(a);
     }
 }
 
 /* Queues a stored version for the writer, waiting for room. */
-static mt_status enqueue_write(mtd_daemon *d, mtd_mesh_entry *entry, const mt_face_list *list,
+static mt_status enqueue_write(mtd_archiver *a, mtd_mesh_entry *entry, const mt_face_list *list,
                                mt_diag *diag)
 {
-    mtd_archiver *a = d->archiver;
     write_job *job = calloc(1, sizeof *job);
     if (!job) return MT_ERR_NOMEM;
     mt_status s =
@@ -299,18 +300,17 @@ static mt_status enqueue_write(mtd_daemon *d, mtd_mesh_entry *entry, const mt_fa
     return MT_OK;
 }
 
-int32_t mtd_archiver_store(mtd_daemon *d, const meshtopo_mesh_t *m, const mt_face_list *list,
+int32_t mtd_archiver_store(mtd_archiver *a, const meshtopo_mesh_t *m, const mt_face_list *list,
                            mt_mesh *mesh, uint64_t content_hash, uint32_t *out_version,
                            mtd_mesh_entry **out_entry, char *error, size_t size)
 {
-    mtd_archiver *a = d->archiver;
     mtd_mesh_meta meta = {.source = m->source, .utime = m->utime, .content_hash = content_hash};
     mt_diag diag;
-    bool sync = a && a->mode == MTD_ARCHIVE_SYNC;
+    bool sync = a->archive && a->mode == MTD_ARCHIVE_SYNC;
     if (sync) {
         /* Write first, under a reserved number: the store sees the version
          * only once it is durable. A failed write leaves a gap. */
-        mt_status s = mtd_store_reserve_version(d->store, m->mesh_id, 0, &meta.version, &diag);
+        mt_status s = mtd_store_reserve_version(a->store, m->mesh_id, 0, &meta.version, &diag);
         if (s != MT_OK) {
             snprintf(error, size, "not stored: %.400s", diag.message);
             return s == MT_ERR_TOO_LARGE ? MESHTOPO_STATUS_CODE_T_TOO_LARGE
@@ -322,14 +322,14 @@ int32_t mtd_archiver_store(mtd_daemon *d, const meshtopo_mesh_t *m, const mt_fac
                               .source = m->source,
                               .utime = m->utime,
                               .content_hash = content_hash};
-        s = write_version(d, &info, list, mesh, false, &diag);
+        s = write_version(a, &info, list, mesh, false, &diag);
         if (s != MT_OK) {
             snprintf(error, size, "not archived, so not stored: %.400s", diag.message);
-            note_error(d, "archive_write", error);
+            count_error(a, "archive_write", error);
             return MESHTOPO_STATUS_CODE_T_ARCHIVE_FAILED;
         }
     }
-    mt_status s = mtd_store_add(d->store, m->mesh_id, mesh, &meta, out_version, out_entry, &diag);
+    mt_status s = mtd_store_add(a->store, m->mesh_id, mesh, &meta, out_version, out_entry, &diag);
     if (s != MT_OK) {
         snprintf(error, size, "not stored: %.400s", diag.message);
         if (sync) {
@@ -353,13 +353,14 @@ int32_t mtd_archiver_store(mtd_daemon *d, const meshtopo_mesh_t *m, const mt_fac
                                      : MESHTOPO_STATUS_CODE_T_INTERNAL;
     }
     if (sync) touch(a, m->mesh_id, *out_version);
-    if (a && a->mode == MTD_ARCHIVE_ASYNC && enqueue_write(d, *out_entry, list, &diag) != MT_OK) {
+    if (a->archive && a->mode == MTD_ARCHIVE_ASYNC &&
+        enqueue_write(a, *out_entry, list, &diag) != MT_OK) {
         char text[MTD_ERROR_MAX];
         snprintf(text, sizeof text, "mesh '%.255s' version %" PRIu32 " not queued: out of memory",
                  m->mesh_id, *out_version);
-        note_error(d, "archive_write", text);
+        note_error(a, "archive_write", text);
     }
-    enforce_budget(d);
+    enforce_budget(a);
     return MESHTOPO_STATUS_CODE_T_OK;
 }
 
@@ -367,11 +368,10 @@ int32_t mtd_archiver_store(mtd_daemon *d, const meshtopo_mesh_t *m, const mt_fac
 
 /* Loads version `version` of id into the store (reserved: its number was
  * handed out before). MT_OK also when it is there already. */
-static mt_status load_version(mtd_daemon *d, const char *id, uint32_t version, mt_diag *diag)
+static mt_status load_version(mtd_archiver *a, const char *id, uint32_t version, mt_diag *diag)
 {
-    mtd_archiver *a = d->archiver;
     mtd_mesh_entry *held = NULL;
-    if (mtd_store_acquire(d->store, id, version, &held, NULL) == MT_OK) {
+    if (mtd_store_acquire(a->store, id, version, &held, NULL) == MT_OK) {
         mtd_entry_release(held);
         return MT_OK;
     }
@@ -390,11 +390,11 @@ static mt_status load_version(mtd_daemon *d, const char *id, uint32_t version, m
                           .content_hash = record.content_hash,
                           .version = version,
                           .reserved = true};
-    s = mtd_store_add(d->store, id, mesh, &meta, NULL, NULL, diag);
+    s = mtd_store_add(a->store, id, mesh, &meta, NULL, NULL, diag);
     if (s != MT_OK) {
         mt_mesh_destroy(mesh);
         /* A concurrent load of the same version got there first. */
-        if (mtd_store_acquire(d->store, id, version, &held, NULL) == MT_OK) {
+        if (mtd_store_acquire(a->store, id, version, &held, NULL) == MT_OK) {
             mtd_entry_release(held);
             s = MT_OK;
         }
@@ -406,91 +406,46 @@ static mt_status load_version(mtd_daemon *d, const char *id, uint32_t version, m
     return s;
 }
 
-static void load_job_free(load_job *job)
+/* ---- the store's backing ------------------------------------------------ */
+
+static uint32_t backing_highest(void *ctx, const char *id)
 {
-    meshtopo_query_t_destroy(job->query);
-    free(job);
+    mtd_archiver *a = ctx;
+    pthread_mutex_lock(&a->lock);
+    uint32_t highest = cat_highest(a, id);
+    pthread_mutex_unlock(&a->lock);
+    return highest;
 }
 
-static void load_job_run(void *arg, bool cancelled)
+static bool backing_keeps(void *ctx, const char *id, uint32_t version)
 {
-    load_job *job = arg;
-    mtd_daemon *d = job->daemon;
-    const meshtopo_query_t *q = job->query;
-    if (cancelled) {
-        mtd_reqcache_abandon(d->cache, q->reply_channel, q->request_id);
-        mtd_send_reply_error(d, q->reply_channel, q->request_id, q->mesh_id, q->kind, false,
-                             MESHTOPO_STATUS_CODE_T_BUSY,
-                             "the daemon is shutting down; the mesh was not loaded");
-        load_job_free(job);
-        return;
-    }
-    mt_diag diag;
-    mt_status s = load_version(d, q->mesh_id, job->version, &diag);
+    mtd_archiver *a = ctx;
+    pthread_mutex_lock(&a->lock);
+    bool archived = cat_find(a, id, version) != NULL;
+    pthread_mutex_unlock(&a->lock);
+    return archived;
+}
+
+static mt_status backing_load(void *ctx, const char *id, uint32_t version, mt_diag *diag)
+{
+    mtd_archiver *a = ctx;
+    mt_status s = load_version(a, id, version, diag);
     if (s != MT_OK) {
+        /* The query that asked is answered with this text (ARCHIVE_FAILED). */
         char text[MTD_ERROR_MAX];
         snprintf(text, sizeof text, "mesh '%.200s' version %" PRIu32 " cannot be loaded: %.250s",
-                 q->mesh_id, job->version, diag.message);
-        note_error(d, "archive_load", text);
-        mtd_send_reply_error(d, q->reply_channel, q->request_id, q->mesh_id, q->kind, true,
-                             MESHTOPO_STATUS_CODE_T_ARCHIVE_FAILED, text);
-        load_job_free(job);
-        return;
-    }
-    answering_loaded = true;
-    mtd_query_handle(d, q);
-    answering_loaded = false;
-    load_job_free(job);
-    enforce_budget(d);
-}
-
-mt_status mtd_archiver_acquire(mtd_daemon *d, const meshtopo_query_t *q, mtd_mesh_entry **out_entry,
-                               bool *out_deferred, mt_diag *diag)
-{
-    *out_deferred = false;
-    mtd_archiver *a = d->archiver;
-    if (!a) return mtd_store_acquire(d->store, q->mesh_id, (uint32_t)q->version, out_entry, diag);
-    uint32_t version = (uint32_t)q->version;
-    if (version == 0 && mtd_mesh_id_check(q->mesh_id, NULL) == MT_OK) {
-        pthread_mutex_lock(&a->lock);
-        uint32_t archived = cat_highest(a, q->mesh_id);
-        pthread_mutex_unlock(&a->lock);
-        mtd_mesh_entry *latest = NULL;
-        if (mtd_store_acquire(d->store, q->mesh_id, 0, &latest, NULL) == MT_OK &&
-            mtd_entry_info(latest)->version >= archived) {
-            touch(a, q->mesh_id, mtd_entry_info(latest)->version);
-            *out_entry = latest;
-            if (diag) mt_diag_clear(diag);
-            return MT_OK;
-        }
-        mtd_entry_release(latest);
-        version = archived; /* still 0 when nothing is archived either */
-    }
-    mt_status s = mtd_store_acquire(d->store, q->mesh_id, version, out_entry, diag);
-    if (s == MT_OK) {
-        touch(a, q->mesh_id, mtd_entry_info(*out_entry)->version);
+                 id, version, diag->message);
+        count_error(a, "archive_load", text);
+        snprintf(diag->message, sizeof diag->message, "%s", text);
         return s;
     }
-    if (s != MT_ERR_NOT_FOUND || version == 0 || answering_loaded) return s;
-    pthread_mutex_lock(&a->lock);
-    bool archived = cat_find(a, q->mesh_id, version) != NULL;
-    pthread_mutex_unlock(&a->lock);
-    if (!archived) return s;
-    load_job *job = calloc(1, sizeof *job);
-    meshtopo_query_t *copy = job ? meshtopo_query_t_copy(q) : NULL;
-    if (!copy) {
-        free(job);
-        return MT_ERR_NOMEM;
-    }
-    job->daemon = d;
-    job->query = copy;
-    job->version = version;
-    if (mtd_pool_submit(d->pool, load_job_run, job) != MTD_SUBMIT_OK) {
-        load_job_free(job);
-        return MT_ERR_NOT_FOUND; /* the caller answers */
-    }
-    *out_deferred = true;
-    return MT_ERR_NOT_FOUND;
+    enforce_budget(a);
+    return MT_OK;
+}
+
+static void backing_fetched(void *ctx, const char *id, uint32_t version)
+{
+    touch(ctx, id, version);
 }
 
 /* ---- listing and stats --------------------------------------------------- */
@@ -509,22 +464,16 @@ static int row_cmp(const void *pa, const void *pb)
     return x->info.version < y->info.version ? -1 : x->info.version > y->info.version;
 }
 
-mt_status mtd_archiver_list(mtd_daemon *d, mtd_store_listing **out_listing)
+static mt_status backing_list(void *ctx, const mtd_store_listing *held,
+                              mtd_store_listing **out_listing)
 {
+    mtd_archiver *a = ctx;
     *out_listing = NULL;
-    mtd_store_listing *held = NULL;
-    mt_status s = mtd_store_list(d->store, &held);
-    mtd_archiver *a = d->archiver;
-    if (s != MT_OK || !a) {
-        *out_listing = held;
-        return s;
-    }
     pthread_mutex_lock(&a->lock);
     size_t n = held->totals.versions + a->count;
     list_row *rows = calloc(n + 1, sizeof *rows);
     if (!rows) {
         pthread_mutex_unlock(&a->lock);
-        mtd_store_listing_free(held);
         return MT_ERR_NOMEM;
     }
     size_t k = 0;
@@ -538,7 +487,10 @@ mt_status mtd_archiver_list(mtd_daemon *d, mtd_store_listing **out_listing)
                                 .version = e->version,
                                 .source = e->source,
                                 .utime = e->utime,
-                                .content_hash = e->content_hash}};
+                                .content_hash = e->content_hash,
+                                .num_verts = (uint32_t)e->num_verts,
+                                .num_faces = (uint32_t)e->num_faces,
+                                .num_defects = (uint64_t)e->num_defects}};
     }
     /* Stable order with held rows first among equals is not needed: keep the
      * held row (it has memory_bytes) by preferring a non-zero memory_bytes. */
@@ -587,33 +539,15 @@ mt_status mtd_archiver_list(mtd_daemon *d, mtd_store_listing **out_listing)
     }
     pthread_mutex_unlock(&a->lock);
     free(rows);
-    mtd_store_listing_free(held);
     if (!out) return MT_ERR_NOMEM;
     *out_listing = out;
     return MT_OK;
 }
 
-bool mtd_archiver_counts(mtd_daemon *d, const char *mesh_id, uint32_t version, int32_t *out_verts,
-                         int32_t *out_faces, int64_t *out_defects)
+void mtd_archiver_stats(mtd_archiver *a, meshtopo_status_t *st)
 {
-    mtd_archiver *a = d->archiver;
-    if (!a) return false;
-    pthread_mutex_lock(&a->lock);
-    const cat_entry *e = cat_find(a, mesh_id, version);
-    if (e) {
-        *out_verts = e->num_verts;
-        *out_faces = e->num_faces;
-        *out_defects = e->num_defects;
-    }
-    pthread_mutex_unlock(&a->lock);
-    return e != NULL;
-}
-
-void mtd_archiver_stats(mtd_daemon *d, meshtopo_status_t *st)
-{
-    mtd_archiver *a = d->archiver;
-    st->memory_budget = (int64_t)d->config.memory_budget;
-    if (!a) return;
+    st->memory_budget = (int64_t)a->budget;
+    if (!a->archive) return;
     pthread_mutex_lock(&a->lock);
     st->archive_versions = (int32_t)a->count;
     st->archive_bytes = (int64_t)a->bytes;
@@ -627,27 +561,12 @@ void mtd_archiver_stats(mtd_daemon *d, meshtopo_status_t *st)
     st->archive_evictions = atomic_load(&a->evictions);
 }
 
-/* ---- start and stop ------------------------------------------------------ */
+/* ---- open and close ------------------------------------------------------ */
 
-mt_status mtd_archiver_start(mtd_daemon *d, mt_diag *diag)
+/* Lists the archive into the catalog, reserves every archived version number
+ * in the store, preloads when asked and starts the async writer. */
+static mt_status open_archive(mtd_archiver *a, const mtd_config *c, mt_diag *diag)
 {
-    const mtd_config *c = &d->config;
-    if (!c->archive_dir[0]) {
-        if (c->memory_budget)
-            mtd_log(MTD_LOG_WARN, "archive",
-                    "--memory-budget without --archive: nothing can be evicted");
-        return MT_OK;
-    }
-    mtd_archiver *a = calloc(1, sizeof *a);
-    if (!a) return MT_ERR_NOMEM;
-    a->mode = c->archive_mode;
-    a->budget = c->memory_budget;
-    a->capacity = c->archive_queue ? c->archive_queue : 1;
-    pthread_mutex_init(&a->lock, NULL);
-    pthread_mutex_init(&a->queue_lock, NULL);
-    pthread_cond_init(&a->queue_filled, NULL);
-    pthread_cond_init(&a->queue_drained, NULL);
-    d->archiver = a;
     mt_archive_options options = {.create = a->mode != MTD_ARCHIVE_OFF,
                                   .read_only = a->mode == MTD_ARCHIVE_OFF};
     mt_status s = mt_archive_open(c->archive_dir, &options, &a->archive, diag);
@@ -660,7 +579,7 @@ mt_status mtd_archiver_start(mtd_daemon *d, mt_diag *diag)
         const mt_archive_entry *e = &listing.entries[i];
         if (e->status != MT_OK) {
             bad++;
-            note_error(d, "archive_list", e->diag.message);
+            note_error(a, "archive_list", e->diag.message);
             continue;
         }
         cat_entry ce = {.id = e->mesh_id,
@@ -676,7 +595,7 @@ mt_status mtd_archiver_start(mtd_daemon *d, mt_diag *diag)
         bool ok = cat_insert(a, &ce);
         pthread_mutex_unlock(&a->lock);
         if (!ok ||
-            mtd_store_reserve_version(d->store, e->mesh_id, e->version, NULL, diag) != MT_OK) {
+            mtd_store_reserve_version(a->store, e->mesh_id, e->version, NULL, diag) != MT_OK) {
             mt_archive_listing_free(&listing);
             return MT_ERR_NOMEM;
         }
@@ -690,29 +609,65 @@ mt_status mtd_archiver_start(mtd_daemon *d, mt_diag *diag)
         size_t loaded = 0;
         for (size_t i = 0; i < a->count; i++) {
             mtd_store_totals totals;
-            mtd_store_get_totals(d->store, &totals);
+            mtd_store_get_totals(a->store, &totals);
             if (a->budget && totals.memory_bytes >= a->budget) break;
             mt_diag load_diag;
-            if (load_version(d, a->entries[i].id, a->entries[i].version, &load_diag) != MT_OK) {
-                note_error(d, "archive_load", load_diag.message);
+            if (load_version(a, a->entries[i].id, a->entries[i].version, &load_diag) != MT_OK) {
+                note_error(a, "archive_load", load_diag.message);
                 continue;
             }
             touch(a, a->entries[i].id, a->entries[i].version);
             loaded++;
         }
-        enforce_budget(d);
+        enforce_budget(a);
         mtd_log(MTD_LOG_INFO, "preload", "loaded=%zu of %zu", loaded, a->count);
     }
+    mtd_store_backing backing = {.ctx = a,
+                                 .highest = backing_highest,
+                                 .keeps = backing_keeps,
+                                 .load = backing_load,
+                                 .fetched = backing_fetched,
+                                 .list = backing_list};
+    mtd_store_set_backing(a->store, &backing);
     if (a->mode == MTD_ARCHIVE_ASYNC) {
-        if (pthread_create(&a->writer, NULL, writer_main, d) != 0) return MT_ERR_NOMEM;
+        if (pthread_create(&a->writer, NULL, writer_main, a) != 0) return MT_ERR_NOMEM;
         a->writer_started = true;
     }
     return MT_OK;
 }
 
-void mtd_archiver_stop(mtd_daemon *d)
+mt_status mtd_archiver_open(const mtd_config *config, mtd_store *store, mtd_error_log *errors,
+                            mtd_archiver **out_archiver, mt_diag *diag)
 {
-    mtd_archiver *a = d ? d->archiver : NULL;
+    *out_archiver = NULL;
+    mtd_archiver *a = calloc(1, sizeof *a);
+    if (!a) return MT_ERR_NOMEM;
+    a->store = store;
+    a->error_log = errors;
+    a->mode = config->archive_mode;
+    a->budget = config->memory_budget;
+    a->capacity = config->archive_queue ? config->archive_queue : 1;
+    pthread_mutex_init(&a->lock, NULL);
+    pthread_mutex_init(&a->queue_lock, NULL);
+    pthread_cond_init(&a->queue_filled, NULL);
+    pthread_cond_init(&a->queue_drained, NULL);
+    if (!config->archive_dir[0]) {
+        if (config->memory_budget)
+            mtd_log(MTD_LOG_WARN, "archive",
+                    "--memory-budget without --archive: nothing can be evicted");
+    } else {
+        mt_status s = open_archive(a, config, diag);
+        if (s != MT_OK) {
+            mtd_archiver_destroy(a);
+            return s;
+        }
+    }
+    *out_archiver = a;
+    return MT_OK;
+}
+
+void mtd_archiver_stop(mtd_archiver *a)
+{
     if (!a) return;
     pthread_mutex_lock(&a->queue_lock);
     bool join = a->writer_started && !a->writer_stop;
@@ -723,11 +678,10 @@ void mtd_archiver_stop(mtd_daemon *d)
     if (join) pthread_join(a->writer, NULL);
 }
 
-void mtd_archiver_free(mtd_daemon *d)
+void mtd_archiver_destroy(mtd_archiver *a)
 {
-    mtd_archiver *a = d ? d->archiver : NULL;
     if (!a) return;
-    mtd_archiver_stop(d);
+    mtd_archiver_stop(a);
     for (write_job *job = a->head, *next; job; job = next) {
         next = job->next;
         mtd_entry_release(job->entry);
@@ -745,5 +699,4 @@ void mtd_archiver_free(mtd_daemon *d)
     pthread_mutex_destroy(&a->queue_lock);
     pthread_mutex_destroy(&a->lock);
     free(a);
-    d->archiver = NULL;
 }

@@ -14,6 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "config.h"
 #include "daemon.h"
 #include "log.h"
@@ -46,16 +47,16 @@ static int install_signals(void)
 }
 
 /* Runs until a signal arrives; returns the signal number (0 on an LCM error). */
-static int run_loop(mtd_daemon *d, lcm_t *lcm)
+static int run_loop(mtd_daemon *d, lcm_t *lcm, uint32_t heartbeat_ms)
 {
-    int64_t period_us = (int64_t)d->config.heartbeat_ms * 1000;
+    int64_t period_us = (int64_t)heartbeat_ms * 1000;
     int64_t next_beat = mtd_now_utime();
     struct pollfd fds[2] = {{.fd = lcm_get_fileno(lcm), .events = POLLIN},
                             {.fd = signal_pipe[0], .events = POLLIN}};
     for (;;) {
         int64_t now = mtd_now_utime();
         if (now >= next_beat) {
-            mtd_heartbeat_publish(d);
+            mtd_daemon_tick(d);
             next_beat = now + period_us;
         }
         int timeout_ms = (int)((next_beat - now + 999) / 1000);
@@ -111,18 +112,19 @@ int main(int argc, char **argv)
     }
     mtd_config_log(&config);
     mtd_log(MTD_LOG_INFO, "start", "version=%s submit=%s query=%s instance=%s", MESHTOPO_VERSION,
-            d->submit_channel, d->query_channel, d->instance);
-    int signo = run_loop(d, lcm);
+            mtd_daemon_submit_channel(d), mtd_daemon_query_channel(d), mtd_daemon_instance(d));
+    int signo = run_loop(d, lcm, config.heartbeat_ms);
     mtd_log(MTD_LOG_INFO, "stopping", "signal=%s",
             signo == SIGINT    ? "SIGINT"
             : signo == SIGTERM ? "SIGTERM"
                                : "none (LCM error)");
     mtd_daemon_stop(d);
-    mtd_heartbeat_publish(d);
+    mtd_daemon_heartbeat(d);
+    mtd_counters counts;
+    mtd_daemon_get_counts(d, &counts);
     mtd_log(MTD_LOG_INFO, "stop",
             "submissions=%" PRId64 " builds=%" PRId64 " queries=%" PRId64 " errors=%" PRId64,
-            (int64_t)atomic_load(&d->submissions), (int64_t)atomic_load(&d->builds),
-            (int64_t)atomic_load(&d->queries), (int64_t)atomic_load(&d->errors));
+            counts.submissions, counts.builds, counts.queries, counts.errors);
     mtd_daemon_destroy(d);
     lcm_destroy(lcm);
     return signo ? 0 : 1;

@@ -25,6 +25,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "meshtopo/report.h"
+
 struct mtd_mesh_entry {
     atomic_size_t refs;
     mt_mesh *mesh;
@@ -54,6 +56,7 @@ struct mtd_store {
     size_t num_slots;
     size_t cap_slots;
     mtd_store_totals totals;
+    mtd_store_backing backing; /* all NULL without one */
 };
 
 /* ---- mesh ids ------------------------------------------------------------ */
@@ -74,45 +77,6 @@ static void diag_set(mt_diag *diag, mt_status status, uint64_t byte_offset, cons
     va_start(args, fmt);
     vsnprintf(diag->message, sizeof diag->message, fmt, args);
     va_end(args);
-}
-
-mt_status mtd_mesh_id_check(const char *id, mt_diag *diag)
-{
-    if (!id) {
-        diag_set(diag, MT_ERR_INVALID_ARG, UINT64_MAX, "mesh id is missing (NULL)");
-        return MT_ERR_INVALID_ARG;
-    }
-    if (id[0] == '\0') {
-        diag_set(diag, MT_ERR_INVALID_ARG, UINT64_MAX, "mesh id is empty");
-        return MT_ERR_INVALID_ARG;
-    }
-    size_t len = strlen(id);
-    if (len > MTD_MESH_ID_MAX) {
-        diag_set(diag, MT_ERR_INVALID_ARG, UINT64_MAX,
-                 "mesh id is %zu bytes long; the limit is %d bytes", len, MTD_MESH_ID_MAX);
-        return MT_ERR_INVALID_ARG;
-    }
-    for (size_t i = 0; i < len; i++) {
-        unsigned char c = (unsigned char)id[i];
-        if (c < 0x20 || c > 0x7e) {
-            diag_set(diag, MT_ERR_INVALID_ARG, i,
-                     "mesh id byte %zu is 0x%02x: only printable ASCII (0x20 to 0x7e) is allowed",
-                     i, c);
-            return MT_ERR_INVALID_ARG;
-        }
-        if (c == '/') {
-            diag_set(diag, MT_ERR_INVALID_ARG, i,
-                     "mesh id contains '/' at byte %zu: ids must not look like paths", i);
-            return MT_ERR_INVALID_ARG;
-        }
-        if (c == '.' && id[i + 1] == '.') {
-            diag_set(diag, MT_ERR_INVALID_ARG, i,
-                     "mesh id contains \"..\" at byte %zu: ids must not look like paths", i);
-            return MT_ERR_INVALID_ARG;
-        }
-    }
-    if (diag) mt_diag_clear(diag);
-    return MT_OK;
 }
 
 /* ---- entries ------------------------------------------------------------- */
@@ -153,7 +117,7 @@ static mtd_mesh_entry *entry_new(const mtd_store *store, const char *id, mt_mesh
                                  const mtd_mesh_meta *meta)
 {
     const char *source = meta->source ? meta->source : "";
-    size_t id_len = strlen(id); /* <= MTD_MESH_ID_MAX, checked */
+    size_t id_len = strlen(id); /* <= MESHTOPO_MESH_T_MESH_ID_MAX, checked */
     size_t source_len = strlen(source);
     size_t strings = id_len + 1;
     if (source_len > SIZE_MAX - sizeof(mtd_mesh_entry) - strings - 1) return NULL;
@@ -176,6 +140,9 @@ static mtd_mesh_entry *entry_new(const mtd_store *store, const char *id, mt_mesh
     total = mesh_bytes > SIZE_MAX - total ? SIZE_MAX : total + mesh_bytes;
     total = report_bytes > SIZE_MAX - total ? SIZE_MAX : total + report_bytes;
     e->info.memory_bytes = total;
+    e->info.num_verts = mt_mesh_num_verts(mesh);
+    e->info.num_faces = mt_mesh_num_faces(mesh);
+    e->info.num_defects = mt_mesh_report(mesh)->num_defects;
     e->on_free = store->options.on_entry_free;
     e->on_free_ctx = store->options.on_entry_free_ctx;
     e->dispose = store->options.dispose_mesh;
@@ -301,7 +268,7 @@ mt_status mtd_store_add(mtd_store *store, const char *id, mt_mesh *mesh, const m
 {
     if (out_version) *out_version = 0;
     if (out_entry) *out_entry = NULL;
-    mt_status status = mtd_mesh_id_check(id, diag);
+    mt_status status = mt_msgs_mesh_id_check(id, diag);
     if (status != MT_OK) return status;
     if (!mesh) {
         diag_set(diag, MT_ERR_INVALID_ARG, UINT64_MAX, "no mesh to add under id '%s'", id);
@@ -419,7 +386,7 @@ mt_status mtd_store_reserve_version(mtd_store *store, const char *id, uint32_t v
                                     uint32_t *out_version, mt_diag *diag)
 {
     if (out_version) *out_version = 0;
-    mt_status status = mtd_mesh_id_check(id, diag);
+    mt_status status = mt_msgs_mesh_id_check(id, diag);
     if (status != MT_OK) return status;
     pthread_mutex_lock(&store->lock);
     int found;
@@ -448,7 +415,7 @@ mt_status mtd_store_acquire(mtd_store *store, const char *id, uint32_t version,
                             mtd_mesh_entry **out_entry, mt_diag *diag)
 {
     *out_entry = NULL;
-    mt_status status = mtd_mesh_id_check(id, diag);
+    mt_status status = mt_msgs_mesh_id_check(id, diag);
     if (status != MT_OK) return status;
     mtd_mesh_entry *entry = NULL;
     pthread_mutex_lock(&store->lock);
@@ -477,7 +444,7 @@ mt_status mtd_store_acquire(mtd_store *store, const char *id, uint32_t version,
 
 mt_status mtd_store_remove(mtd_store *store, const char *id, uint32_t version, mt_diag *diag)
 {
-    mt_status status = mtd_mesh_id_check(id, diag);
+    mt_status status = mt_msgs_mesh_id_check(id, diag);
     if (status != MT_OK) return status;
     if (version == 0) {
         diag_set(diag, MT_ERR_INVALID_ARG, UINT64_MAX,
@@ -525,7 +492,7 @@ static int add_size(size_t *a, size_t b)
     return 1;
 }
 
-mt_status mtd_store_list(mtd_store *store, mtd_store_listing **out_listing)
+static mt_status list_held(mtd_store *store, mtd_store_listing **out_listing)
 {
     *out_listing = NULL;
     pthread_mutex_lock(&store->lock);
@@ -581,7 +548,68 @@ mt_status mtd_store_list(mtd_store *store, mtd_store_listing **out_listing)
     return MT_OK;
 }
 
+mt_status mtd_store_list(mtd_store *store, mtd_store_listing **out_listing)
+{
+    mt_status s = list_held(store, out_listing);
+    if (s != MT_OK || !store->backing.list) return s;
+    mtd_store_listing *held = *out_listing;
+    *out_listing = NULL;
+    s = store->backing.list(store->backing.ctx, held, out_listing);
+    mtd_store_listing_free(held);
+    return s;
+}
+
 void mtd_store_listing_free(mtd_store_listing *listing)
 {
     free(listing);
+}
+
+/* ---- the backing --------------------------------------------------------- */
+
+void mtd_store_set_backing(mtd_store *store, const mtd_store_backing *backing)
+{
+    store->backing = *backing;
+}
+
+/* mtd_store_acquire, telling the backing what was fetched. */
+static mtd_fetch_result acquire_held(mtd_store *store, const char *id, uint32_t version,
+                                     mtd_mesh_entry **out_entry, mt_diag *diag)
+{
+    mt_status s = mtd_store_acquire(store, id, version, out_entry, diag);
+    if (s == MT_ERR_INVALID_ARG) return MTD_FETCH_BAD_ID;
+    if (s != MT_OK) return MTD_FETCH_NOT_HELD;
+    if (store->backing.fetched)
+        store->backing.fetched(store->backing.ctx, id, mtd_entry_info(*out_entry)->version);
+    return MTD_FETCH_OK;
+}
+
+mtd_fetch_result mtd_store_fetch(mtd_store *store, const char *id, uint32_t version, bool may_load,
+                                 mtd_mesh_entry **out_entry, mt_diag *diag)
+{
+    *out_entry = NULL;
+    const mtd_store_backing *b = &store->backing;
+    if (!b->keeps) return acquire_held(store, id, version, out_entry, diag);
+    if (mt_msgs_mesh_id_check(id, diag) != MT_OK) return MTD_FETCH_BAD_ID;
+    if (version == 0) {
+        uint32_t kept = b->highest(b->ctx, id);
+        mtd_mesh_entry *latest = NULL;
+        if (mtd_store_acquire(store, id, 0, &latest, NULL) == MT_OK &&
+            mtd_entry_info(latest)->version >= kept) {
+            b->fetched(b->ctx, id, mtd_entry_info(latest)->version);
+            *out_entry = latest;
+            if (diag) mt_diag_clear(diag);
+            return MTD_FETCH_OK;
+        }
+        mtd_entry_release(latest);
+        version = kept; /* still 0 when the backing keeps none either */
+    }
+    /* Twice: a version loaded can be dropped again (a memory budget) before
+     * it is acquired. */
+    for (int attempt = 0; attempt < 2; attempt++) {
+        mtd_fetch_result r = acquire_held(store, id, version, out_entry, diag);
+        if (r != MTD_FETCH_NOT_HELD || version == 0 || !b->keeps(b->ctx, id, version)) return r;
+        if (!may_load) return MTD_FETCH_NEEDS_LOAD;
+        if (b->load(b->ctx, id, version, diag) != MT_OK) return MTD_FETCH_LOAD_FAILED;
+    }
+    return acquire_held(store, id, version, out_entry, diag);
 }

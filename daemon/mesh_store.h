@@ -12,31 +12,23 @@
 #include <stdint.h>
 
 #include "meshtopo/mesh.h"
+#include "meshtopo/protocol.h"
 #include "meshtopo/status.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Longest mesh id in bytes (without the terminating NUL). */
-#define MTD_MESH_ID_MAX 255
-
-/* Checks a mesh id: not NULL, not empty, at most MTD_MESH_ID_MAX bytes,
- * printable ASCII only (0x20 to 0x7e), no '/' and no "..". Mesh ids come
- * from the network and end up in archive names and logs, so a bad one is
- * refused rather than repaired. Returns MT_OK or MT_ERR_INVALID_ARG with diag
- * (NULL-safe) naming the rule broken and diag->byte_offset the offending byte
- * (UINT64_MAX for the empty and the length rule). */
-mt_status mtd_mesh_id_check(const char *id, mt_diag *diag);
-
 /* What is known about one stored version; every string is NUL-terminated. */
 typedef struct mtd_mesh_info {
     const char *id;
-    uint32_t version;      /* 1, 2, ... per id, in the order they were added */
-    const char *source;    /* who sent it (the node's source name), "" if none */
-    int64_t utime;         /* microseconds since the epoch, from the submission */
-    uint64_t content_hash; /* opaque, from the caller */
-    size_t memory_bytes;   /* mesh + report + entry bookkeeping */
+    uint32_t version;              /* 1, 2, ... per id, in the order they were added */
+    const char *source;            /* who sent it (the node's source name), "" if none */
+    int64_t utime;                 /* microseconds since the epoch, from the submission */
+    uint64_t content_hash;         /* opaque, from the caller */
+    size_t memory_bytes;           /* mesh + report + entry bookkeeping; 0 when not held */
+    uint32_t num_verts, num_faces; /* the built mesh's counts */
+    uint64_t num_defects;          /* its report's defects */
 } mtd_mesh_info;
 
 /* One immutable stored version. Valid from mtd_store_add (out_entry) or
@@ -102,7 +94,7 @@ typedef struct mtd_mesh_meta {
  * *out_entry is an extra reference for the caller to release. Versions beyond
  * max_versions_per_id are dropped, oldest first.
  * Errors leave the store unchanged and the caller owning mesh:
- * MT_ERR_INVALID_ARG (bad id, see mtd_mesh_id_check; NULL mesh; a requested
+ * MT_ERR_INVALID_ARG (bad id, see mt_msgs_mesh_id_check; NULL mesh; a requested
  * version not above the id's highest), MT_ERR_TOO_LARGE (max_bytes, or the
  * id ran out of version numbers), MT_ERR_NOMEM. diag (NULL-safe) says which. */
 mt_status mtd_store_add(mtd_store *store, const char *id, mt_mesh *mesh, const mtd_mesh_meta *meta,
@@ -163,11 +155,53 @@ typedef struct mtd_store_listing {
     mtd_store_totals totals;
 } mtd_store_listing;
 
-/* Takes a snapshot. MT_OK or MT_ERR_NOMEM (*out_listing NULL). */
+/* Takes a snapshot of the versions held and, with a backing, of the
+ * versions it keeps (memory_bytes 0 for those not held). MT_OK or
+ * MT_ERR_NOMEM (*out_listing NULL). */
 mt_status mtd_store_list(mtd_store *store, mtd_store_listing **out_listing);
 
 /* NULL-safe. */
 void mtd_store_listing_free(mtd_store_listing *listing);
+
+/* Where versions the store does not hold are kept (meshtopod: the archive),
+ * so a query can be served from it. The store calls these outside its lock,
+ * from whichever thread fetches; they may call the store back. */
+typedef struct mtd_store_backing {
+    void *ctx;
+    /* The highest version of id it keeps, 0 if none. */
+    uint32_t (*highest)(void *ctx, const char *id);
+    /* Whether it keeps (id, version). */
+    bool (*keeps)(void *ctx, const char *id, uint32_t version);
+    /* Adds (id, version) to the store (mtd_store_add with meta.reserved).
+     * MT_OK also when it is held already; otherwise diag says why. */
+    mt_status (*load)(void *ctx, const char *id, uint32_t version, mt_diag *diag);
+    /* (id, version) was just fetched: recently used, held. */
+    void (*fetched)(void *ctx, const char *id, uint32_t version);
+    /* *out: `held` (the store's snapshot) merged with what it keeps, as one
+     * listing in the same order; free with mtd_store_listing_free. */
+    mt_status (*list)(void *ctx, const mtd_store_listing *held, mtd_store_listing **out);
+} mtd_store_backing;
+
+/* Installs a backing (copied; every member set). Call before other threads
+ * use the store. */
+void mtd_store_set_backing(mtd_store *store, const mtd_store_backing *backing);
+
+/* What mtd_store_fetch found. */
+typedef enum mtd_fetch_result {
+    MTD_FETCH_OK,          /* *out_entry is held: release it */
+    MTD_FETCH_BAD_ID,      /* the id breaks mt_msgs_mesh_id_check (diag says) */
+    MTD_FETCH_NOT_HELD,    /* neither held nor kept by the backing */
+    MTD_FETCH_NEEDS_LOAD,  /* kept by the backing: fetch again with may_load */
+    MTD_FETCH_LOAD_FAILED, /* kept, but the backing could not load it (diag) */
+} mtd_fetch_result;
+
+/* Acquires version `version` of id for a query. Version 0 means the highest
+ * version held or kept by the backing. A version the backing keeps but the
+ * store does not hold is loaded through the backing when may_load (on this
+ * thread: it can take as long as reading a file), else MTD_FETCH_NEEDS_LOAD.
+ * Without a backing, mtd_store_acquire. */
+mtd_fetch_result mtd_store_fetch(mtd_store *store, const char *id, uint32_t version, bool may_load,
+                                 mtd_mesh_entry **out_entry, mt_diag *diag);
 
 #ifdef __cplusplus
 }

@@ -1,11 +1,14 @@
-/* meshtopod's queries: one query_t answered with one reply_t, every id of the
- * batch in it as two-level CSR (items -> groups -> values, values2, reals),
- * exactly what the core library's query and geometry functions
- * (meshtopo/query.h, meshtopo/geometry.h) answer; the
- * table in msgs/reply_t.lcm says what each kind puts where. Every id is
- * checked before anything is answered: one id out of range gives
- * OUT_OF_RANGE and no items. Runs on the LCM thread; it only reads immutable
- * store entries, so a build never holds it up. */
+/* meshtopod's queries (query.h): one query_t answered with one reply_t, every
+ * id of the batch in it as two-level CSR (items -> groups -> values, values2,
+ * reals), exactly what the core library's query and geometry functions
+ * (meshtopo/query.h, meshtopo/geometry.h) answer; the table in
+ * msgs/reply_t.lcm says what each kind puts where. Every id is checked before
+ * anything is answered: one id out of range gives OUT_OF_RANGE and no items.
+ * Runs on the LCM thread; it only reads immutable store entries, so a build
+ * never holds it up. A version that must first be loaded from the store's
+ * backing is fetched, and the query answered, on a worker. */
+#include "query.h"
+
 #include <inttypes.h>
 #include <math.h>
 #include <stdarg.h>
@@ -13,12 +16,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "archiver.h"
-#include "daemon.h"
+#include "clock.h"
 #include "log.h"
 #include "meshtopo/geometry.h"
 #include "meshtopo/query.h"
 #include "meshtopo/report.h"
+#include "topology.h"
+
+struct mtd_queries {
+    mtd_store *store;
+    mtd_pool *pool;
+    mtd_replies *replies;
+};
 
 /* A growable array of int32_t (int8_t ones are stored widened, then narrowed). */
 typedef struct ivec {
@@ -519,14 +528,14 @@ static void check_request(answer *a, const meshtopo_query_t *q)
 }
 
 /* Publishes the finished answer (or its error). */
-static void send_answer(mtd_daemon *d, const meshtopo_query_t *q, answer *a, int32_t version,
+static void send_answer(mtd_replies *replies, const meshtopo_query_t *q, answer *a, int32_t version,
                         meshtopo_topology_t *report, meshtopo_reply_t *list)
 {
     if (a->status != MESHTOPO_STATUS_CODE_T_OK) {
         bool remember = a->status != MESHTOPO_STATUS_CODE_T_INTERNAL;
-        if (!remember) mtd_reqcache_abandon(d->cache, q->reply_channel, q->request_id);
-        mtd_send_reply_error(d, q->reply_channel, q->request_id, q->mesh_id, q->kind, remember,
-                             a->status, a->error);
+        if (!remember) mtd_reply_abandon(replies, q->reply_channel, q->request_id);
+        mtd_reply_query_error(replies, q->reply_channel, q->request_id, q->mesh_id, q->kind,
+                              remember, a->status, a->error);
         return;
     }
     meshtopo_reply_t reply;
@@ -539,9 +548,9 @@ static void send_answer(mtd_daemon *d, const meshtopo_query_t *q, answer *a, int
     if (!item_status || !boundary) {
         free(item_status);
         free(boundary);
-        mtd_reqcache_abandon(d->cache, q->reply_channel, q->request_id);
-        mtd_send_reply_error(d, q->reply_channel, q->request_id, q->mesh_id, q->kind, false,
-                             MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory sending the answer");
+        mtd_reply_abandon(replies, q->reply_channel, q->request_id);
+        mtd_reply_query_error(replies, q->reply_channel, q->request_id, q->mesh_id, q->kind, false,
+                              MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory sending the answer");
         return;
     }
     for (size_t i = 0; i < a->item_status.n; i++) item_status[i] = (int8_t)a->item_status.v[i];
@@ -570,18 +579,18 @@ static void send_answer(mtd_daemon *d, const meshtopo_query_t *q, answer *a, int
     reply.reals = a->reals;
     reply.num_reports = report ? 1 : 0;
     reply.reports = report;
-    mtd_send_reply(d, q->reply_channel, q->request_id, true, &mt_msgs_type_reply, &reply,
+    mtd_reply_send(replies, q->reply_channel, q->request_id, true, &mt_msgs_type_reply, &reply,
                    MESHTOPO_STATUS_CODE_T_OK, "");
     free(item_status);
     free(boundary);
 }
 
 /* LIST_MESHES: fills the list_* arrays of *out (freed by free_list). */
-static void list_meshes(mtd_daemon *d, answer *a, const char *mesh_id, meshtopo_reply_t *out)
+static void list_meshes(mtd_store *store, answer *a, const char *mesh_id, meshtopo_reply_t *out)
 {
     memset(out, 0, sizeof *out);
     mtd_store_listing *listing = NULL;
-    if (mtd_archiver_list(d, &listing) != MT_OK) {
+    if (mtd_store_list(store, &listing) != MT_OK) {
         fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory listing the meshes");
         return;
     }
@@ -615,18 +624,9 @@ static void list_meshes(mtd_daemon *d, answer *a, const char *mesh_id, meshtopo_
             out->list_versions[k] = (int32_t)info->version;
             out->list_utimes[k] = info->utime;
             out->list_content_hashes[k] = (int64_t)info->content_hash;
-            mtd_mesh_entry *entry = NULL;
-            if (mtd_store_acquire(d->store, info->id, info->version, &entry, NULL) == MT_OK) {
-                const mt_mesh *mesh = mtd_entry_mesh(entry);
-                out->list_num_verts[k] = (int32_t)mt_mesh_num_verts(mesh);
-                out->list_num_faces[k] = (int32_t)mt_mesh_num_faces(mesh);
-                out->list_num_defects[k] = (int64_t)mt_mesh_report(mesh)->num_defects;
-                mtd_entry_release(entry);
-            } else {
-                /* Archived, not in memory: the counts of the archive's catalog. */
-                mtd_archiver_counts(d, info->id, info->version, &out->list_num_verts[k],
-                                    &out->list_num_faces[k], &out->list_num_defects[k]);
-            }
+            out->list_num_verts[k] = (int32_t)info->num_verts;
+            out->list_num_faces[k] = (int32_t)info->num_faces;
+            out->list_num_defects[k] = (int64_t)info->num_defects;
             if (!out->list_mesh_ids[k] || !out->list_sources[k])
                 fail(a, MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory listing the meshes");
             k++;
@@ -652,18 +652,60 @@ static void free_list(meshtopo_reply_t *list)
     free(list->list_content_hashes);
 }
 
-void mtd_query_handle(mtd_daemon *d, const meshtopo_query_t *q)
+/* Answers q from the store; on the LCM thread (may_load false) a version to
+ * load first sends q to a worker. */
+static void answer_query(mtd_queries *qs, const meshtopo_query_t *q, bool may_load);
+
+typedef struct load_job {
+    mtd_queries *queries;
+    meshtopo_query_t *query; /* a copy */
+} load_job;
+
+static void load_job_run(void *arg, bool cancelled)
+{
+    load_job *job = arg;
+    const meshtopo_query_t *q = job->query;
+    if (cancelled) {
+        mtd_reply_abandon(job->queries->replies, q->reply_channel, q->request_id);
+        mtd_reply_query_error(job->queries->replies, q->reply_channel, q->request_id, q->mesh_id,
+                              q->kind, false, MESHTOPO_STATUS_CODE_T_BUSY,
+                              "the daemon is shutting down; the mesh was not loaded");
+    } else {
+        answer_query(job->queries, q, true);
+    }
+    meshtopo_query_t_destroy(job->query);
+    free(job);
+}
+
+/* Hands q to a worker that loads its version and answers. false when it
+ * cannot (out of memory, the pool full or stopping). */
+static bool defer_to_worker(mtd_queries *qs, const meshtopo_query_t *q)
+{
+    load_job *job = calloc(1, sizeof *job);
+    meshtopo_query_t *copy = job ? meshtopo_query_t_copy(q) : NULL;
+    if (!copy) {
+        free(job);
+        return false;
+    }
+    job->queries = qs;
+    job->query = copy;
+    if (mtd_pool_submit(qs->pool, load_job_run, job) != MTD_SUBMIT_OK) {
+        meshtopo_query_t_destroy(copy);
+        free(job);
+        return false;
+    }
+    return true;
+}
+
+static void answer_query(mtd_queries *qs, const meshtopo_query_t *q, bool may_load)
 {
     answer a;
     answer_init(&a);
     check_request(&a, q);
-    mtd_log(MTD_LOG_DEBUG, "query",
-            "mesh_id=%.64s version=%" PRId32 " kind=%" PRId32 " ids=%" PRId32, q->mesh_id,
-            q->version, q->kind, q->num_ids);
     if (a.status == MESHTOPO_STATUS_CODE_T_OK && q->kind == MESHTOPO_QUERY_T_LIST_MESHES) {
         meshtopo_reply_t list;
-        list_meshes(d, &a, q->mesh_id, &list);
-        send_answer(d, q, &a, 0, NULL, &list);
+        list_meshes(qs->store, &a, q->mesh_id, &list);
+        send_answer(qs->replies, q, &a, 0, NULL, &list);
         free_list(&list);
         answer_free(&a);
         return;
@@ -671,18 +713,20 @@ void mtd_query_handle(mtd_daemon *d, const meshtopo_query_t *q)
     mtd_mesh_entry *entry = NULL;
     if (a.status == MESHTOPO_STATUS_CODE_T_OK) {
         mt_diag diag;
-        bool deferred = false;
-        mt_status s = mtd_archiver_acquire(d, q, &entry, &deferred, &diag);
-        if (deferred) { /* loading from the archive; a worker answers */
-            answer_free(&a);
+        mtd_fetch_result r =
+            mtd_store_fetch(qs->store, q->mesh_id, (uint32_t)q->version, may_load, &entry, &diag);
+        if (r == MTD_FETCH_NEEDS_LOAD && defer_to_worker(qs, q)) {
+            answer_free(&a); /* a worker answers */
             return;
         }
-        if (s == MT_ERR_INVALID_ARG)
+        if (r == MTD_FETCH_BAD_ID)
             fail(&a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "mesh_id: %.400s", diag.message);
-        else if (s == MT_ERR_NOT_FOUND && q->version)
+        else if (r == MTD_FETCH_LOAD_FAILED)
+            fail(&a, MESHTOPO_STATUS_CODE_T_ARCHIVE_FAILED, "%s", diag.message);
+        else if (r != MTD_FETCH_OK && q->version)
             fail(&a, MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH,
                  "mesh_id '%s' version %" PRId32 ": not held", q->mesh_id, q->version);
-        else if (s != MT_OK)
+        else if (r != MTD_FETCH_OK)
             fail(&a, MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH, "mesh_id '%s': no such mesh", q->mesh_id);
     }
     int32_t version = 0;
@@ -736,8 +780,33 @@ void mtd_query_handle(mtd_daemon *d, const meshtopo_query_t *q)
             }
         }
     }
-    send_answer(d, q, &a, version, have_report ? &report : NULL, NULL);
+    send_answer(qs->replies, q, &a, version, have_report ? &report : NULL, NULL);
     if (have_report) mtd_topology_free(&report);
     mtd_entry_release(entry);
     answer_free(&a);
+}
+
+void mtd_query_handle(mtd_queries *qs, const meshtopo_query_t *q)
+{
+    mtd_log(MTD_LOG_DEBUG, "query",
+            "mesh_id=%.64s version=%" PRId32 " kind=%" PRId32 " ids=%" PRId32, q->mesh_id,
+            q->version, q->kind, q->num_ids);
+    answer_query(qs, q, false);
+}
+
+mt_status mtd_queries_create(mtd_store *store, mtd_pool *pool, mtd_replies *replies,
+                             mtd_queries **out_queries)
+{
+    mtd_queries *qs = calloc(1, sizeof *qs);
+    *out_queries = qs;
+    if (!qs) return MT_ERR_NOMEM;
+    qs->store = store;
+    qs->pool = pool;
+    qs->replies = replies;
+    return MT_OK;
+}
+
+void mtd_queries_destroy(mtd_queries *qs)
+{
+    free(qs);
 }

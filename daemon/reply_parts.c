@@ -1,38 +1,39 @@
-/* meshtopod's large answers (msgs/reply_part_t.lcm, reply_pull_t.lcm): an
- * encoded reply_t over one datagram goes out as reply_part_t pieces, the first
- * window at once and the rest when the receiver pulls them. The bytes come
- * from the request cache, so a pull (the next window, or parts lost on the
- * way) never runs the query again; a pull for an answer the cache no longer
- * holds is left unanswered (the receiver then sends its query again). */
+/* meshtopod's large answers (reply_parts.h): an encoded reply_t over one
+ * datagram goes out as reply_part_t pieces, the first window at once and the
+ * rest when the receiver pulls them. The bytes come from the request cache,
+ * so a pull (the next window, or parts lost on the way) never runs the query
+ * again; a pull for an answer the cache no longer holds is left unanswered
+ * (the receiver then sends its query again). Publishing runs on whichever
+ * thread answers (the LCM thread or a build worker); pulls on the LCM
+ * thread. */
+#include "reply_parts.h"
+
 #include <inttypes.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "daemon.h"
+#include "clock.h"
 #include "log.h"
 #include "meshtopo/answer_hash.h"
+#include "meshtopo/msgs.h"
 
-/* Content bytes per part: an encoded part stays under 60,000 bytes. */
-#define PART_BYTES 57344u
-/* Parts sent with the answer before the receiver pulls. */
-#define FIRST_PARTS 16u
-/* Parts sent for one pull at most. */
-#define PULL_PARTS_MAX 64u
-/* Ranges listed in one pull at most. */
-#define PULL_RANGES_MAX 1024
+/* The protocol's numbers (msgs/reply_part_t.lcm, reply_pull_t.lcm) as sizes. */
+static const size_t part_size = MESHTOPO_REPLY_PART_T_PART_SIZE;
+static const size_t first_parts = MESHTOPO_REPLY_PART_T_FIRST_PARTS;
+static const size_t parts_per_pull = MESHTOPO_REPLY_PULL_T_PARTS_PER_PULL_MAX;
 
 /* Publishes parts first .. first + count - 1 of the answer (those that exist). */
-static void publish_parts(mtd_daemon *d, const char *channel, int64_t request_id,
-                          const uint8_t *data, size_t size, uint64_t hash, const uint8_t *wanted,
-                          size_t num_parts, size_t max_parts)
+static void publish_parts(lcm_t *lcm, const char *channel, int64_t request_id, const uint8_t *data,
+                          size_t size, uint64_t hash, const uint8_t *wanted, size_t num_parts,
+                          size_t max_parts)
 {
     meshtopo_reply_part_t part;
     memset(&part, 0, sizeof part);
     part.request_id = request_id;
     part.total_size = (int64_t)size;
     part.answer_hash = (int64_t)hash;
-    part.part_size = (int32_t)PART_BYTES;
-    part.length = (int32_t)PART_BYTES;
+    part.part_size = MESHTOPO_REPLY_PART_T_PART_SIZE;
+    part.length = MESHTOPO_REPLY_PART_T_PART_SIZE;
     int capacity = meshtopo_reply_part_t_encoded_size(&part);
     uint8_t *buf = malloc((size_t)capacity);
     if (!buf) {
@@ -42,14 +43,14 @@ static void publish_parts(mtd_daemon *d, const char *channel, int64_t request_id
     size_t sent = 0;
     for (size_t k = 0; k < num_parts && sent < max_parts; k++) {
         if (wanted && !wanted[k]) continue;
-        size_t offset = k * PART_BYTES;
-        size_t length = size - offset < PART_BYTES ? size - offset : PART_BYTES;
+        size_t offset = k * part_size;
+        size_t length = size - offset < part_size ? size - offset : part_size;
         part.utime = mtd_now_utime();
         part.offset = (int64_t)offset;
         part.length = (int32_t)length;
         part.data = (uint8_t *)(uintptr_t)(data + offset);
         int n = meshtopo_reply_part_t_encode(buf, 0, capacity, &part);
-        if (n <= 0 || lcm_publish(d->lcm, channel, buf, (unsigned)n) != 0)
+        if (n <= 0 || lcm_publish(lcm, channel, buf, (unsigned)n) != 0)
             mtd_log(MTD_LOG_ERROR, "publish", "channel=%s type=reply_part_t offset=%zu", channel,
                     offset);
         sent++;
@@ -57,23 +58,24 @@ static void publish_parts(mtd_daemon *d, const char *channel, int64_t request_id
     free(buf);
 }
 
-void mtd_publish_answer(mtd_daemon *d, const char *channel, int64_t request_id, const void *data,
-                        size_t size)
+void mtd_parts_publish(lcm_t *lcm, const char *channel, int64_t request_id, const void *data,
+                       size_t size)
 {
-    if (size <= MTD_SINGLE_MESSAGE_MAX || mt_msgs_type_of(data, size) != &mt_msgs_type_reply) {
-        if (lcm_publish(d->lcm, channel, data, (unsigned)size) != 0)
+    if (size <= MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX ||
+        mt_msgs_type_of(data, size) != &mt_msgs_type_reply) {
+        if (lcm_publish(lcm, channel, data, (unsigned)size) != 0)
             mtd_log(MTD_LOG_ERROR, "publish", "channel=%s bytes=%zu", channel, size);
         return;
     }
-    size_t num_parts = (size + PART_BYTES - 1) / PART_BYTES;
+    size_t num_parts = (size + part_size - 1) / part_size;
     uint64_t hash = mt_msgs_answer_hash(data, size);
     mtd_log(MTD_LOG_DEBUG, "reply_parts",
-            "request_id=%" PRId64 " bytes=%zu parts=%zu first=%u hash=%016" PRIx64, request_id,
-            size, num_parts, FIRST_PARTS, hash);
-    publish_parts(d, channel, request_id, data, size, hash, NULL, num_parts, FIRST_PARTS);
+            "request_id=%" PRId64 " bytes=%zu parts=%zu first=%zu hash=%016" PRIx64, request_id,
+            size, num_parts, first_parts, hash);
+    publish_parts(lcm, channel, request_id, data, size, hash, NULL, num_parts, first_parts);
 }
 
-void mtd_reply_pull_handle(mtd_daemon *d, const void *data, size_t size)
+void mtd_parts_serve_pull(lcm_t *lcm, mtd_reqcache *cache, const void *data, size_t size)
 {
     meshtopo_reply_pull_t pull;
     char why[MT_MSGS_ERROR_SIZE];
@@ -84,25 +86,25 @@ void mtd_reply_pull_handle(mtd_daemon *d, const void *data, size_t size)
     }
     mtd_request_state state = MTD_REQUEST_NEW;
     mtd_reply *stored = NULL;
-    if (pull.num_ranges > PULL_RANGES_MAX) {
+    if (pull.num_ranges > MESHTOPO_REPLY_PULL_T_RANGES_MAX) {
         mtd_log(MTD_LOG_WARN, "reply_pull",
                 "request_id=%" PRId64 " %d ranges (at most %d): ignored", pull.request_id,
-                (int)pull.num_ranges, PULL_RANGES_MAX);
-    } else if (mtd_reqcache_peek(d->cache, pull.reply_channel, pull.request_id, &state, &stored) ==
+                (int)pull.num_ranges, MESHTOPO_REPLY_PULL_T_RANGES_MAX);
+    } else if (mtd_reqcache_peek(cache, pull.reply_channel, pull.request_id, &state, &stored) ==
                    MT_OK &&
                state == MTD_REQUEST_DONE) {
         const uint8_t *bytes = mtd_reply_data(stored);
         size_t total = mtd_reply_size(stored);
         uint64_t hash = mt_msgs_answer_hash(bytes, total);
         if (pull.total_size != (int64_t)total || (uint64_t)pull.answer_hash != hash ||
-            total <= MTD_SINGLE_MESSAGE_MAX) {
+            total <= MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX) {
             mtd_log(MTD_LOG_DEBUG, "reply_pull",
                     "request_id=%" PRId64 " pulls %" PRId64
                     " bytes, the cache holds %zu "
                     "(another answer): not answered",
                     pull.request_id, pull.total_size, total);
         } else {
-            size_t num_parts = (total + PART_BYTES - 1) / PART_BYTES;
+            size_t num_parts = (total + part_size - 1) / part_size;
             uint8_t *wanted = calloc(num_parts, 1);
             for (int32_t i = 0; wanted && i < pull.num_ranges; i++) {
                 int64_t start = pull.offsets[i], length = pull.lengths[i];
@@ -110,12 +112,12 @@ void mtd_reply_pull_handle(mtd_daemon *d, const void *data, size_t size)
                 uint64_t end = (uint64_t)length > total - (uint64_t)start
                                    ? total
                                    : (uint64_t)start + (uint64_t)length;
-                for (uint64_t k = (uint64_t)start / PART_BYTES; k * PART_BYTES < end; k++)
+                for (uint64_t k = (uint64_t)start / part_size; k * part_size < end; k++)
                     wanted[k] = 1;
             }
             if (wanted)
-                publish_parts(d, pull.reply_channel, pull.request_id, bytes, total, hash, wanted,
-                              num_parts, PULL_PARTS_MAX);
+                publish_parts(lcm, pull.reply_channel, pull.request_id, bytes, total, hash, wanted,
+                              num_parts, parts_per_pull);
             free(wanted);
         }
     } else {

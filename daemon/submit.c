@@ -1,24 +1,33 @@
-/* meshtopod's submissions: a decoded mesh_t is checked field by field (mesh
- * id, counts against each other and against the configured limits), then
- * built on the worker pool so the LCM thread keeps answering queries, added
- * to the store, and only then acknowledged (ack_t with the topology report)
- * and announced on PREFIX+"TOPOLOGY". Defects (bad indices, NaN positions,
- * non-manifold spots) are not errors: the core build reports them, and a
- * strict submission is refused with DEFECT_REFUSED and the full report. */
+/* meshtopod's submissions (submit.h): a decoded mesh_t is checked field by
+ * field (mesh id, counts against each other and against the configured
+ * limits) on the LCM thread, then built on a worker with the kept build
+ * workspace, stored through the archiver, and only then acknowledged (ack_t
+ * with the topology report) and announced on PREFIX+"TOPOLOGY", from the
+ * worker. Defects (bad indices, NaN positions, non-manifold spots) are not
+ * errors: the core build reports them, and a strict submission is refused
+ * with DEFECT_REFUSED and the full report. */
+#include "submit.h"
+
 #include <inttypes.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "archiver.h"
-#include "daemon.h"
+#include "clock.h"
 #include "log.h"
 #include "meshtopo/content_hash.h"
 #include "meshtopo/mesh.h"
 #include "meshtopo/report.h"
+#include "topology.h"
+
+struct mtd_submitter {
+    mtd_submit_deps deps;
+    atomic_int_fast64_t builds;
+};
 
 typedef struct submit_job {
-    mtd_daemon *daemon;
+    mtd_submitter *submitter;
     meshtopo_mesh_t *msg;
     void *content; /* NULL, or the buffer msg's arrays point into */
     size_t content_capacity;
@@ -27,13 +36,13 @@ typedef struct submit_job {
 
 /* Frees msg: its strings, and its arrays or gives back the buffer they
  * point into. */
-static void free_msg(mtd_daemon *d, meshtopo_mesh_t *msg, void *content, size_t capacity)
+static void free_msg(mtd_submitter *s, meshtopo_mesh_t *msg, void *content, size_t capacity)
 {
     if (content) {
         msg->positions = NULL;
         msg->face_vertex_counts = NULL;
         msg->face_vertex_indices = NULL;
-        mtd_content_release(d, content, capacity);
+        mtd_content_release(s->deps.contents, content, capacity);
     }
     meshtopo_mesh_t_decode_cleanup(msg);
     free(msg);
@@ -41,7 +50,7 @@ static void free_msg(mtd_daemon *d, meshtopo_mesh_t *msg, void *content, size_t 
 
 static void free_job(submit_job *job)
 {
-    free_msg(job->daemon, job->msg, job->content, job->content_capacity);
+    free_msg(job->submitter, job->msg, job->content, job->content_capacity);
     free(job);
 }
 
@@ -51,7 +60,7 @@ static int32_t check_mesh(const mtd_config *config, const meshtopo_mesh_t *m, ch
                           size_t size)
 {
     mt_diag diag;
-    if (mtd_mesh_id_check(m->mesh_id, &diag) != MT_OK) {
+    if (mt_msgs_mesh_id_check(m->mesh_id, &diag) != MT_OK) {
         snprintf(error, size, "mesh_id: %.400s", diag.message);
         return MESHTOPO_STATUS_CODE_T_BAD_REQUEST;
     }
@@ -115,7 +124,7 @@ static int32_t status_of_build(mt_status s)
 }
 
 /* Sends an ack carrying a report (OK or DEFECT_REFUSED). */
-static void send_ack_with_report(mtd_daemon *d, const meshtopo_mesh_t *m, int32_t status,
+static void send_ack_with_report(mtd_submitter *s, const meshtopo_mesh_t *m, int32_t status,
                                  const char *error, int32_t version, uint64_t hash,
                                  meshtopo_topology_t *report)
 {
@@ -130,58 +139,21 @@ static void send_ack_with_report(mtd_daemon *d, const meshtopo_mesh_t *m, int32_
     ack.content_hash = (int64_t)hash;
     ack.num_reports = 1;
     ack.reports = report;
-    mtd_send_reply(d, m->reply_channel, m->request_id, true, &mt_msgs_type_ack, &ack, status,
-                   error);
-}
-
-/* The kept build workspace, or a new one (NULL when out of memory: the
- * build then allocates its own scratch). */
-static mt_build_workspace *workspace_take(mtd_daemon *d)
-{
-    pthread_mutex_lock(&d->spare_lock);
-    mt_build_workspace *w = d->spare_workspace;
-    d->spare_workspace = NULL;
-    pthread_mutex_unlock(&d->spare_lock);
-    return w ? w : mt_build_workspace_create();
-}
-
-/* Keeps a workspace for the next build; of two, the larger. */
-static void workspace_release(mtd_daemon *d, mt_build_workspace *w)
-{
-    pthread_mutex_lock(&d->spare_lock);
-    mt_build_workspace *other = d->spare_workspace;
-    if (other && mt_build_workspace_bytes(other) > mt_build_workspace_bytes(w)) {
-        mt_build_workspace *swap = w;
-        w = other;
-        other = swap;
-    }
-    d->spare_workspace = w;
-    pthread_mutex_unlock(&d->spare_lock);
-    mt_build_workspace_destroy(other);
-}
-
-void mtd_mesh_recycle(void *daemon, mt_mesh *mesh)
-{
-    mtd_daemon *d = daemon;
-    pthread_mutex_lock(&d->spare_lock);
-    if (d->spare_workspace) {
-        mt_build_workspace_recycle(d->spare_workspace, mesh);
-        mesh = NULL;
-    }
-    pthread_mutex_unlock(&d->spare_lock);
-    mt_mesh_destroy(mesh);
+    mtd_reply_send(s->deps.replies, m->reply_channel, m->request_id, true, &mt_msgs_type_ack, &ack,
+                   status, error);
 }
 
 static void build_job(void *arg, bool cancelled)
 {
     submit_job *job = arg;
-    mtd_daemon *d = job->daemon;
+    mtd_submitter *sub = job->submitter;
+    mtd_replies *replies = sub->deps.replies;
     const meshtopo_mesh_t *m = job->msg;
     if (cancelled) {
-        mtd_reqcache_abandon(d->cache, m->reply_channel, m->request_id);
-        mtd_send_ack_error(d, m->reply_channel, m->request_id, m->mesh_id, false,
-                           MESHTOPO_STATUS_CODE_T_BUSY,
-                           "the daemon is shutting down; the mesh was not built");
+        mtd_reply_abandon(replies, m->reply_channel, m->request_id);
+        mtd_reply_ack_error(replies, m->reply_channel, m->request_id, m->mesh_id, false,
+                            MESHTOPO_STATUS_CODE_T_BUSY,
+                            "the daemon is shutting down; the mesh was not built");
         free_job(job);
         return;
     }
@@ -194,19 +166,20 @@ static void build_job(void *arg, bool cancelled)
         .face_sizes = (uint32_t *)m->face_vertex_counts,
         .face_indices = (uint32_t *)m->face_vertex_indices,
     };
-    mt_build_options options = {.strict = false, .threads = 1, .workspace = workspace_take(d)};
+    mt_build_options options = {
+        .strict = false, .threads = 1, .workspace = mtd_workspace_take(sub->deps.workspaces)};
     mt_mesh *mesh = NULL;
     mt_diag diag;
     char error[MTD_ERROR_MAX];
     int64_t start = mtd_now_utime();
     mt_status s = mt_mesh_build(&list, &options, &mesh, &diag);
     int64_t duration = mtd_now_utime() - start;
-    if (options.workspace) workspace_release(d, options.workspace);
-    atomic_fetch_add(&d->builds, 1);
+    mtd_workspace_release(sub->deps.workspaces, options.workspace);
+    atomic_fetch_add(&sub->builds, 1);
     if (s != MT_OK) {
         snprintf(error, sizeof error, "build failed: %.400s", diag.message);
-        mtd_send_ack_error(d, m->reply_channel, m->request_id, m->mesh_id, true, status_of_build(s),
-                           error);
+        mtd_reply_ack_error(replies, m->reply_channel, m->request_id, m->mesh_id, true,
+                            status_of_build(s), error);
         free_job(job);
         return;
     }
@@ -222,25 +195,26 @@ static void build_job(void *arg, bool cancelled)
                               .utime = m->utime,
                               .content_hash = job->content_hash};
         if (mtd_topology_fill(mesh, &info, duration, MTD_TOPOLOGY_LIST_MAX, &topology) == 0) {
-            send_ack_with_report(d, m, MESHTOPO_STATUS_CODE_T_DEFECT_REFUSED, error, 0,
+            send_ack_with_report(sub, m, MESHTOPO_STATUS_CODE_T_DEFECT_REFUSED, error, 0,
                                  job->content_hash, &topology);
             mtd_topology_free(&topology);
         } else {
-            mtd_send_ack_error(d, m->reply_channel, m->request_id, m->mesh_id, true,
-                               MESHTOPO_STATUS_CODE_T_DEFECT_REFUSED, error);
+            mtd_reply_ack_error(replies, m->reply_channel, m->request_id, m->mesh_id, true,
+                                MESHTOPO_STATUS_CODE_T_DEFECT_REFUSED, error);
         }
-        mtd_mesh_recycle(d, mesh);
+        mtd_workspace_recycle_mesh(sub->deps.workspaces, mesh);
         free_job(job);
         return;
     }
     /* Stored, and in sync archive mode archived, before it is acknowledged. */
     uint32_t version = 0;
     mtd_mesh_entry *entry = NULL;
-    int32_t code = mtd_archiver_store(d, m, &list, mesh, job->content_hash, &version, &entry, error,
-                                      sizeof error);
+    int32_t code = mtd_archiver_store(sub->deps.archiver, m, &list, mesh, job->content_hash,
+                                      &version, &entry, error, sizeof error);
     if (code != MESHTOPO_STATUS_CODE_T_OK) {
-        mtd_mesh_recycle(d, mesh);
-        mtd_send_ack_error(d, m->reply_channel, m->request_id, m->mesh_id, true, code, error);
+        mtd_workspace_recycle_mesh(sub->deps.workspaces, mesh);
+        mtd_reply_ack_error(replies, m->reply_channel, m->request_id, m->mesh_id, true, code,
+                            error);
         free_job(job);
         return;
     }
@@ -252,12 +226,12 @@ static void build_job(void *arg, bool cancelled)
             mt_mesh_report(held)->num_defects, duration);
     if (mtd_topology_fill(held, mtd_entry_info(entry), duration, MTD_TOPOLOGY_LIST_MAX,
                           &topology) == 0) {
-        send_ack_with_report(d, m, MESHTOPO_STATUS_CODE_T_OK, "", (int32_t)version,
+        send_ack_with_report(sub, m, MESHTOPO_STATUS_CODE_T_OK, "", (int32_t)version,
                              job->content_hash, &topology);
         int size = meshtopo_topology_t_encoded_size(&topology);
         void *buf = size > 0 ? malloc((size_t)size) : NULL;
         if (buf && meshtopo_topology_t_encode(buf, 0, size, &topology) == size)
-            lcm_publish(d->lcm, d->topology_channel, buf, (unsigned)size);
+            lcm_publish(sub->deps.lcm, sub->deps.topology_channel, buf, (unsigned)size);
         free(buf);
         mtd_topology_free(&topology);
     } else {
@@ -270,33 +244,34 @@ static void build_job(void *arg, bool cancelled)
         ack.mesh_id = m->mesh_id;
         ack.version = (int32_t)version;
         ack.content_hash = (int64_t)job->content_hash;
-        mtd_send_reply(d, m->reply_channel, m->request_id, true, &mt_msgs_type_ack, &ack,
+        mtd_reply_send(replies, m->reply_channel, m->request_id, true, &mt_msgs_type_ack, &ack,
                        MESHTOPO_STATUS_CODE_T_OK, "");
     }
     mtd_entry_release(entry);
     free_job(job);
 }
 
-static void submit(mtd_daemon *d, meshtopo_mesh_t *msg, void *content, size_t capacity,
+static void submit(mtd_submitter *sub, meshtopo_mesh_t *msg, void *content, size_t capacity,
                    uint64_t content_hash)
 {
+    mtd_replies *replies = sub->deps.replies;
     char error[MTD_ERROR_MAX];
-    int32_t status = check_mesh(&d->config, msg, error, sizeof error);
+    int32_t status = check_mesh(sub->deps.config, msg, error, sizeof error);
     if (status != MESHTOPO_STATUS_CODE_T_OK) {
-        mtd_send_ack_error(d, msg->reply_channel, msg->request_id, msg->mesh_id, true, status,
-                           error);
-        free_msg(d, msg, content, capacity);
+        mtd_reply_ack_error(replies, msg->reply_channel, msg->request_id, msg->mesh_id, true,
+                            status, error);
+        free_msg(sub, msg, content, capacity);
         return;
     }
     submit_job *job = malloc(sizeof *job);
     if (!job) {
-        mtd_reqcache_abandon(d->cache, msg->reply_channel, msg->request_id);
-        mtd_send_ack_error(d, msg->reply_channel, msg->request_id, msg->mesh_id, false,
-                           MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory");
-        free_msg(d, msg, content, capacity);
+        mtd_reply_abandon(replies, msg->reply_channel, msg->request_id);
+        mtd_reply_ack_error(replies, msg->reply_channel, msg->request_id, msg->mesh_id, false,
+                            MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory");
+        free_msg(sub, msg, content, capacity);
         return;
     }
-    job->daemon = d;
+    job->submitter = sub;
     job->msg = msg;
     job->content = content;
     job->content_capacity = capacity;
@@ -304,25 +279,43 @@ static void submit(mtd_daemon *d, meshtopo_mesh_t *msg, void *content, size_t ca
     mtd_log(MTD_LOG_DEBUG, "submit",
             "mesh_id=%s request_id=%" PRId64 " verts=%" PRId32 " faces=%" PRId32, msg->mesh_id,
             msg->request_id, msg->num_verts, msg->num_faces);
-    mtd_submit_result r = mtd_pool_submit(d->pool, build_job, job);
+    mtd_submit_result r = mtd_pool_submit(sub->deps.pool, build_job, job);
     if (r != MTD_SUBMIT_OK) {
-        mtd_reqcache_abandon(d->cache, msg->reply_channel, msg->request_id);
-        mtd_send_ack_error(d, msg->reply_channel, msg->request_id, msg->mesh_id, false,
-                           MESHTOPO_STATUS_CODE_T_BUSY,
-                           r == MTD_SUBMIT_BUSY ? "every build worker is busy; retry later"
-                                                : "the daemon is shutting down");
+        mtd_reply_abandon(replies, msg->reply_channel, msg->request_id);
+        mtd_reply_ack_error(replies, msg->reply_channel, msg->request_id, msg->mesh_id, false,
+                            MESHTOPO_STATUS_CODE_T_BUSY,
+                            r == MTD_SUBMIT_BUSY ? "every build worker is busy; retry later"
+                                                 : "the daemon is shutting down");
         free_job(job);
     }
 }
 
-void mtd_submit_handle(mtd_daemon *d, meshtopo_mesh_t *msg, const void *encoded,
+void mtd_submit_handle(mtd_submitter *sub, meshtopo_mesh_t *msg, const void *encoded,
                        size_t encoded_size)
 {
-    submit(d, msg, NULL, 0, mt_msgs_mesh_content_hash(msg, encoded, encoded_size));
+    submit(sub, msg, NULL, 0, mt_msgs_mesh_content_hash(msg, encoded, encoded_size));
 }
 
-void mtd_submit_handle_content(mtd_daemon *d, meshtopo_mesh_t *msg, void *content,
-                               size_t content_capacity, uint64_t content_hash)
+void mtd_submit_content(mtd_submitter *sub, meshtopo_mesh_t *msg, void *content,
+                        size_t content_capacity, uint64_t content_hash)
 {
-    submit(d, msg, content, content_capacity, content_hash);
+    submit(sub, msg, content, content_capacity, content_hash);
+}
+
+mt_status mtd_submitter_create(const mtd_submit_deps *deps, mtd_submitter **out_submitter)
+{
+    *out_submitter = calloc(1, sizeof **out_submitter);
+    if (!*out_submitter) return MT_ERR_NOMEM;
+    (*out_submitter)->deps = *deps;
+    return MT_OK;
+}
+
+void mtd_submitter_destroy(mtd_submitter *sub)
+{
+    free(sub);
+}
+
+int64_t mtd_submitter_builds(mtd_submitter *sub)
+{
+    return atomic_load(&sub->builds);
 }

@@ -1,12 +1,15 @@
 /* meshtopod's topology reports: a built mesh's mt_report copied field by
  * field into a meshtopo_topology_t (msgs/topology_t.lcm), ids as the 32 bits
  * of the core's uint32 ids. Lists can be cut to a length (the published
- * report of a build); the *_listed counts then say how many were kept. */
+ * report of a build); the *_listed counts then say how many were kept. Any
+ * thread. */
+#include "topology.h"
+
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "daemon.h"
+#include "clock.h"
 #include "meshtopo/mesh.h"
 #include "meshtopo/report.h"
 

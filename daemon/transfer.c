@@ -1,24 +1,30 @@
-/* meshtopod's chunked submissions (msgs/mesh_chunk_t.lcm): reassembles the
- * content of a mesh_t sent in single-datagram pieces, per (reply channel,
- * request id), into one buffer that a content decoder (meshtopo/
- * mesh_content.h) hashes and turns into the mesh's arrays while the chunks
- * arrive, so the complete mesh goes to the ordinary submission path at once.
- * Admission is bounded (--max-transfer-bytes, the mesh limits), stalled
- * transfers expire (--transfer-timeout-ms), and every chunk that contradicts
- * its transfer is answered with BAD_REQUEST without touching the transfer. */
+/* meshtopod's chunked submissions (transfer.h): reassembles the content of a
+ * mesh_t sent in single-datagram pieces, per (reply channel, request id),
+ * into one buffer that a content decoder (meshtopo/mesh_content.h) hashes and
+ * turns into the mesh's arrays while the chunks arrive, so the complete mesh
+ * goes to the submitter at once. Admission is bounded (--max-transfer-bytes,
+ * the mesh limits), stalled transfers expire (--transfer-timeout-ms), and
+ * every chunk that contradicts its transfer is answered with BAD_REQUEST
+ * without touching the transfer. The LCM thread runs all of it; one mutex
+ * guards the table for the heartbeat's reads. */
+#include "transfer.h"
+
 #include <inttypes.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "byte_ranges.h"
-#include "daemon.h"
+#include "clock.h"
 #include "log.h"
 #include "meshtopo/mesh_content.h"
 
 /* Bytes of mesh_t's four content counts, encoded with no arrays behind them. */
 #define EMPTY_CONTENT_SIZE 16
+
+typedef struct mtd_transfer mtd_transfer;
 
 struct mtd_transfer {
     mtd_transfer *next;
@@ -36,83 +42,55 @@ struct mtd_transfer {
     int64_t first_us, last_us; /* monotonic */
 };
 
-static int64_t monotonic_us(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
-}
+struct mtd_transfers {
+    mtd_transfer_deps deps;
+    pthread_mutex_t lock; /* the table and its totals */
+    mtd_transfer *head;   /* keyed by (reply channel, request id) */
+    size_t active;
+    uint64_t bytes; /* charged against max_transfer_bytes */
+    atomic_bool stopping;
+    atomic_int_fast64_t chunks, completed, expired, refused;
+};
 
 /* Frees t; its content buffer, if it still has one, is given back. */
-static void transfer_free(mtd_daemon *d, mtd_transfer *t)
+static void transfer_free(mtd_transfers *ts, mtd_transfer *t)
 {
     if (!t) return;
     free(t->mesh_id);
     free(t->source);
     mt_msgs_content_decoder_free(t->decoder);
-    mtd_content_release(d, t->content, t->capacity);
+    mtd_content_release(ts->deps.contents, t->content, t->capacity);
     mtd_byte_ranges_free(&t->got);
     free(t);
 }
 
-/* A buffer for `size` content bytes: the kept one when it is large enough,
- * else a new one (NULL when out of memory). *out_capacity gets its size. */
-static uint8_t *content_take(mtd_daemon *d, size_t size, size_t *out_capacity)
+/* Unlinks t from the table and releases its charge (the lock held). */
+static void unlink_transfer(mtd_transfers *ts, mtd_transfer *t)
 {
-    pthread_mutex_lock(&d->spare_lock);
-    uint8_t *content = NULL;
-    if (d->spare_content && d->spare_capacity >= size) {
-        content = d->spare_content;
-        *out_capacity = d->spare_capacity;
-        d->spare_content = NULL;
-        d->spare_capacity = 0;
-    }
-    pthread_mutex_unlock(&d->spare_lock);
-    if (!content) {
-        content = malloc(size);
-        *out_capacity = size;
-    }
-    return content;
-}
-
-void mtd_content_release(mtd_daemon *d, void *content, size_t capacity)
-{
-    if (!content) return;
-    pthread_mutex_lock(&d->spare_lock);
-    void *older = d->spare_content;
-    d->spare_content = content;
-    d->spare_capacity = capacity;
-    pthread_mutex_unlock(&d->spare_lock);
-    free(older);
-}
-
-/* Unlinks t from the table and releases its charge (transfer_lock held). */
-static void unlink_transfer(mtd_daemon *d, mtd_transfer *t)
-{
-    for (mtd_transfer **link = &d->transfers; *link; link = &(*link)->next) {
+    for (mtd_transfer **link = &ts->head; *link; link = &(*link)->next) {
         if (*link == t) {
             *link = t->next;
             t->next = NULL;
-            d->transfers_active--;
-            d->transfer_bytes -= t->charged;
+            ts->active--;
+            ts->bytes -= t->charged;
             t->charged = 0;
             return;
         }
     }
 }
 
-static mtd_transfer *find_transfer(mtd_daemon *d, const char *channel, int64_t request_id)
+static mtd_transfer *find_transfer(mtd_transfers *ts, const char *channel, int64_t request_id)
 {
-    for (mtd_transfer *t = d->transfers; t; t = t->next)
+    for (mtd_transfer *t = ts->head; t; t = t->next)
         if (t->request_id == request_id && strcmp(t->channel, channel) == 0) return t;
     return NULL;
 }
 
 /* An unfinished transfer of the same content from the same source under
  * another key: what a restarted sender had already sent. */
-static mtd_transfer *find_resumable(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
+static mtd_transfer *find_resumable(mtd_transfers *ts, const meshtopo_mesh_chunk_t *c)
 {
-    for (mtd_transfer *t = d->transfers; t; t = t->next)
+    for (mtd_transfer *t = ts->head; t; t = t->next)
         if (t->total == (uint64_t)c->total_size && t->hash == (uint64_t)c->content_hash &&
             t->strict == (c->strict != 0) && strcmp(t->mesh_id, c->mesh_id) == 0 &&
             strcmp(t->source, c->source) == 0)
@@ -121,10 +99,11 @@ static mtd_transfer *find_resumable(mtd_daemon *d, const meshtopo_mesh_chunk_t *
 }
 
 /* Publishes a mesh_transfer_t (never remembered: it describes the moment). */
-static void send_status(mtd_daemon *d, const char *channel, int64_t request_id, int32_t status,
+static void send_status(mtd_transfers *ts, const char *channel, int64_t request_id, int32_t status,
                         const char *error, const mtd_transfer *t, uint64_t total, bool complete)
 {
-    static int64_t offsets[MTD_TRANSFER_GAPS_MAX], lengths[MTD_TRANSFER_GAPS_MAX];
+    static int64_t offsets[MESHTOPO_MESH_TRANSFER_T_MISSING_MAX],
+        lengths[MESHTOPO_MESH_TRANSFER_T_MISSING_MAX];
     meshtopo_mesh_transfer_t msg;
     memset(&msg, 0, sizeof msg);
     msg.utime = mtd_now_utime();
@@ -137,8 +116,8 @@ static void send_status(mtd_daemon *d, const char *channel, int64_t request_id, 
     msg.listed_until = (int64_t)total;
     if (t && !complete) {
         uint64_t until = 0;
-        msg.num_missing = (int32_t)mtd_byte_ranges_gaps(&t->got, t->total, MTD_TRANSFER_GAPS_MAX,
-                                                        offsets, lengths, &until);
+        msg.num_missing = (int32_t)mtd_byte_ranges_gaps(
+            &t->got, t->total, MESHTOPO_MESH_TRANSFER_T_MISSING_MAX, offsets, lengths, &until);
         msg.missing_offsets = offsets;
         msg.missing_lengths = lengths;
         msg.listed_until = (int64_t)until;
@@ -147,7 +126,8 @@ static void send_status(mtd_daemon *d, const char *channel, int64_t request_id, 
     if (status != MESHTOPO_STATUS_CODE_T_OK)
         mtd_log(MTD_LOG_INFO, "chunk_error", "request_id=%" PRId64 " status=%d error=%s",
                 request_id, (int)status, error);
-    mtd_send_reply(d, channel, request_id, false, &mt_msgs_type_mesh_transfer, &msg, status, error);
+    mtd_reply_send(ts->deps.replies, channel, request_id, false, &mt_msgs_type_mesh_transfer, &msg,
+                   status, error);
 }
 
 /* The largest content the mesh limits allow (mesh_t's arrays at their maxima). */
@@ -157,43 +137,43 @@ static uint64_t content_limit(const mtd_config *config)
            4ull * config->max_indices;
 }
 
-/* Admits a new transfer for chunk c (transfer_lock held), taking over a
+/* Admits a new transfer for chunk c (the lock held), taking over a
  * resumable one. Returns it, or NULL after answering why not. */
-static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
+static mtd_transfer *admit(mtd_transfers *ts, const meshtopo_mesh_chunk_t *c)
 {
     char error[MTD_ERROR_MAX];
     const uint64_t total = (uint64_t)c->total_size;
-    const uint64_t cap = d->config.max_transfer_bytes;
+    const uint64_t cap = ts->deps.config->max_transfer_bytes;
     int32_t status = MESHTOPO_STATUS_CODE_T_OK;
     mt_diag diag;
-    if (mtd_mesh_id_check(c->mesh_id, &diag) != MT_OK) {
+    if (mt_msgs_mesh_id_check(c->mesh_id, &diag) != MT_OK) {
         snprintf(error, sizeof error, "mesh_id: %.400s", diag.message);
-        send_status(d, c->reply_channel, c->request_id, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error,
+        send_status(ts, c->reply_channel, c->request_id, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error,
                     NULL, total, false);
         return NULL;
     }
-    if (total > content_limit(&d->config)) {
+    if (total > content_limit(ts->deps.config)) {
         status = MESHTOPO_STATUS_CODE_T_TOO_LARGE;
         snprintf(error, sizeof error,
                  "total_size: %" PRIu64
                  " bytes exceed the largest mesh the daemon accepts "
                  "(%" PRIu64 " bytes: --max-verts, --max-faces, --max-indices)",
-                 total, content_limit(&d->config));
+                 total, content_limit(ts->deps.config));
     } else if (total > cap || total > (uint64_t)INT32_MAX - 4096) {
         status = MESHTOPO_STATUS_CODE_T_TOO_LARGE;
         snprintf(error, sizeof error, "total_size: %" PRIu64 " bytes exceed %s (%" PRIu64 " bytes)",
                  total, total > cap ? "--max-transfer-bytes" : "the largest LCM message",
                  total > cap ? cap : (uint64_t)INT32_MAX - 4096);
     }
-    mtd_transfer *old = status == MESHTOPO_STATUS_CODE_T_OK ? find_resumable(d, c) : NULL;
+    mtd_transfer *old = status == MESHTOPO_STATUS_CODE_T_OK ? find_resumable(ts, c) : NULL;
     uint64_t freed = old ? old->charged : 0;
-    if (status == MESHTOPO_STATUS_CODE_T_OK && d->transfer_bytes - freed + total > cap) {
+    if (status == MESHTOPO_STATUS_CODE_T_OK && ts->bytes - freed + total > cap) {
         status = MESHTOPO_STATUS_CODE_T_BUSY;
         snprintf(error, sizeof error,
                  "total_size: %" PRIu64
                  " bytes do not fit: %zu unfinished transfer(s) hold "
                  "%" PRIu64 " of --max-transfer-bytes %" PRIu64 "; retry later",
-                 total, d->transfers_active, d->transfer_bytes, cap);
+                 total, ts->active, ts->bytes, cap);
     }
     mtd_transfer *t = NULL;
     if (status == MESHTOPO_STATUS_CODE_T_OK) {
@@ -206,7 +186,7 @@ static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
                 t->decoder = old->decoder;
                 t->capacity = old->capacity;
             } else {
-                t->content = content_take(d, total, &t->capacity);
+                t->content = mtd_content_take(ts->deps.contents, total, &t->capacity);
                 t->decoder = t->content ? mt_msgs_content_decoder_new(t->content, total) : NULL;
             }
         }
@@ -215,7 +195,7 @@ static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
                 t->content = NULL;
                 t->decoder = NULL;
             }
-            transfer_free(d, t);
+            transfer_free(ts, t);
             t = NULL;
             status = MESHTOPO_STATUS_CODE_T_BUSY;
             snprintf(error, sizeof error,
@@ -223,8 +203,8 @@ static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
         }
     }
     if (status != MESHTOPO_STATUS_CODE_T_OK) {
-        atomic_fetch_add(&d->transfers_refused, 1);
-        send_status(d, c->reply_channel, c->request_id, status, error, NULL, total, false);
+        atomic_fetch_add(&ts->refused, 1);
+        send_status(ts, c->reply_channel, c->request_id, status, error, NULL, total, false);
         return NULL;
     }
     snprintf(t->channel, sizeof t->channel, "%s", c->reply_channel);
@@ -233,24 +213,24 @@ static mtd_transfer *admit(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
     t->utime = c->utime;
     t->total = total;
     t->hash = (uint64_t)c->content_hash;
-    t->first_us = t->last_us = monotonic_us();
+    t->first_us = t->last_us = mtd_monotonic_us();
     t->charged = total;
     if (old) {
         old->content = NULL;
         old->decoder = NULL;
         t->got = old->got;
         memset(&old->got, 0, sizeof old->got);
-        unlink_transfer(d, old);
+        unlink_transfer(ts, old);
         mtd_log(MTD_LOG_INFO, "transfer_resumed",
                 "mesh_id=%s request_id=%" PRId64 " from request_id=%" PRId64
                 " channel=%s bytes_held=%" PRIu64,
                 t->mesh_id, t->request_id, old->request_id, old->channel, t->got.covered);
-        transfer_free(d, old);
+        transfer_free(ts, old);
     }
-    t->next = d->transfers;
-    d->transfers = t;
-    d->transfers_active++;
-    d->transfer_bytes += t->charged;
+    t->next = ts->head;
+    ts->head = t;
+    ts->active++;
+    ts->bytes += t->charged;
     mtd_log(MTD_LOG_DEBUG, "transfer_begin",
             "mesh_id=%s request_id=%" PRId64 " channel=%s total=%" PRIu64, t->mesh_id,
             t->request_id, t->channel, total);
@@ -309,13 +289,12 @@ static meshtopo_mesh_t *new_mesh_msg(const mtd_transfer *t, const meshtopo_mesh_
 
 /* Every byte of t is in (t is out of the table): check the hash and the
  * counts the decoder saw, submit once. Takes t. */
-static void finish(mtd_daemon *d, mtd_transfer *t)
+static void finish(mtd_transfers *ts, mtd_transfer *t)
 {
-    atomic_fetch_add(&d->transfers_completed, 1);
-    atomic_fetch_add(&d->submissions, 1);
+    atomic_fetch_add(&ts->completed, 1);
     mtd_log(MTD_LOG_INFO, "transfer_complete",
             "mesh_id=%s request_id=%" PRId64 " bytes=%" PRIu64 " transfer_us=%" PRId64, t->mesh_id,
-            t->request_id, t->total, monotonic_us() - t->first_us);
+            t->request_id, t->total, mtd_monotonic_us() - t->first_us);
     meshtopo_mesh_t content;
     memset(&content, 0, sizeof content);
     uint64_t hash = 0;
@@ -333,7 +312,7 @@ static void finish(mtd_daemon *d, mtd_transfer *t)
     } else if (decoded != 0) {
         status = MESHTOPO_STATUS_CODE_T_UNDECODABLE;
         snprintf(error, sizeof error, "undecodable mesh_t from the chunks' content: %s", why);
-    } else if (atomic_load(&d->stopping)) {
+    } else if (atomic_load(&ts->stopping)) {
         status = MESHTOPO_STATUS_CODE_T_BUSY;
         snprintf(error, sizeof error, "the daemon is shutting down");
     } else if (!(msg = new_mesh_msg(t, &content))) {
@@ -341,9 +320,10 @@ static void finish(mtd_daemon *d, mtd_transfer *t)
         snprintf(error, sizeof error, "out of memory");
     }
     if (status != MESHTOPO_STATUS_CODE_T_OK) {
-        mtd_send_ack_error(d, t->channel, t->request_id, t->mesh_id, false, status, error);
-    } else if (mtd_begin_request(d, t->channel, t->request_id)) {
-        mtd_submit_handle_content(d, msg, t->content, t->capacity, hash); /* takes both */
+        mtd_reply_ack_error(ts->deps.replies, t->channel, t->request_id, t->mesh_id, false, status,
+                            error);
+    } else if (mtd_reply_begin(ts->deps.replies, t->channel, t->request_id)) {
+        mtd_submit_content(ts->deps.submitter, msg, t->content, t->capacity, hash); /* takes both */
         t->content = NULL;
     } else {
         free(msg->reply_channel);
@@ -351,17 +331,7 @@ static void finish(mtd_daemon *d, mtd_transfer *t)
         free(msg->source);
         free(msg);
     }
-    transfer_free(d, t);
-}
-
-/* A channel the daemon can answer on: 1..63 printable bytes. */
-static bool channel_ok(const char *channel)
-{
-    size_t n = strlen(channel);
-    if (n == 0 || n > MTD_CHANNEL_MAX) return false;
-    for (size_t i = 0; i < n; i++)
-        if (channel[i] <= ' ' || channel[i] > '~') return false;
-    return true;
+    transfer_free(ts, t);
 }
 
 /* The bytes t holds from offset 0 on, without a gap: what its decoder has
@@ -371,9 +341,9 @@ static uint64_t held_from_start(const mtd_transfer *t)
     return t->got.count > 0 && t->got.items[0].start == 0 ? t->got.items[0].end : 0;
 }
 
-/* Handles one decoded chunk (transfer_lock held). Returns a transfer that
+/* Handles one decoded chunk (the lock held). Returns a transfer that
  * became complete (out of the table) for the caller to finish. */
-static mtd_transfer *take_chunk(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
+static mtd_transfer *take_chunk(mtd_transfers *ts, const meshtopo_mesh_chunk_t *c)
 {
     char error[MTD_ERROR_MAX];
     const char *channel = c->reply_channel;
@@ -387,40 +357,33 @@ static mtd_transfer *take_chunk(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
                  "offset %" PRId64 " + length %" PRId32 " reaches past total_size %" PRId64,
                  c->offset, c->length, c->total_size);
     if (error[0]) {
-        send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error, NULL,
+        send_status(ts, channel, c->request_id, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error, NULL,
                     c->total_size > 0 ? (uint64_t)c->total_size : 0, false);
         return NULL;
     }
-    mtd_transfer *t = find_transfer(d, channel, c->request_id);
+    mtd_transfer *t = find_transfer(ts, channel, c->request_id);
     if (!t) {
         /* Finished already (building or acked), or new. */
-        mtd_request_state state = MTD_REQUEST_NEW;
-        mtd_reply *stored = NULL;
-        if (mtd_reqcache_peek(d->cache, channel, c->request_id, &state, &stored) == MT_OK &&
-            state != MTD_REQUEST_NEW) {
-            if (state == MTD_REQUEST_DONE && c->want_status) {
-                atomic_fetch_add(&d->duplicates, 1);
-                lcm_publish(d->lcm, channel, mtd_reply_data(stored),
-                            (unsigned)mtd_reply_size(stored));
-            } else if (state == MTD_REQUEST_PENDING && c->want_status) {
-                send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", NULL,
+        mtd_request_state state =
+            mtd_reply_state(ts->deps.replies, channel, c->request_id, c->want_status);
+        if (state != MTD_REQUEST_NEW) {
+            if (state == MTD_REQUEST_PENDING && c->want_status)
+                send_status(ts, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", NULL,
                             (uint64_t)c->total_size, true);
-            }
-            mtd_reply_release(stored);
             return NULL;
         }
-        if (atomic_load(&d->stopping)) {
-            send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_BUSY,
+        if (atomic_load(&ts->stopping)) {
+            send_status(ts, channel, c->request_id, MESHTOPO_STATUS_CODE_T_BUSY,
                         "the daemon is shutting down", NULL, (uint64_t)c->total_size, false);
             return NULL;
         }
-        if (!(t = admit(d, c))) return NULL;
+        if (!(t = admit(ts, c))) return NULL;
     } else if (contradicts(t, c, error, sizeof error)) {
-        send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error, NULL,
+        send_status(ts, channel, c->request_id, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, error, NULL,
                     t->total, false);
         return NULL;
     }
-    t->last_us = monotonic_us();
+    t->last_us = mtd_monotonic_us();
     if (c->length > 0) {
         const uint64_t start = (uint64_t)c->offset, end = start + (uint64_t)c->length;
         /* Bytes below `decoded` were turned into values in place already:
@@ -437,19 +400,20 @@ static mtd_transfer *take_chunk(mtd_daemon *d, const meshtopo_mesh_chunk_t *c)
         mt_msgs_content_decoder_advance(t->decoder, held_from_start(t));
     }
     if (t->got.covered == t->total) {
-        send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", NULL, t->total, true);
-        unlink_transfer(d, t);
+        send_status(ts, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", NULL, t->total,
+                    true);
+        unlink_transfer(ts, t);
         return t;
     }
     if (c->want_status)
-        send_status(d, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", t, t->total, false);
+        send_status(ts, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", t, t->total, false);
     return NULL;
 }
 
-void mtd_chunk_handle(mtd_daemon *d, const void *data, size_t size)
+void mtd_transfers_chunk(mtd_transfers *ts, const void *data, size_t size)
 {
-    atomic_fetch_add(&d->chunks, 1);
-    mtd_transfers_expire(d);
+    atomic_fetch_add(&ts->chunks, 1);
+    mtd_transfers_expire(ts);
     meshtopo_mesh_chunk_t c;
     char why[MT_MSGS_ERROR_SIZE];
     if (mt_msgs_decode(&mt_msgs_type_mesh_chunk, data, size, &c, why, sizeof why) != 0) {
@@ -457,15 +421,15 @@ void mtd_chunk_handle(mtd_daemon *d, const void *data, size_t size)
         char error[MTD_ERROR_MAX];
         int64_t request_id = 0;
         snprintf(error, sizeof error, "undecodable mesh_chunk_t: %s", why);
-        if (mtd_peek_request_header(data, size, &request_id, channel))
-            send_status(d, channel, request_id, MESHTOPO_STATUS_CODE_T_UNDECODABLE, error, NULL, 0,
+        if (mtd_reply_peek_header(data, size, &request_id, channel))
+            send_status(ts, channel, request_id, MESHTOPO_STATUS_CODE_T_UNDECODABLE, error, NULL, 0,
                         false);
         else
             mtd_log(MTD_LOG_WARN, "undecodable", "bytes=%zu error=%s (no reply channel)", size,
                     error);
         return;
     }
-    if (!channel_ok(c.reply_channel)) {
+    if (!mtd_reply_channel_ok(c.reply_channel)) {
         mtd_log(MTD_LOG_WARN, "bad_request",
                 "request_id=%" PRId64
                 " error=mesh_chunk_t with an unusable reply_channel "
@@ -474,54 +438,81 @@ void mtd_chunk_handle(mtd_daemon *d, const void *data, size_t size)
         meshtopo_mesh_chunk_t_decode_cleanup(&c);
         return;
     }
-    pthread_mutex_lock(&d->transfer_lock);
-    mtd_transfer *complete = take_chunk(d, &c);
-    pthread_mutex_unlock(&d->transfer_lock);
+    pthread_mutex_lock(&ts->lock);
+    mtd_transfer *complete = take_chunk(ts, &c);
+    pthread_mutex_unlock(&ts->lock);
     meshtopo_mesh_chunk_t_decode_cleanup(&c);
-    if (complete) finish(d, complete);
+    if (complete) finish(ts, complete);
 }
 
-size_t mtd_transfers_expire(mtd_daemon *d)
+size_t mtd_transfers_expire(mtd_transfers *ts)
 {
-    const int64_t now = monotonic_us();
-    const int64_t timeout = (int64_t)d->config.transfer_timeout_ms * 1000;
+    const int64_t now = mtd_monotonic_us();
+    const int64_t timeout = (int64_t)ts->deps.config->transfer_timeout_ms * 1000;
     mtd_transfer *expired = NULL;
     size_t n = 0;
-    pthread_mutex_lock(&d->transfer_lock);
-    mtd_transfer *t = d->transfers;
+    pthread_mutex_lock(&ts->lock);
+    mtd_transfer *t = ts->head;
     while (t) {
         mtd_transfer *next = t->next;
         if (now - t->last_us > timeout) {
-            unlink_transfer(d, t);
+            unlink_transfer(ts, t);
             t->next = expired;
             expired = t;
             n++;
         }
         t = next;
     }
-    pthread_mutex_unlock(&d->transfer_lock);
+    pthread_mutex_unlock(&ts->lock);
     while (expired) {
         mtd_transfer *e = expired;
         expired = e->next;
-        atomic_fetch_add(&d->transfers_expired, 1);
+        atomic_fetch_add(&ts->expired, 1);
         mtd_log(MTD_LOG_INFO, "transfer_expired",
                 "mesh_id=%s request_id=%" PRId64 " channel=%s received=%" PRIu64 "/%" PRIu64
                 " idle_ms=%" PRId64,
                 e->mesh_id, e->request_id, e->channel, e->got.covered, e->total,
                 (now - e->last_us) / 1000);
-        transfer_free(d, e);
+        transfer_free(ts, e);
     }
     return n;
 }
 
-void mtd_transfers_free(mtd_daemon *d)
+mt_status mtd_transfers_create(const mtd_transfer_deps *deps, mtd_transfers **out_transfers)
 {
-    while (d->transfers) {
-        mtd_transfer *t = d->transfers;
-        unlink_transfer(d, t);
-        transfer_free(d, t);
+    mtd_transfers *ts = calloc(1, sizeof *ts);
+    *out_transfers = ts;
+    if (!ts) return MT_ERR_NOMEM;
+    ts->deps = *deps;
+    pthread_mutex_init(&ts->lock, NULL);
+    return MT_OK;
+}
+
+void mtd_transfers_destroy(mtd_transfers *ts)
+{
+    if (!ts) return;
+    while (ts->head) {
+        mtd_transfer *t = ts->head;
+        unlink_transfer(ts, t);
+        transfer_free(ts, t);
     }
-    free(d->spare_content);
-    d->spare_content = NULL;
-    d->spare_capacity = 0;
+    pthread_mutex_destroy(&ts->lock);
+    free(ts);
+}
+
+void mtd_transfers_stop(mtd_transfers *ts)
+{
+    atomic_store(&ts->stopping, true);
+}
+
+void mtd_transfers_get_stats(mtd_transfers *ts, mtd_transfer_stats *out_stats)
+{
+    pthread_mutex_lock(&ts->lock);
+    out_stats->active = (int32_t)ts->active;
+    out_stats->bytes = (int64_t)ts->bytes;
+    pthread_mutex_unlock(&ts->lock);
+    out_stats->chunks = atomic_load(&ts->chunks);
+    out_stats->completed = atomic_load(&ts->completed);
+    out_stats->expired = atomic_load(&ts->expired);
+    out_stats->refused = atomic_load(&ts->refused);
 }

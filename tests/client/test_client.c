@@ -637,10 +637,10 @@ static void error_status_mapped(void)
     CHECK(strstr(diag.message, "no mesh with this id") != NULL);
     CHECK_EQ(reply.status, MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH); /* the reply is kept */
     mt_client_reply_free(&reply);
-    CHECK_EQ(mt_client_status_of_code(MESHTOPO_STATUS_CODE_T_DEFECT_REFUSED), MT_ERR_DEFECT);
-    CHECK_EQ(mt_client_status_of_code(MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE), MT_ERR_OUT_OF_RANGE);
-    CHECK_EQ(mt_client_status_of_code(999), MT_ERR_IO);
-    CHECK(strcmp(mt_client_code_name(999), "UNKNOWN_CODE") == 0);
+    CHECK_EQ(mt_msgs_status_of_code(MESHTOPO_STATUS_CODE_T_DEFECT_REFUSED), MT_ERR_DEFECT);
+    CHECK_EQ(mt_msgs_status_of_code(MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE), MT_ERR_OUT_OF_RANGE);
+    CHECK_EQ(mt_msgs_status_of_code(999), MT_ERR_IO);
+    CHECK(strcmp(mt_msgs_code_name(999), "UNKNOWN_CODE") == 0);
     fixture_stop(f);
 }
 

@@ -13,7 +13,7 @@
 typedef struct free_log {
     int count;
     uint32_t last_version;
-    char last_id[MTD_MESH_ID_MAX + 1];
+    char last_id[MESHTOPO_MESH_T_MESH_ID_MAX + 1];
 } free_log;
 
 static void log_free(void *ctx, const mt_mesh *mesh, const mtd_mesh_info *info)
@@ -249,7 +249,7 @@ static void expect_bad_id(mtd_store *store, const char *id, const char *says, ui
                           int line)
 {
     mt_diag diag;
-    if (mtd_mesh_id_check(id, &diag) != MT_ERR_INVALID_ARG) {
+    if (mt_msgs_mesh_id_check(id, &diag) != MT_ERR_INVALID_ARG) {
         mt_test_fail(__FILE__, line, "id accepted, expected: %s", says);
         return;
     }
@@ -280,7 +280,7 @@ static void expect_bad_id(mtd_store *store, const char *id, const char *says, ui
 static void expect_good_id(mtd_store *store, const char *id, int line)
 {
     mt_diag diag;
-    if (mtd_mesh_id_check(id, &diag) != MT_OK) {
+    if (mt_msgs_mesh_id_check(id, &diag) != MT_OK) {
         mt_test_fail(__FILE__, line, "id refused: %s", diag.message);
         return;
     }
@@ -320,8 +320,8 @@ static void test_store_id_rules(void)
     expect_bad_id(store, "esc\x1b", "byte 3 is 0x1b", 3, __LINE__);
     expect_bad_id(store, "del\x7f", "byte 3 is 0x7f", 3, __LINE__);
     expect_bad_id(store, "caf\xc3\xa9", "byte 3 is 0xc3", 3, __LINE__);
-    CHECK(mtd_mesh_id_check("x", NULL) == MT_OK); /* NULL diag is fine */
-    CHECK(mtd_mesh_id_check("a/b", NULL) == MT_ERR_INVALID_ARG);
+    CHECK(mt_msgs_mesh_id_check("x", NULL) == MT_OK); /* NULL diag is fine */
+    CHECK(mt_msgs_mesh_id_check("a/b", NULL) == MT_ERR_INVALID_ARG);
 
     expect_good_id(store, "scan", __LINE__);
     expect_good_id(store, "a.b", __LINE__);

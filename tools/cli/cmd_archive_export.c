@@ -7,6 +7,8 @@
 
 #include "cmd_archive.h"
 #include "meshtopo/io.h"
+#include "meshtopo/msgs.h"
+#include "meshtopo/protocol.h"
 
 int mt_cli_archive_export(const mt_cli_args *args)
 {
@@ -66,7 +68,7 @@ int mt_cli_archive_rm(const mt_cli_args *args)
         return MT_CLI_EXIT_USAGE;
     }
     mt_diag diag;
-    if (mt_archive_id_check(id, &diag) != MT_OK) {
+    if (mt_msgs_mesh_id_check(id, &diag) != MT_OK) {
         mt_cli_error("archive", "rm: %s", diag.message);
         return MT_CLI_EXIT_USAGE;
     }

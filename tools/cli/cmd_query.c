@@ -194,7 +194,7 @@ static void print_item_text(const meshtopo_reply_t *r, const query_kind *qk, con
     if (r->item_status[i] != MESHTOPO_STATUS_CODE_T_OK) {
         printf(" %s\n", r->item_status[i] == MESHTOPO_STATUS_CODE_T_NOT_FOUND
                             ? "not found"
-                            : mt_client_code_name(r->item_status[i]));
+                            : mt_msgs_code_name(r->item_status[i]));
         return;
     }
     int32_t g0 = r->item_offsets[i], g1 = r->item_offsets[i + 1];
@@ -324,7 +324,7 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
         mt_json_int(j, subject);
     }
     mt_json_key(j, "status");
-    mt_json_string(j, mt_client_code_name(r->item_status[i]));
+    mt_json_string(j, mt_msgs_code_name(r->item_status[i]));
     int32_t g0 = r->item_offsets[i], g1 = r->item_offsets[i + 1];
     if (write_geometry_json(j, r, qk->kind, i, g0, g1)) {
         mt_json_object_end(j);

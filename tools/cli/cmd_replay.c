@@ -381,7 +381,7 @@ static int replay_one(replay *r, const mt_archive *archive, const mt_cli_replay_
     } else {
         progress_clear(r);
         code = mt_cli_call_failed("replay", rec.mesh_id, &r->remote, st, res.acked, &diag);
-        res.status = res.acked                       ? mt_client_code_name(ack.msg.status)
+        res.status = res.acked                       ? mt_msgs_code_name(ack.msg.status)
                      : code == MT_CLI_EXIT_NO_ANSWER ? "NO_ANSWER"
                                                      : "ERROR";
         res.error = diag.message;

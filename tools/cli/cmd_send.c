@@ -68,7 +68,7 @@ static void print_json(const char *path, const mt_client_ack *ack)
     mt_json_key(&j, "mesh_id");
     mt_json_string(&j, ack->msg.mesh_id);
     mt_json_key(&j, "status");
-    mt_json_string(&j, mt_client_code_name(ack->msg.status));
+    mt_json_string(&j, mt_msgs_code_name(ack->msg.status));
     mt_json_key(&j, "error");
     mt_json_string(&j, ack->msg.error);
     mt_json_key(&j, "version");
@@ -93,7 +93,7 @@ static void print_text(const char *path, const mt_client_ack *ack)
                (int)ack->msg.version, mt_cli_hash_text(ack->msg.content_hash, hash, sizeof hash));
     else
         printf("meshtopod refused %s as mesh %s: %s: %s\n", path, ack->msg.mesh_id,
-               mt_client_code_name(ack->msg.status), ack->msg.error);
+               mt_msgs_code_name(ack->msg.status), ack->msg.error);
     const meshtopo_topology_t *t = mt_client_ack_report(ack);
     if (t) mt_cli_topology_print_text(t, stdout);
 }

@@ -13,6 +13,8 @@
 
 #include "meshtopo/archive.h"
 #include "meshtopo/mesh_parts.h"
+#include "meshtopo/msgs.h"
+#include "meshtopo/protocol.h"
 
 struct mt_archive {
     char *dir;

@@ -51,34 +51,6 @@ double mt__archive_now_ms(void)
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
 }
 
-mt_status mt_archive_id_check(const char *id, mt_diag *diag)
-{
-    mt_diag_clear(diag);
-    if (!id) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh id is missing (NULL)");
-    size_t len = strlen(id);
-    if (len == 0) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh id is empty");
-    if (len > MT_ARCHIVE_ID_MAX)
-        return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
-                                "mesh id is %zu bytes long; the limit is %d bytes", len,
-                                MT_ARCHIVE_ID_MAX);
-    for (size_t i = 0; i < len; i++) {
-        unsigned char c = (unsigned char)id[i];
-        const char *rule = NULL;
-        if (c < 0x20 || c > 0x7e)
-            rule = "only printable ASCII (0x20 to 0x7e) is allowed";
-        else if (c == '/')
-            rule = "'/' is not allowed";
-        else if (c == '.' && id[i + 1] == '.')
-            rule = "\"..\" is not allowed";
-        if (rule) {
-            if (diag) diag->byte_offset = i;
-            return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh id byte %zu (0x%02x): %s", i, c,
-                                    rule);
-        }
-    }
-    return MT_OK;
-}
-
 static bool byte_is_plain(unsigned char c)
 {
     return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
@@ -88,9 +60,9 @@ static bool byte_is_plain(unsigned char c)
 size_t mt_archive_file_name(const char *mesh_id, uint32_t version, char *buf, size_t size)
 {
     if (size > 0) buf[0] = '\0';
-    if (version == 0 || mt_archive_id_check(mesh_id, NULL) != MT_OK) return 0;
+    if (version == 0 || mt_msgs_mesh_id_check(mesh_id, NULL) != MT_OK) return 0;
     static const char hex[] = "0123456789ABCDEF";
-    char escaped[3 * MT_ARCHIVE_ID_MAX + 1];
+    char escaped[3 * MESHTOPO_MESH_T_MESH_ID_MAX + 1];
     size_t n = 0, cut = 0;
     for (const unsigned char *p = (const unsigned char *)mesh_id; *p; p++) {
         if (byte_is_plain(*p)) {

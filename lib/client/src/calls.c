@@ -1,48 +1,11 @@
 /* The client's calls: argument checks, encoding of mesh_t and query_t with a
- * fresh request id (kept for every retry), waiting or calling back, and the
- * mapping of status_code_t values to mt_status. Nothing is sent for a call
+ * fresh request id (kept for every retry), waiting or calling back. Nothing is sent for a call
  * whose arguments are wrong: it fails with MT_ERR_INVALID_ARG and a message. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "client_internal.h"
 #include "meshtopo/content_hash.h"
-
-/* ---- Status codes ------------------------------------------------------- */
-
-#define MT__CODE_TABLE(X)                                                       \
-    X(MESHTOPO_STATUS_CODE_T_OK, "OK", MT_OK)                                   \
-    X(MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "BAD_REQUEST", MT_ERR_INVALID_ARG)    \
-    X(MESHTOPO_STATUS_CODE_T_UNDECODABLE, "UNDECODABLE", MT_ERR_PARSE)          \
-    X(MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH, "UNKNOWN_MESH", MT_ERR_NOT_FOUND)    \
-    X(MESHTOPO_STATUS_CODE_T_UNKNOWN_KIND, "UNKNOWN_KIND", MT_ERR_UNSUPPORTED)  \
-    X(MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "OUT_OF_RANGE", MT_ERR_OUT_OF_RANGE) \
-    X(MESHTOPO_STATUS_CODE_T_NOT_FOUND, "NOT_FOUND", MT_ERR_NOT_FOUND)          \
-    X(MESHTOPO_STATUS_CODE_T_TOO_LARGE, "TOO_LARGE", MT_ERR_TOO_LARGE)          \
-    X(MESHTOPO_STATUS_CODE_T_BUILD_FAILED, "BUILD_FAILED", MT_ERR_CORRUPT)      \
-    X(MESHTOPO_STATUS_CODE_T_DEFECT_REFUSED, "DEFECT_REFUSED", MT_ERR_DEFECT)   \
-    X(MESHTOPO_STATUS_CODE_T_BUSY, "BUSY", MT_ERR_IO)                           \
-    X(MESHTOPO_STATUS_CODE_T_INTERNAL, "INTERNAL", MT_ERR_IO)                   \
-    X(MESHTOPO_STATUS_CODE_T_NO_GEOMETRY, "NO_GEOMETRY", MT_ERR_NO_GEOMETRY)    \
-    X(MESHTOPO_STATUS_CODE_T_ARCHIVE_FAILED, "ARCHIVE_FAILED", MT_ERR_IO)
-
-mt_status mt_client_status_of_code(int32_t code)
-{
-#define MT__CODE_STATUS(value, name, status) \
-    if (code == (value)) return status;
-    MT__CODE_TABLE(MT__CODE_STATUS)
-#undef MT__CODE_STATUS
-    return MT_ERR_IO;
-}
-
-const char *mt_client_code_name(int32_t code)
-{
-#define MT__CODE_NAME(value, name, status) \
-    if (code == (value)) return name;
-    MT__CODE_TABLE(MT__CODE_NAME)
-#undef MT__CODE_NAME
-    return "UNKNOWN_CODE";
-}
 
 /* ---- Freeing results ---------------------------------------------------- */
 
@@ -73,35 +36,10 @@ static mt_status check_client(mt_client *client, mt_diag *diag, const char *call
     return MT_OK;
 }
 
-/* The daemon's rule (daemon/mesh_store.c, msgs/mesh_t.lcm): 1..255 bytes of
- * printable ASCII, no '/' and no "..", so an id never reads as a path. */
-static mt_status check_mesh_id(const char *mesh_id, mt_diag *diag)
-{
-    if (!mesh_id) return mt__client_fail(diag, MT_ERR_INVALID_ARG, "mesh id is NULL");
-    size_t n = strnlen(mesh_id, 256);
-    if (n == 0) return mt__client_fail(diag, MT_ERR_INVALID_ARG, "mesh id is empty");
-    if (n > 255)
-        return mt__client_fail(diag, MT_ERR_INVALID_ARG,
-                               "mesh id \"%.32s...\" is longer than 255 bytes", mesh_id);
-    for (size_t i = 0; i < n; i++) {
-        unsigned char c = (unsigned char)mesh_id[i];
-        if (c < 0x20 || c > 0x7e)
-            return mt__client_fail(diag, MT_ERR_INVALID_ARG,
-                                   "mesh id byte %zu is 0x%02x: only printable ASCII is allowed", i,
-                                   (unsigned)c);
-        if (c == '/' || (c == '.' && mesh_id[i + 1] == '.'))
-            return mt__client_fail(diag, MT_ERR_INVALID_ARG,
-                                   "mesh id \"%s\" contains %s at byte %zu: ids must not look "
-                                   "like paths",
-                                   mesh_id, c == '/' ? "'/'" : "\"..\"", i);
-    }
-    return MT_OK;
-}
-
 static mt_status check_query(const char *mesh_id, int32_t version, int32_t kind,
                              const uint32_t *ids, size_t num_ids, mt_diag *diag)
 {
-    mt_status st = check_mesh_id(mesh_id, diag);
+    mt_status st = mt_msgs_mesh_id_check(mesh_id, diag);
     if (st != MT_OK) return st;
     if (version < 0)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "version %d is negative (0 = latest)",
@@ -178,7 +116,7 @@ mt_status mt_client_submit(mt_client *client, const char *mesh_id, const mt_face
     if (st != MT_OK) return st;
     if (!out_ack)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "mt_client_submit: out_ack is NULL");
-    if ((st = check_mesh_id(mesh_id, diag)) != MT_OK) return st;
+    if ((st = mt_msgs_mesh_id_check(mesh_id, diag)) != MT_OK) return st;
     if (!list) return mt__client_fail(diag, MT_ERR_INVALID_ARG, "mt_client_submit: list is NULL");
     if ((st = mt_face_list_check(list, diag)) != MT_OK) return st;
     uint64_t tail = mt__content_size(list);
@@ -201,7 +139,7 @@ mt_status mt_client_submit(mt_client *client, const char *mesh_id, const mt_face
     mt__mesh_content_of(list, &m);
     int size = meshtopo_mesh_t_encoded_size(&m);
     mt__pending p;
-    if (size > MT_CLIENT_SINGLE_MESSAGE_MAX) {
+    if (size > MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX) {
         /* In chunks, each encoded when it is sent: no copy of the whole mesh. */
         out_ack->sent_content_hash = mt_msgs_mesh_content_hash_of(&m);
         st = mt__client_submit_chunked(client, &m, out_ack->sent_content_hash, &p, diag);
@@ -260,7 +198,7 @@ mt_status mt_client_list(mt_client *client, const char *mesh_id, meshtopo_reply_
     if (!out_reply)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "mt_client_list: out_reply is NULL");
     if (!mesh_id) mesh_id = "";
-    if (mesh_id[0] && (st = check_mesh_id(mesh_id, diag)) != MT_OK) return st;
+    if (mesh_id[0] && (st = mt_msgs_mesh_id_check(mesh_id, diag)) != MT_OK) return st;
     return query_sync(client, mesh_id, 0, MESHTOPO_QUERY_T_LIST_MESHES, NULL, 0, out_reply, diag);
 }
 

@@ -24,13 +24,8 @@
 #define MT__REPLY_QUEUE_CAPACITY 10000
 /* Retries published per pass of the client thread (the rest go next pass). */
 #define MT__MAX_DUE_PER_PASS 64
-/* Parts the daemon sends with a large answer before the first pull
- * (msgs/reply_part_t.lcm). */
-#define MT__FIRST_PARTS 16
 /* Silence after a part before the missing ones are pulled again. */
 #define MT__PARTS_QUIET_MS 30
-/* Ranges listed in one reply_pull_t at most (msgs/reply_pull_t.lcm). */
-#define MT__PULL_RANGES_MAX 1024
 
 /* ---- Small helpers ------------------------------------------------------ */
 
@@ -153,10 +148,10 @@ static void drop_parts(mt_client *client, mt__pending *p)
  * held); NULL when out of memory or nothing is missing. */
 static mt__msgbuf *pull_locked(mt_client *client, mt__pending *p)
 {
-    int64_t offsets[MT__PULL_RANGES_MAX], lengths[MT__PULL_RANGES_MAX];
+    int64_t offsets[MESHTOPO_REPLY_PULL_T_RANGES_MAX], lengths[MESHTOPO_REPLY_PULL_T_RANGES_MAX];
     size_t num_parts = 0;
-    size_t n = mt__parts_missing(p->parts, (size_t)client->window_chunks, MT__PULL_RANGES_MAX,
-                                 offsets, lengths, &num_parts);
+    size_t n = mt__parts_missing(p->parts, (size_t)client->window_chunks,
+                                 MESHTOPO_REPLY_PULL_T_RANGES_MAX, offsets, lengths, &num_parts);
     if (n == 0) return NULL;
     meshtopo_reply_pull_t pull;
     memset(&pull, 0, sizeof pull);
@@ -361,8 +356,8 @@ static void on_transfer_status(mt_client *client, meshtopo_mesh_transfer_t *msg)
     if (msg->status != MESHTOPO_STATUS_CODE_T_OK) {
         table_take(client, p->request_id);
         drop_parts(client, p);
-        p->status = mt_client_status_of_code(msg->status);
-        mt__client_fail(&p->diag, p->status, "%s: %s", mt_client_code_name(msg->status),
+        p->status = mt_msgs_status_of_code(msg->status);
+        mt__client_fail(&p->diag, p->status, "%s: %s", mt_msgs_code_name(msg->status),
                         msg->error && msg->error[0] ? msg->error : "(no error text)");
         complete_locked(p); /* chunked submissions are synchronous */
         pthread_mutex_unlock(&client->mutex);
@@ -374,7 +369,7 @@ static void on_transfer_status(mt_client *client, meshtopo_mesh_transfer_t *msg)
     t->received = msg->received_bytes > 0 ? (uint64_t)msg->received_bytes : 0;
     t->listed_until = msg->listed_until > 0 ? (uint64_t)msg->listed_until : 0;
     size_t n = msg->num_missing > 0 ? (size_t)msg->num_missing : 0;
-    if (n > MT__TRANSFER_GAPS_MAX) n = MT__TRANSFER_GAPS_MAX;
+    if (n > MESHTOPO_MESH_TRANSFER_T_MISSING_MAX) n = MESHTOPO_MESH_TRANSFER_T_MISSING_MAX;
     if (n > 0) { /* the arrays are NULL when empty */
         memcpy(t->missing_offsets, msg->missing_offsets, n * sizeof *t->missing_offsets);
         memcpy(t->missing_lengths, msg->missing_lengths, n * sizeof *t->missing_lengths);
@@ -439,11 +434,11 @@ static void handle_answer(mt_client *client, const void *data, size_t size)
     drop_parts(client, p);
     p->answer = answer;
     p->has_answer = 1;
-    p->status = mt_client_status_of_code(code);
+    p->status = mt_msgs_status_of_code(code);
     if (p->status == MT_OK)
         mt_diag_clear(&p->diag);
     else
-        mt__client_fail(&p->diag, p->status, "%s: %s", mt_client_code_name(code),
+        mt__client_fail(&p->diag, p->status, "%s: %s", mt_msgs_code_name(code),
                         text && text[0] ? text : "(no error text)");
     p = complete_locked(p);
     pthread_mutex_unlock(&client->mutex);
@@ -506,8 +501,9 @@ static void on_part(mt_client *client, const void *data, size_t size)
         }
         p->parts = parts;
         client->parts_bytes += parts->total;
-        parts->window_parts =
-            parts->num_parts < MT__FIRST_PARTS ? parts->num_parts : MT__FIRST_PARTS;
+        parts->window_parts = parts->num_parts < MESHTOPO_REPLY_PART_T_FIRST_PARTS
+                                  ? parts->num_parts
+                                  : MESHTOPO_REPLY_PART_T_FIRST_PARTS;
     }
     mt__part_result r = mt__parts_add(p->parts, &part);
     if (r == MT__PART_OTHER || r == MT__PART_BAD) client->stats.bad_parts++;

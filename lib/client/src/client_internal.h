@@ -25,14 +25,13 @@ typedef union mt__answer {
 } mt__answer;
 
 /* What the daemon last said about a chunked submission (mesh_transfer_t). */
-#define MT__TRANSFER_GAPS_MAX 1024
 typedef struct mt__transfer {
     uint64_t seq; /* statuses received so far */
     int complete; /* every byte is in: only the ack is awaited */
     uint64_t received, listed_until;
     size_t num_missing;
-    int64_t missing_offsets[MT__TRANSFER_GAPS_MAX];
-    int64_t missing_lengths[MT__TRANSFER_GAPS_MAX];
+    int64_t missing_offsets[MESHTOPO_MESH_TRANSFER_T_MISSING_MAX];
+    int64_t missing_lengths[MESHTOPO_MESH_TRANSFER_T_MISSING_MAX];
 } mt__transfer;
 
 /* A large answer being reassembled from reply_part_t pieces (reply_parts.c). */

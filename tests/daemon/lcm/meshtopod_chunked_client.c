@@ -11,9 +11,9 @@
 #include <string.h>
 #include <time.h>
 
-#include "daemon.h"
 #include "meshtopo/client.h"
 #include "meshtopo/core.h"
+#include "topology.h"
 
 static double seconds_now(void)
 {

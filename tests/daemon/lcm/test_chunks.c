@@ -282,9 +282,11 @@ static void expect_transfer_error(fixture *fx, int64_t request_id, int32_t statu
     meshtopo_mesh_transfer_t_decode_cleanup(&t);
 }
 
+/* One period of the daemon's loop: stalled transfers expire, then the
+ * heartbeat goes out. */
 static void heartbeat(fixture *fx)
 {
-    mtd_heartbeat_publish(fx->daemon);
+    mtd_daemon_tick(fx->daemon);
     lcm_handle_timeout(fx->lcm, 100);
     CHECK(fx->have_status);
 }
@@ -295,8 +297,8 @@ static void heartbeat(fixture *fx)
 static void expect_stored(fixture *fx, const sent_mesh *s, int32_t version, int line)
 {
     mtd_mesh_entry *entry = NULL;
-    if (mtd_store_acquire(fx->daemon->store, s->mesh_id, (uint32_t)version, &entry, NULL) !=
-        MT_OK) {
+    if (mtd_store_acquire(mtd_daemon_store(fx->daemon), s->mesh_id, (uint32_t)version, &entry,
+                          NULL) != MT_OK) {
         mt_test_fail(__FILE__, line, "version %d of '%s' is not stored", (int)version, s->mesh_id);
         return;
     }
@@ -668,15 +670,12 @@ static void test_counts_that_do_not_fit(void)
     free(content);
     /* The refused transfers' buffer is kept, and the next transfer of the
      * same size takes it (over memq the daemon runs on this thread). */
-    pthread_mutex_lock(&fx.daemon->spare_lock);
-    void *kept = fx.daemon->spare_content;
-    CHECK(kept != NULL && fx.daemon->spare_capacity >= s.total);
-    pthread_mutex_unlock(&fx.daemon->spare_lock);
+    size_t kept_capacity = 0;
+    const void *kept = mtd_content_pool_kept(mtd_daemon_content_pool(fx.daemon), &kept_capacity);
+    CHECK(kept != NULL && kept_capacity >= s.total);
     send_chunk(&fx, &s, REPLY, 40, 0, false);
     lcm_handle_timeout(fx.lcm, 100);
-    pthread_mutex_lock(&fx.daemon->spare_lock);
-    CHECK(fx.daemon->spare_content == NULL);
-    pthread_mutex_unlock(&fx.daemon->spare_lock);
+    CHECK(mtd_content_pool_kept(mtd_daemon_content_pool(fx.daemon), NULL) == NULL);
     /* The honest mesh still goes through, built from the reused buffer. */
     for (size_t k = 1; k < num_chunks(&s); k++) send_chunk(&fx, &s, REPLY, 40, k, false);
     expect_stored(&fx, &s, expect_ack(&fx, &s, 40, __LINE__), __LINE__);
@@ -697,21 +696,18 @@ static void test_builds_keep_a_workspace(void)
     fixture_init(&fx, "64M", "10000");
     sent_mesh s;
     sent_mesh_make(&s, "kept", 30, 30);
-    CHECK(fx.daemon->spare_workspace == NULL);
+    mtd_workspace_pool *workspaces = mtd_daemon_workspace_pool(fx.daemon);
+    CHECK(mtd_workspace_pool_kept(workspaces) == NULL);
     for (size_t k = 0; k < num_chunks(&s); k++) send_chunk(&fx, &s, REPLY, 50, k, false);
     expect_stored(&fx, &s, expect_ack(&fx, &s, 50, __LINE__), __LINE__);
-    pthread_mutex_lock(&fx.daemon->spare_lock);
-    mt_build_workspace *kept = fx.daemon->spare_workspace;
-    const size_t bytes = mt_build_workspace_bytes(kept);
-    pthread_mutex_unlock(&fx.daemon->spare_lock);
+    const mt_build_workspace *kept = mtd_workspace_pool_kept(workspaces);
+    const size_t bytes = mtd_workspace_pool_bytes(workspaces);
     CHECK(kept != NULL);
     CHECK(bytes > 16 * s.list.num_indices); /* the sides alone */
     for (size_t k = 0; k < num_chunks(&s); k++) send_chunk(&fx, &s, REPLY, 51, k, false);
     expect_stored(&fx, &s, expect_ack(&fx, &s, 51, __LINE__), __LINE__);
-    pthread_mutex_lock(&fx.daemon->spare_lock);
-    CHECK(fx.daemon->spare_workspace == kept);
-    CHECK_EQ(mt_build_workspace_bytes(fx.daemon->spare_workspace), bytes);
-    pthread_mutex_unlock(&fx.daemon->spare_lock);
+    CHECK(mtd_workspace_pool_kept(workspaces) == kept);
+    CHECK_EQ(mtd_workspace_pool_bytes(workspaces), bytes);
     sent_mesh_free(&s);
     fixture_free(&fx);
 }
@@ -720,7 +716,8 @@ static void test_builds_keep_a_workspace(void)
 static const uint32_t *stored_half_edges(fixture *fx, const char *id, uint32_t version)
 {
     mtd_mesh_entry *entry = NULL;
-    if (mtd_store_acquire(fx->daemon->store, id, version, &entry, NULL) != MT_OK) return NULL;
+    if (mtd_store_acquire(mtd_daemon_store(fx->daemon), id, version, &entry, NULL) != MT_OK)
+        return NULL;
     mt_mesh_view view;
     mt_mesh_get_view(mtd_entry_mesh(entry), &view);
     mtd_entry_release(entry);
@@ -747,9 +744,7 @@ static void test_dropped_meshes_are_recycled(void)
         const int32_t stored = expect_ack(&fx, &s, request, __LINE__);
         CHECK_EQ(stored, version);
         expect_stored(&fx, &s, stored, __LINE__);
-        pthread_mutex_lock(&fx.daemon->spare_lock);
-        const size_t bytes = mt_build_workspace_bytes(fx.daemon->spare_workspace);
-        pthread_mutex_unlock(&fx.daemon->spare_lock);
+        const size_t bytes = mtd_workspace_pool_bytes(mtd_daemon_workspace_pool(fx.daemon));
         const uint32_t *block = stored_half_edges(&fx, "frames", (uint32_t)stored);
         CHECK(block != NULL);
         if (version == 1) {

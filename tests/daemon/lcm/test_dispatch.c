@@ -1140,8 +1140,9 @@ static void test_duplicate_request(void)
         }
         meshtopo_ack_t_decode_cleanup(&first);
     }
-    int64_t builds = atomic_load(&fx.daemon->builds);
-    CHECK_EQ(builds, 2); /* cube and tet, not tet twice */
+    mtd_counters counts;
+    mtd_daemon_get_counts(fx.daemon, &counts);
+    CHECK_EQ(counts.builds, 2); /* cube and tet, not tet twice */
     meshtopo_query_t q;
     memset(&q, 0, sizeof q);
     q.request_id = 777;
@@ -1159,7 +1160,8 @@ static void test_duplicate_request(void)
         }
         meshtopo_reply_t_decode_cleanup(&r1);
     }
-    CHECK_EQ(atomic_load(&fx.daemon->duplicates), 2);
+    mtd_daemon_get_counts(fx.daemon, &counts);
+    CHECK_EQ(counts.duplicates, 2);
     mt_face_list_free(&tet);
     fixture_free(&fx);
 }
@@ -1171,7 +1173,7 @@ static void test_heartbeat(void)
     int32_t v = 100;
     check_query_error(&fx, "cube", 0, MESHTOPO_QUERY_T_VALENCE, &v, 1,
                       MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "ids[0]", __LINE__);
-    mtd_heartbeat_publish(fx.daemon);
+    mtd_daemon_heartbeat(fx.daemon);
     for (int i = 0; i < 100 && !fx.have_status; i++) lcm_handle_timeout(fx.lcm, 50);
     CHECK(fx.have_status);
     if (fx.have_status) {

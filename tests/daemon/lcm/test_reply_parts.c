@@ -740,13 +740,16 @@ static void test_daemon_pulls(void)
     CHECK_EQ(collect_parts(&fx, parts, 256), 0);
 
     /* The query again: answered from the cache, the first 16 parts again. */
-    int64_t duplicates = atomic_load(&fx.daemon->duplicates);
+    mtd_counters counts;
+    mtd_daemon_get_counts(fx.daemon, &counts);
+    const int64_t duplicates = counts.duplicates;
     publish_raw(&fx, &mt_msgs_type_query, &q);
     got = collect_parts(&fx, parts, 256);
     CHECK_EQ(got, 16);
     CHECK_EQ(parts[0].answer_hash, hash);
     free_parts(parts, got);
-    CHECK_EQ(atomic_load(&fx.daemon->duplicates), duplicates + 1);
+    mtd_daemon_get_counts(fx.daemon, &counts);
+    CHECK_EQ(counts.duplicates, duplicates + 1);
 
     free(answer);
     free(ids);

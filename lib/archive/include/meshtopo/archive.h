@@ -35,16 +35,8 @@ extern "C" {
 /* Oldest format version read. */
 #define MT_ARCHIVE_FORMAT_VERSION_MIN 1
 
-/* Longest mesh id in bytes (the daemon's limit). */
-#define MT_ARCHIVE_ID_MAX 255
-
 /* Suffix of every archive file: ParaView picks its VTKHDF reader by it. */
 #define MT_ARCHIVE_SUFFIX ".vtkhdf"
-
-/* Checks a mesh id as the daemon does: 1..255 bytes of printable ASCII
- * (0x20..0x7e), no '/' and no "..". MT_OK or MT_ERR_INVALID_ARG with diag
- * naming the rule broken and diag->byte_offset the offending byte. */
-mt_status mt_archive_id_check(const char *mesh_id, mt_diag *diag);
 
 /* The file name (no directory) of version `version` of mesh_id:
  * "<escaped id>.v<version>.vtkhdf". Every id byte outside [A-Za-z0-9_-] is
@@ -54,7 +46,8 @@ mt_status mt_archive_id_check(const char *mesh_id, mt_diag *diag);
  * always escaped, so the two kinds of names cannot collide). The file's
  * mesh_id attribute holds the id itself. Writes at most size bytes
  * (NUL-terminated when size > 0) and returns the length the full name needs;
- * 0 for an id mt_archive_id_check refuses or version 0. */
+ * 0 for an id mt_msgs_mesh_id_check (meshtopo/protocol.h) refuses or
+ * version 0. */
 size_t mt_archive_file_name(const char *mesh_id, uint32_t version, char *buf, size_t size);
 
 /* Longest name mt_archive_file_name returns, without the NUL. */
@@ -90,7 +83,7 @@ size_t mt_archive_leftovers_removed(const mt_archive *archive);
 
 /* Who submitted a mesh version and what it was. Strings are copied. */
 typedef struct mt_archive_meta {
-    const char *mesh_id;   /* see mt_archive_id_check */
+    const char *mesh_id;   /* see mt_msgs_mesh_id_check */
     uint32_t version;      /* >= 1 */
     int64_t utime;         /* microseconds since the epoch, from the submission */
     const char *source;    /* the sending node; NULL means "" */

@@ -14,6 +14,7 @@
 
 #include "meshtopo/face_list.h"
 #include "meshtopo/msgs.h"
+#include "meshtopo/protocol.h"
 #include "meshtopo/status.h"
 
 #ifdef __cplusplus
@@ -28,11 +29,9 @@ typedef struct mt_client mt_client;
 #define MT_CLIENT_DEFAULT_RETRIES 3
 /* Longest channel prefix accepted (the reply channel must fit in LCM's 63). */
 #define MT_CLIENT_MAX_PREFIX 24
-/* A mesh whose encoded mesh_t is larger than this travels as mesh_chunk_t
- * pieces (msgs/mesh_chunk_t.lcm), each one UDP datagram. */
-#define MT_CLIENT_SINGLE_MESSAGE_MAX 60000
 /* Content bytes per chunk: the default and the largest allowed (a chunk then
- * encodes to under 60,000 bytes with the longest ids). */
+ * encodes to under MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX bytes with the
+ * longest ids). */
 #define MT_CLIENT_DEFAULT_CHUNK_BYTES 57344
 #define MT_CLIENT_MAX_CHUNK_BYTES 59000
 /* Chunks sent before waiting for the daemon's transfer status. */
@@ -125,20 +124,10 @@ void mt_client_get_stats(mt_client *client, mt_client_stats *out_stats);
 
 /* Status of every call: MT_OK, a local error (MT_ERR_INVALID_ARG,
  * MT_ERR_TOO_LARGE, MT_ERR_NOMEM), the daemon's status code mapped by
- * mt_client_status_of_code, or MT_ERR_IO when no reply came after every
- * attempt: diag->message then starts with "timeout:". With a reply whose
- * status is not OK, diag->message is "CODE_NAME: the daemon's error text". */
-
-/* The mt_status of a status_code_t value: OK -> MT_OK, BAD_REQUEST ->
- * INVALID_ARG, UNDECODABLE -> PARSE, UNKNOWN_MESH and NOT_FOUND -> NOT_FOUND,
- * UNKNOWN_KIND -> UNSUPPORTED, OUT_OF_RANGE -> OUT_OF_RANGE, TOO_LARGE ->
- * TOO_LARGE, BUILD_FAILED -> CORRUPT, DEFECT_REFUSED -> DEFECT, NO_GEOMETRY
- * -> NO_GEOMETRY, BUSY and INTERNAL and unknown codes -> IO. */
-mt_status mt_client_status_of_code(int32_t code);
-
-/* Name of a status_code_t value ("UNKNOWN_MESH"); "UNKNOWN_CODE" for a value
- * status_code_t does not define. */
-const char *mt_client_code_name(int32_t code);
+ * mt_msgs_status_of_code (meshtopo/protocol.h), or MT_ERR_IO when no reply
+ * came after every attempt: diag->message then starts with "timeout:". With
+ * a reply whose status is not OK, diag->message is "CODE_NAME: the daemon's
+ * error text" (mt_msgs_code_name). */
 
 /* The answer to a submission. The decoded ack_t is kept as received, with its
  * topology_t report: it is the wire type lcm-spy shows and mirrors the core's
@@ -177,7 +166,7 @@ mt_status mt_client_content_hash(const mt_face_list *list, uint64_t *out_hash, m
  * from the client's own thread (an async callback) gives MT_ERR_INVALID_ARG. */
 
 /* Submits a face list as mesh `mesh_id` (a new version of it) and waits for
- * the ack. A mesh larger than one datagram (MT_CLIENT_SINGLE_MESSAGE_MAX)
+ * the ack. A mesh larger than one datagram (MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX)
  * goes as chunks: sent a window at a time, the daemon's missing ranges sent
  * again, a poll when no status comes; the call fails with MT_ERR_IO
  * ("timeout:") only after `retries` + 1 timeouts in a row without any word

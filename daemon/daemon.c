@@ -1,0 +1,239 @@
+/* meshtopod's lifecycle (daemon.h): every module is created here, given the
+ * modules below it, and destroyed here in reverse order once the workers
+ * that use them have stopped. Runs on the thread that runs LCM. */
+#include "daemon.h"
+
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "archiver.h"
+#include "clock.h"
+#include "error_log.h"
+#include "handlers.h"
+#include "heartbeat.h"
+#include "query.h"
+#include "reply.h"
+#include "submit.h"
+#include "transfer.h"
+#include "worker_pool.h"
+
+/* Builds waiting for a worker before submissions are answered BUSY. */
+#define BUILD_QUEUE_CAPACITY 256
+
+struct mtd_daemon {
+    mtd_config config;
+    lcm_t *lcm; /* not owned */
+    char submit_channel[MTD_CHANNEL_MAX + 1];
+    char query_channel[MTD_CHANNEL_MAX + 1];
+    char topology_channel[MTD_CHANNEL_MAX + 1];
+    char status_channel[MTD_CHANNEL_MAX + 1];
+    char instance[128];
+    int64_t start_utime;
+    bool stopped;
+
+    mtd_error_log *errors;
+    mtd_content_pool *contents;
+    mtd_workspace_pool *workspaces;
+    mtd_store *store;
+    mtd_pool *pool;
+    mtd_replies *replies;
+    mtd_archiver *archiver;
+    mtd_submitter *submitter;
+    mtd_transfers *transfers;
+    mtd_queries *queries;
+    mtd_handlers *handlers;
+};
+
+static mt_status channel_name(char *out, const char *prefix, const char *suffix, mt_diag *diag)
+{
+    int n = snprintf(out, MTD_CHANNEL_MAX + 1, "%s%s", prefix, suffix);
+    if (n < 0 || n > MTD_CHANNEL_MAX) {
+        if (diag) {
+            mt_diag_clear(diag);
+            diag->status = MT_ERR_INVALID_ARG;
+            snprintf(diag->message, sizeof diag->message,
+                     "channel prefix '%s': %s%s is longer than LCM's %d bytes", prefix, prefix,
+                     suffix, MTD_CHANNEL_MAX);
+        }
+        return MT_ERR_INVALID_ARG;
+    }
+    return MT_OK;
+}
+
+static mt_status fail_nomem(mt_diag *diag, const char *what)
+{
+    if (diag) {
+        mt_diag_clear(diag);
+        diag->status = MT_ERR_NOMEM;
+        snprintf(diag->message, sizeof diag->message, "cannot create the %s", what);
+    }
+    return MT_ERR_NOMEM;
+}
+
+/* Creates the modules, each after those it uses. */
+static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
+{
+    const mtd_config *c = &d->config;
+    if (mtd_error_log_create(&d->errors) != MT_OK) return fail_nomem(diag, "error log");
+    if (mtd_content_pool_create(&d->contents) != MT_OK ||
+        mtd_workspace_pool_create(&d->workspaces) != MT_OK)
+        return fail_nomem(diag, "kept buffers");
+    mtd_store_options store_options = {
+        .max_versions_per_id = c->max_versions,
+        .max_bytes = (size_t)c->max_store_bytes,
+        .dispose_mesh = mtd_workspace_recycle_mesh,
+        .dispose_mesh_ctx = d->workspaces,
+    };
+    if (mtd_store_create(&store_options, &d->store) != MT_OK) return fail_nomem(diag, "mesh store");
+    if (mtd_pool_create(c->workers, BUILD_QUEUE_CAPACITY, &d->pool) != MT_OK)
+        return fail_nomem(diag, "worker pool");
+    if (mtd_replies_create(d->lcm, d->errors, &d->replies) != MT_OK)
+        return fail_nomem(diag, "request cache");
+    mt_status s = mtd_archiver_open(c, d->store, d->errors, &d->archiver, diag);
+    if (s != MT_OK) return s;
+    mtd_submit_deps submit = {.config = c,
+                              .lcm = d->lcm,
+                              .topology_channel = d->topology_channel,
+                              .pool = d->pool,
+                              .replies = d->replies,
+                              .archiver = d->archiver,
+                              .workspaces = d->workspaces,
+                              .contents = d->contents};
+    if (mtd_submitter_create(&submit, &d->submitter) != MT_OK) return fail_nomem(diag, "submitter");
+    mtd_transfer_deps transfer = {
+        .config = c, .replies = d->replies, .submitter = d->submitter, .contents = d->contents};
+    if (mtd_transfers_create(&transfer, &d->transfers) != MT_OK)
+        return fail_nomem(diag, "transfer table");
+    if (mtd_queries_create(d->store, d->pool, d->replies, &d->queries) != MT_OK)
+        return fail_nomem(diag, "query handler");
+    mtd_handler_deps handlers = {.lcm = d->lcm,
+                                 .submit_channel = d->submit_channel,
+                                 .query_channel = d->query_channel,
+                                 .replies = d->replies,
+                                 .submitter = d->submitter,
+                                 .transfers = d->transfers,
+                                 .queries = d->queries};
+    if (mtd_handlers_subscribe(&handlers, &d->handlers) != MT_OK)
+        return fail_nomem(diag, "LCM subscriptions");
+    return MT_OK;
+}
+
+mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **out_daemon,
+                            mt_diag *diag)
+{
+    *out_daemon = NULL;
+    mtd_daemon *d = calloc(1, sizeof *d);
+    if (!d) return fail_nomem(diag, "daemon");
+    d->config = *config;
+    d->lcm = lcm;
+    d->start_utime = mtd_now_utime();
+    char host[64] = "";
+    gethostname(host, sizeof host - 1);
+    snprintf(d->instance, sizeof d->instance, "%s:%d:%" PRId64, host, (int)getpid(),
+             d->start_utime);
+    /* lcm-gen's fingerprints are computed lazily without a lock: do it now,
+     * before any worker thread encodes. */
+    mt_msgs_type_of(NULL, 0);
+
+    const char *prefix = config->channel_prefix;
+    mt_status s;
+    if ((s = channel_name(d->submit_channel, prefix, "SUBMIT", diag)) != MT_OK ||
+        (s = channel_name(d->query_channel, prefix, "QUERY", diag)) != MT_OK ||
+        (s = channel_name(d->topology_channel, prefix, "TOPOLOGY", diag)) != MT_OK ||
+        (s = channel_name(d->status_channel, prefix, "STATUS", diag)) != MT_OK ||
+        (s = create_modules(d, diag)) != MT_OK) {
+        mtd_daemon_destroy(d);
+        return s;
+    }
+    *out_daemon = d;
+    return MT_OK;
+}
+
+void mtd_daemon_heartbeat(mtd_daemon *d)
+{
+    mtd_heartbeat_sources sources = {.config = &d->config,
+                                     .lcm = d->lcm,
+                                     .status_channel = d->status_channel,
+                                     .instance = d->instance,
+                                     .start_utime = d->start_utime,
+                                     .store = d->store,
+                                     .pool = d->pool,
+                                     .errors = d->errors,
+                                     .replies = d->replies,
+                                     .handlers = d->handlers,
+                                     .submitter = d->submitter,
+                                     .transfers = d->transfers,
+                                     .archiver = d->archiver};
+    mtd_heartbeat_publish(&sources);
+}
+
+void mtd_daemon_tick(mtd_daemon *d)
+{
+    mtd_transfers_expire(d->transfers);
+    mtd_daemon_heartbeat(d);
+}
+
+void mtd_daemon_stop(mtd_daemon *d)
+{
+    if (!d || d->stopped) return;
+    d->stopped = true;
+    if (d->handlers) mtd_handlers_unsubscribe(d->handlers);
+    if (d->transfers) mtd_transfers_stop(d->transfers);
+    if (d->pool) mtd_pool_shutdown(d->pool, MTD_SHUTDOWN_CANCEL);
+    mtd_archiver_stop(d->archiver);
+}
+
+void mtd_daemon_destroy(mtd_daemon *d)
+{
+    if (!d) return;
+    mtd_daemon_stop(d);
+    mtd_handlers_destroy(d->handlers);
+    mtd_pool_destroy(d->pool); /* no worker runs past here */
+    mtd_queries_destroy(d->queries);
+    mtd_transfers_destroy(d->transfers);
+    mtd_submitter_destroy(d->submitter);
+    mtd_archiver_destroy(d->archiver);
+    mtd_replies_destroy(d->replies);
+    mtd_store_destroy(d->store); /* its meshes go to the workspace pool: destroyed next */
+    mtd_workspace_pool_destroy(d->workspaces);
+    mtd_content_pool_destroy(d->contents);
+    mtd_error_log_destroy(d->errors);
+    free(d);
+}
+
+const char *mtd_daemon_instance(const mtd_daemon *d)
+{
+    return d->instance;
+}
+
+const char *mtd_daemon_submit_channel(const mtd_daemon *d)
+{
+    return d->submit_channel;
+}
+
+const char *mtd_daemon_query_channel(const mtd_daemon *d)
+{
+    return d->query_channel;
+}
+
+void mtd_daemon_get_counts(mtd_daemon *d, mtd_counters *out)
+{
+    mtd_counters_get(d->handlers, d->transfers, d->submitter, d->errors, d->replies, out);
+}
+
+mtd_store *mtd_daemon_store(mtd_daemon *d)
+{
+    return d->store;
+}
+
+mtd_content_pool *mtd_daemon_content_pool(mtd_daemon *d)
+{
+    return d->contents;
+}
+
+mtd_workspace_pool *mtd_daemon_workspace_pool(mtd_daemon *d)
+{
+    return d->workspaces;
+}

@@ -1,0 +1,50 @@
+/* meshtopod's LCM handlers: the subscriptions to PREFIX+"SUBMIT" and
+ * PREFIX+"QUERY" and the raw handlers that check received bytes
+ * (mt_msgs_decode, never lcm-gen's decoders) and route each message to the
+ * module that owns it: whole meshes to the submitter, chunks to the
+ * transfers, queries to the queries, pulls of large answers to the replies.
+ * Runs on the LCM thread. */
+#ifndef MESHTOPOD_HANDLERS_H
+#define MESHTOPOD_HANDLERS_H
+
+#include <lcm/lcm.h>
+#include <stdint.h>
+
+#include "query.h"
+#include "reply.h"
+#include "submit.h"
+#include "transfer.h"
+
+/* Where each message goes; not owned, all must outlive the handlers. */
+typedef struct mtd_handler_deps {
+    lcm_t *lcm;
+    const char *submit_channel;
+    const char *query_channel;
+    mtd_replies *replies;
+    mtd_submitter *submitter;
+    mtd_transfers *transfers;
+    mtd_queries *queries;
+} mtd_handler_deps;
+
+typedef struct mtd_handlers mtd_handlers;
+
+/* Subscribes (raw handlers, LCM's queue raised so bursts are not dropped).
+ * MT_OK or MT_ERR_NOMEM. */
+mt_status mtd_handlers_subscribe(const mtd_handler_deps *deps, mtd_handlers **out_handlers);
+
+/* Unsubscribes: no message is handled after it returns. Idempotent. */
+void mtd_handlers_unsubscribe(mtd_handlers *handlers);
+
+/* Unsubscribes and frees. NULL-safe. */
+void mtd_handlers_destroy(mtd_handlers *handlers);
+
+/* Messages received on SUBMIT as whole meshes (undecodable ones included)
+ * and on QUERY as queries (undecodable ones included). */
+typedef struct mtd_handler_counts {
+    int64_t submissions;
+    int64_t queries;
+} mtd_handler_counts;
+
+void mtd_handlers_get_counts(mtd_handlers *handlers, mtd_handler_counts *out_counts);
+
+#endif

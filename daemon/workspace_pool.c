@@ -1,0 +1,80 @@
+/* meshtopod's kept build workspace (workspace_pool.h): one workspace under a
+ * mutex, taken and given back around each build, and the target of meshes
+ * the store drops. Any thread. */
+#include "workspace_pool.h"
+
+#include <pthread.h>
+#include <stdlib.h>
+
+struct mtd_workspace_pool {
+    pthread_mutex_t lock;
+    mt_build_workspace *kept;
+};
+
+mt_status mtd_workspace_pool_create(mtd_workspace_pool **out_pool)
+{
+    *out_pool = calloc(1, sizeof **out_pool);
+    if (!*out_pool) return MT_ERR_NOMEM;
+    pthread_mutex_init(&(*out_pool)->lock, NULL);
+    return MT_OK;
+}
+
+void mtd_workspace_pool_destroy(mtd_workspace_pool *pool)
+{
+    if (!pool) return;
+    mt_build_workspace_destroy(pool->kept);
+    pthread_mutex_destroy(&pool->lock);
+    free(pool);
+}
+
+mt_build_workspace *mtd_workspace_take(mtd_workspace_pool *pool)
+{
+    pthread_mutex_lock(&pool->lock);
+    mt_build_workspace *w = pool->kept;
+    pool->kept = NULL;
+    pthread_mutex_unlock(&pool->lock);
+    return w ? w : mt_build_workspace_create();
+}
+
+void mtd_workspace_release(mtd_workspace_pool *pool, mt_build_workspace *workspace)
+{
+    if (!workspace) return;
+    pthread_mutex_lock(&pool->lock);
+    mt_build_workspace *other = pool->kept;
+    if (other && mt_build_workspace_bytes(other) > mt_build_workspace_bytes(workspace)) {
+        mt_build_workspace *swap = workspace;
+        workspace = other;
+        other = swap;
+    }
+    pool->kept = workspace;
+    pthread_mutex_unlock(&pool->lock);
+    mt_build_workspace_destroy(other);
+}
+
+void mtd_workspace_recycle_mesh(void *pool_ctx, mt_mesh *mesh)
+{
+    mtd_workspace_pool *pool = pool_ctx;
+    pthread_mutex_lock(&pool->lock);
+    if (pool->kept) {
+        mt_build_workspace_recycle(pool->kept, mesh);
+        mesh = NULL;
+    }
+    pthread_mutex_unlock(&pool->lock);
+    mt_mesh_destroy(mesh);
+}
+
+const mt_build_workspace *mtd_workspace_pool_kept(mtd_workspace_pool *pool)
+{
+    pthread_mutex_lock(&pool->lock);
+    const mt_build_workspace *kept = pool->kept;
+    pthread_mutex_unlock(&pool->lock);
+    return kept;
+}
+
+size_t mtd_workspace_pool_bytes(mtd_workspace_pool *pool)
+{
+    pthread_mutex_lock(&pool->lock);
+    size_t bytes = pool->kept ? mt_build_workspace_bytes(pool->kept) : 0;
+    pthread_mutex_unlock(&pool->lock);
+    return bytes;
+}
