@@ -24,11 +24,8 @@
 
 struct mtd_daemon {
     mtd_config config;
-    lcm_t *lcm; /* not owned */
-    char submit_channel[MTD_CHANNEL_MAX + 1];
-    char query_channel[MTD_CHANNEL_MAX + 1];
-    char topology_channel[MTD_CHANNEL_MAX + 1];
-    char status_channel[MTD_CHANNEL_MAX + 1];
+    lcm_t *lcm;                                                         /* not owned */
+    char channels[MT_MSGS_CHANNEL_COUNT][MT_MSGS_CHANNEL_NAME_MAX + 1]; /* PREFIX + suffix */
     char instance[128];
     int64_t start_utime;
     bool stopped;
@@ -46,18 +43,21 @@ struct mtd_daemon {
     mtd_handlers *handlers;
 };
 
-static mt_status channel_name(char *out, const char *prefix, const char *suffix, mt_diag *diag)
+/* Names every channel; MT_ERR_INVALID_ARG when the prefix makes one too long. */
+static mt_status name_channels(mtd_daemon *d, mt_diag *diag)
 {
-    int n = snprintf(out, MTD_CHANNEL_MAX + 1, "%s%s", prefix, suffix);
-    if (n < 0 || n > MTD_CHANNEL_MAX) {
-        if (diag) {
-            mt_diag_clear(diag);
-            diag->status = MT_ERR_INVALID_ARG;
-            snprintf(diag->message, sizeof diag->message,
-                     "channel prefix '%s': %s%s is longer than LCM's %d bytes", prefix, prefix,
-                     suffix, MTD_CHANNEL_MAX);
+    const char *prefix = d->config.channel_prefix;
+    for (int c = 0; c < MT_MSGS_CHANNEL_COUNT; c++) {
+        if (mt_msgs_channel_name(prefix, (mt_msgs_channel)c, d->channels[c]) != MT_OK) {
+            if (diag) {
+                mt_diag_clear(diag);
+                diag->status = MT_ERR_INVALID_ARG;
+                snprintf(diag->message, sizeof diag->message,
+                         "channel prefix '%s': %s%s is longer than LCM's %d bytes", prefix, prefix,
+                         mt_msgs_channel_suffix((mt_msgs_channel)c), MT_MSGS_CHANNEL_NAME_MAX);
+            }
+            return MT_ERR_INVALID_ARG;
         }
-        return MT_ERR_INVALID_ARG;
     }
     return MT_OK;
 }
@@ -95,7 +95,7 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
     if (s != MT_OK) return s;
     mtd_submit_deps submit = {.config = c,
                               .lcm = d->lcm,
-                              .topology_channel = d->topology_channel,
+                              .topology_channel = d->channels[MT_MSGS_CHANNEL_TOPOLOGY],
                               .pool = d->pool,
                               .replies = d->replies,
                               .archiver = d->archiver,
@@ -109,8 +109,7 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
     if (mtd_queries_create(d->store, d->pool, d->replies, &d->queries) != MT_OK)
         return fail_nomem(diag, "query handler");
     mtd_handler_deps handlers = {.lcm = d->lcm,
-                                 .submit_channel = d->submit_channel,
-                                 .query_channel = d->query_channel,
+                                 .prefix = c->channel_prefix,
                                  .replies = d->replies,
                                  .submitter = d->submitter,
                                  .transfers = d->transfers,
@@ -137,13 +136,8 @@ mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **o
      * before any worker thread encodes. */
     mt_msgs_type_of(NULL, 0);
 
-    const char *prefix = config->channel_prefix;
     mt_status s;
-    if ((s = channel_name(d->submit_channel, prefix, "SUBMIT", diag)) != MT_OK ||
-        (s = channel_name(d->query_channel, prefix, "QUERY", diag)) != MT_OK ||
-        (s = channel_name(d->topology_channel, prefix, "TOPOLOGY", diag)) != MT_OK ||
-        (s = channel_name(d->status_channel, prefix, "STATUS", diag)) != MT_OK ||
-        (s = create_modules(d, diag)) != MT_OK) {
+    if ((s = name_channels(d, diag)) != MT_OK || (s = create_modules(d, diag)) != MT_OK) {
         mtd_daemon_destroy(d);
         return s;
     }
@@ -155,7 +149,7 @@ void mtd_daemon_heartbeat(mtd_daemon *d)
 {
     mtd_heartbeat_sources sources = {.config = &d->config,
                                      .lcm = d->lcm,
-                                     .status_channel = d->status_channel,
+                                     .status_channel = d->channels[MT_MSGS_CHANNEL_STATUS],
                                      .instance = d->instance,
                                      .start_utime = d->start_utime,
                                      .store = d->store,
@@ -208,14 +202,9 @@ const char *mtd_daemon_instance(const mtd_daemon *d)
     return d->instance;
 }
 
-const char *mtd_daemon_submit_channel(const mtd_daemon *d)
+const char *mtd_daemon_channel(const mtd_daemon *d, mt_msgs_channel channel)
 {
-    return d->submit_channel;
-}
-
-const char *mtd_daemon_query_channel(const mtd_daemon *d)
-{
-    return d->query_channel;
+    return (unsigned)channel < MT_MSGS_CHANNEL_COUNT ? d->channels[channel] : "";
 }
 
 void mtd_daemon_get_counts(mtd_daemon *d, mtd_counters *out)

@@ -14,12 +14,13 @@
 #include "content_pool.h"
 #include "heartbeat.h"
 #include "mesh_store.h"
+#include "meshtopo/channels.h"
 #include "workspace_pool.h"
 
 typedef struct mtd_daemon mtd_daemon;
 
-/* Creates every module from config and subscribes to PREFIX+"SUBMIT" and
- * PREFIX+"QUERY" on lcm (not owned). MT_OK, MT_ERR_INVALID_ARG (prefix too
+/* Creates every module from config and subscribes to the request channels
+ * on lcm (not owned). MT_OK, MT_ERR_INVALID_ARG (prefix too
  * long for LCM channel names), MT_ERR_IO (the archive), MT_ERR_NOMEM; diag
  * says which. */
 mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **out_daemon,
@@ -43,9 +44,8 @@ void mtd_daemon_destroy(mtd_daemon *daemon);
 /* "host:pid:start-utime", as in the heartbeat. */
 const char *mtd_daemon_instance(const mtd_daemon *daemon);
 
-/* Channel names, PREFIX + the suffix. */
-const char *mtd_daemon_submit_channel(const mtd_daemon *daemon);
-const char *mtd_daemon_query_channel(const mtd_daemon *daemon);
+/* A channel's name, PREFIX + its suffix (meshtopo/channels.h). */
+const char *mtd_daemon_channel(const mtd_daemon *daemon, mt_msgs_channel channel);
 
 /* The counters the heartbeat and the last log line report. */
 void mtd_daemon_get_counts(mtd_daemon *daemon, mtd_counters *out_counts);

@@ -1,9 +1,9 @@
-/* meshtopod's LCM handlers: the subscriptions to PREFIX+"SUBMIT" and
- * PREFIX+"QUERY" and the raw handlers that check received bytes
- * (mt_msgs_decode, never lcm-gen's decoders) and route each message to the
- * module that owns it: whole meshes to the submitter, chunks to the
- * transfers, queries to the queries, pulls of large answers to the replies.
- * Runs on the LCM thread. */
+/* meshtopod's LCM handlers: the subscriptions to the four request channels
+ * (meshtopo/channels.h: SUBMIT, SUBMIT_CHUNK, QUERY, QUERY_PULL, one type
+ * each) and the raw handlers that check received bytes (mt_msgs_decode,
+ * never lcm-gen's decoders) and route each message to the module that owns
+ * it: whole meshes to the submitter, chunks to the transfers, queries to the
+ * queries, pulls of large answers to the replies. Runs on the LCM thread. */
 #ifndef MESHTOPOD_HANDLERS_H
 #define MESHTOPOD_HANDLERS_H
 
@@ -18,8 +18,7 @@
 /* Where each message goes; not owned, all must outlive the handlers. */
 typedef struct mtd_handler_deps {
     lcm_t *lcm;
-    const char *submit_channel;
-    const char *query_channel;
+    const char *prefix; /* of the channel names */
     mtd_replies *replies;
     mtd_submitter *submitter;
     mtd_transfers *transfers;
@@ -29,7 +28,8 @@ typedef struct mtd_handler_deps {
 typedef struct mtd_handlers mtd_handlers;
 
 /* Subscribes (raw handlers, LCM's queue raised so bursts are not dropped).
- * MT_OK or MT_ERR_NOMEM. */
+ * MT_OK, MT_ERR_INVALID_ARG (the prefix makes a channel name longer than
+ * LCM's 63 bytes) or MT_ERR_NOMEM. */
 mt_status mtd_handlers_subscribe(const mtd_handler_deps *deps, mtd_handlers **out_handlers);
 
 /* Unsubscribes: no message is handled after it returns. Idempotent. */
@@ -38,8 +38,7 @@ void mtd_handlers_unsubscribe(mtd_handlers *handlers);
 /* Unsubscribes and frees. NULL-safe. */
 void mtd_handlers_destroy(mtd_handlers *handlers);
 
-/* Messages received on SUBMIT as whole meshes (undecodable ones included)
- * and on QUERY as queries (undecodable ones included). */
+/* Messages received on SUBMIT and on QUERY, undecodable ones included. */
 typedef struct mtd_handler_counts {
     int64_t submissions;
     int64_t queries;

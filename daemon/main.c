@@ -112,7 +112,8 @@ int main(int argc, char **argv)
     }
     mtd_config_log(&config);
     mtd_log(MTD_LOG_INFO, "start", "version=%s submit=%s query=%s instance=%s", MESHTOPO_VERSION,
-            mtd_daemon_submit_channel(d), mtd_daemon_query_channel(d), mtd_daemon_instance(d));
+            mtd_daemon_channel(d, MT_MSGS_CHANNEL_SUBMIT),
+            mtd_daemon_channel(d, MT_MSGS_CHANNEL_QUERY), mtd_daemon_instance(d));
     int signo = run_loop(d, lcm, config.heartbeat_ms);
     mtd_log(MTD_LOG_INFO, "stopping", "signal=%s",
             signo == SIGINT    ? "SIGINT"

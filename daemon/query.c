@@ -533,7 +533,8 @@ static void send_answer(mtd_replies *replies, const meshtopo_query_t *q, answer 
 {
     if (a->status != MESHTOPO_STATUS_CODE_T_OK) {
         bool remember = a->status != MESHTOPO_STATUS_CODE_T_INTERNAL;
-        if (!remember) mtd_reply_abandon(replies, q->reply_channel, q->request_id);
+        if (!remember)
+            mtd_reply_abandon(replies, q->reply_channel, q->request_id, &mt_msgs_type_reply);
         mtd_reply_query_error(replies, q->reply_channel, q->request_id, q->mesh_id, q->kind,
                               remember, a->status, a->error);
         return;
@@ -548,7 +549,7 @@ static void send_answer(mtd_replies *replies, const meshtopo_query_t *q, answer 
     if (!item_status || !boundary) {
         free(item_status);
         free(boundary);
-        mtd_reply_abandon(replies, q->reply_channel, q->request_id);
+        mtd_reply_abandon(replies, q->reply_channel, q->request_id, &mt_msgs_type_reply);
         mtd_reply_query_error(replies, q->reply_channel, q->request_id, q->mesh_id, q->kind, false,
                               MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory sending the answer");
         return;
@@ -666,7 +667,8 @@ static void load_job_run(void *arg, bool cancelled)
     load_job *job = arg;
     const meshtopo_query_t *q = job->query;
     if (cancelled) {
-        mtd_reply_abandon(job->queries->replies, q->reply_channel, q->request_id);
+        mtd_reply_abandon(job->queries->replies, q->reply_channel, q->request_id,
+                          &mt_msgs_type_reply);
         mtd_reply_query_error(job->queries->replies, q->reply_channel, q->request_id, q->mesh_id,
                               q->kind, false, MESHTOPO_STATUS_CODE_T_BUSY,
                               "the daemon is shutting down; the mesh was not loaded");

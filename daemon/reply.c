@@ -44,15 +44,6 @@ void mtd_replies_destroy(mtd_replies *r)
     free(r);
 }
 
-bool mtd_reply_channel_ok(const char *channel)
-{
-    size_t n = strlen(channel);
-    if (n == 0 || n > MTD_CHANNEL_MAX) return false;
-    for (size_t i = 0; i < n; i++)
-        if (channel[i] <= ' ' || channel[i] > '~') return false;
-    return true;
-}
-
 static int64_t read_be64(const unsigned char *p)
 {
     uint64_t v = 0;
@@ -67,36 +58,45 @@ bool mtd_reply_peek_header(const void *data, size_t size, int64_t *out_request_i
     *out_request_id = read_be64(p + 16);
     uint32_t raw = (uint32_t)p[24] << 24 | (uint32_t)p[25] << 16 | (uint32_t)p[26] << 8 | p[27];
     int64_t len = (int32_t)raw;
-    if (len < 2 || len > MTD_CHANNEL_MAX + 1 || (size_t)len > size - 28) return false;
+    if (len < 2 || len > MT_MSGS_CHANNEL_NAME_MAX + 1 || (size_t)len > size - 28) return false;
     if (p[28 + len - 1] != 0) return false;
     memcpy(channel, p + 28, (size_t)len);
-    return mtd_reply_channel_ok(channel);
+    return mt_msgs_reply_channel_ok(channel);
 }
 
-void mtd_reply_send(mtd_replies *r, const char *channel, int64_t request_id, bool remember,
+/* The request cache's key of a request: the channel of its answer type. */
+static bool answer_channel(const char *reply_channel, const mt_msgs_type *answer, char *out)
+{
+    return mt_msgs_reply_channel_name(reply_channel, answer, out) == MT_OK;
+}
+
+void mtd_reply_send(mtd_replies *r, const char *reply_channel, int64_t request_id, bool remember,
                     const mt_msgs_type *type, const void *msg, int32_t status, const char *error)
 {
     if (status != MESHTOPO_STATUS_CODE_T_OK) mtd_error_log_note(r->errors, error);
+    char key[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    if (!answer_channel(reply_channel, type, key)) return; /* checked when it arrived */
     int size = type->encoded_size(msg);
     void *buf = size > 0 ? malloc((size_t)size) : NULL;
     if (!buf || type->encode(buf, 0, size, msg) != size) {
         free(buf);
         mtd_log(MTD_LOG_ERROR, "encode", "type=%s request_id=%" PRId64 " bytes=%d", type->name,
                 request_id, size);
-        if (remember) mtd_reqcache_abandon(r->cache, channel, request_id);
+        if (remember) mtd_reqcache_abandon(r->cache, key, request_id);
         return;
     }
     if (remember) {
-        mt_status s = mtd_reqcache_finish(r->cache, channel, request_id, buf, (size_t)size);
+        mt_status s = mtd_reqcache_finish(r->cache, key, request_id, buf, (size_t)size);
         if (s != MT_OK)
             mtd_log(MTD_LOG_WARN, "reqcache", "request_id=%" PRId64 " not remembered: %s",
                     request_id, mt_strerror(s));
     }
-    mtd_parts_publish(r->lcm, channel, request_id, buf, (size_t)size); /* in parts when large */
+    mtd_parts_publish(r->lcm, reply_channel, request_id, buf,
+                      (size_t)size); /* in parts when large */
     free(buf);
 }
 
-void mtd_reply_ack_error(mtd_replies *r, const char *channel, int64_t request_id,
+void mtd_reply_ack_error(mtd_replies *r, const char *reply_channel, int64_t request_id,
                          const char *mesh_id, bool remember, int32_t status, const char *error)
 {
     meshtopo_ack_t ack;
@@ -108,10 +108,10 @@ void mtd_reply_ack_error(mtd_replies *r, const char *channel, int64_t request_id
     ack.mesh_id = (char *)(mesh_id ? mesh_id : "");
     mtd_log(MTD_LOG_INFO, "submit_error", "request_id=%" PRId64 " status=%d error=%s", request_id,
             (int)status, error);
-    mtd_reply_send(r, channel, request_id, remember, &mt_msgs_type_ack, &ack, status, error);
+    mtd_reply_send(r, reply_channel, request_id, remember, &mt_msgs_type_ack, &ack, status, error);
 }
 
-void mtd_reply_query_error(mtd_replies *r, const char *channel, int64_t request_id,
+void mtd_reply_query_error(mtd_replies *r, const char *reply_channel, int64_t request_id,
                            const char *mesh_id, int32_t kind, bool remember, int32_t status,
                            const char *error)
 {
@@ -131,14 +131,15 @@ void mtd_reply_query_error(mtd_replies *r, const char *channel, int64_t request_
     reply.value2_offsets = zero;
     mtd_log(MTD_LOG_INFO, "query_error", "request_id=%" PRId64 " status=%d error=%s", request_id,
             (int)status, error);
-    mtd_reply_send(r, channel, request_id, remember, &mt_msgs_type_reply, &reply, status, error);
+    mtd_reply_send(r, reply_channel, request_id, remember, &mt_msgs_type_reply, &reply, status,
+                   error);
 }
 
 void mtd_reply_undecodable(mtd_replies *r, const mt_msgs_type *type, const void *data, size_t size,
                            const char *why)
 {
     int64_t request_id = 0;
-    char channel[MTD_CHANNEL_MAX + 1];
+    char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
     char error[MTD_ERROR_MAX];
     snprintf(error, sizeof error, "undecodable %s: %s", type->name, why);
     if (!mtd_reply_peek_header(data, size, &request_id, channel)) {
@@ -155,12 +156,14 @@ void mtd_reply_undecodable(mtd_replies *r, const mt_msgs_type *type, const void 
                               MESHTOPO_STATUS_CODE_T_UNDECODABLE, error);
 }
 
-bool mtd_reply_begin(mtd_replies *r, const char *channel, int64_t request_id)
+bool mtd_reply_begin(mtd_replies *r, const char *reply_channel, int64_t request_id,
+                     const mt_msgs_type *answer)
 {
-    if (!mtd_reply_channel_ok(channel)) {
+    char key[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    if (!answer_channel(reply_channel, answer, key)) {
         char error[MTD_ERROR_MAX];
         snprintf(error, sizeof error, "reply_channel '%.80s': must be 1 to %d printable bytes",
-                 channel, MTD_CHANNEL_MAX);
+                 reply_channel, MESHTOPO_MESH_T_REPLY_CHANNEL_MAX);
         mtd_error_log_note(r->errors, error);
         mtd_log(MTD_LOG_WARN, "bad_request", "request_id=%" PRId64 " error=%s (not answered)",
                 request_id, error);
@@ -168,39 +171,43 @@ bool mtd_reply_begin(mtd_replies *r, const char *channel, int64_t request_id)
     }
     mtd_request_state state = MTD_REQUEST_NEW;
     mtd_reply *stored = NULL;
-    if (mtd_reqcache_begin(r->cache, channel, request_id, &state, &stored) != MT_OK)
+    if (mtd_reqcache_begin(r->cache, key, request_id, &state, &stored) != MT_OK)
         return true; /* out of memory for the mark: run it unremembered */
     if (state == MTD_REQUEST_NEW) return true;
     atomic_fetch_add(&r->duplicates, 1);
     if (state == MTD_REQUEST_DONE) {
         mtd_log(MTD_LOG_DEBUG, "duplicate", "request_id=%" PRId64 " channel=%s answered again",
-                request_id, channel);
-        mtd_parts_publish(r->lcm, channel, request_id, mtd_reply_data(stored),
+                request_id, key);
+        mtd_parts_publish(r->lcm, reply_channel, request_id, mtd_reply_data(stored),
                           mtd_reply_size(stored));
         mtd_reply_release(stored);
     }
     return false;
 }
 
-mtd_request_state mtd_reply_state(mtd_replies *r, const char *channel, int64_t request_id,
-                                  bool resend)
+mtd_request_state mtd_reply_state(mtd_replies *r, const char *reply_channel, int64_t request_id,
+                                  const mt_msgs_type *answer, bool resend)
 {
+    char key[MT_MSGS_CHANNEL_NAME_MAX + 1];
     mtd_request_state state = MTD_REQUEST_NEW;
     mtd_reply *stored = NULL;
-    if (mtd_reqcache_peek(r->cache, channel, request_id, &state, &stored) != MT_OK)
+    if (!answer_channel(reply_channel, answer, key) ||
+        mtd_reqcache_peek(r->cache, key, request_id, &state, &stored) != MT_OK)
         return MTD_REQUEST_NEW;
     if (state == MTD_REQUEST_DONE && resend) {
         atomic_fetch_add(&r->duplicates, 1);
-        mtd_parts_publish(r->lcm, channel, request_id, mtd_reply_data(stored),
+        mtd_parts_publish(r->lcm, reply_channel, request_id, mtd_reply_data(stored),
                           mtd_reply_size(stored));
     }
     mtd_reply_release(stored);
     return state;
 }
 
-void mtd_reply_abandon(mtd_replies *r, const char *channel, int64_t request_id)
+void mtd_reply_abandon(mtd_replies *r, const char *reply_channel, int64_t request_id,
+                       const mt_msgs_type *answer)
 {
-    mtd_reqcache_abandon(r->cache, channel, request_id);
+    char key[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    if (answer_channel(reply_channel, answer, key)) mtd_reqcache_abandon(r->cache, key, request_id);
 }
 
 void mtd_reply_serve_pull(mtd_replies *r, const void *data, size_t size)

@@ -1,10 +1,13 @@
 /* meshtopod's replies: the one way out to a requester. Encodes and publishes
- * replies, acks and error answers on the reply channel a request names (in
- * parts when large), remembers them in the request cache so a retry with the
- * same request id and reply channel gets the same bytes instead of running
- * again, and notes every error answer in the error log. Owns the request
- * cache. Any thread: the LCM thread answers queries and refusals, build
- * workers answer submissions. */
+ * replies, acks, transfer statuses and error answers on the channel of their
+ * type under the reply channel a request names (meshtopo/channels.h: R_ACK,
+ * R_REPLY, R_PART, R_TRANSFER; large replies in parts), remembers them in
+ * the request cache so a retry with the same request id gets the same bytes
+ * instead of running again, and notes every error answer in the error log.
+ * Owns the request cache, keyed by (answer channel, request id): the key
+ * includes the kind of request, so a query_t reusing the id of an earlier
+ * mesh_t is a new request. Any thread: the LCM thread answers queries and
+ * refusals, build workers answer submissions. */
 #ifndef MESHTOPOD_REPLY_H
 #define MESHTOPOD_REPLY_H
 
@@ -14,11 +17,9 @@
 #include <stdint.h>
 
 #include "error_log.h"
+#include "meshtopo/channels.h"
 #include "meshtopo/msgs.h"
 #include "request_cache.h"
-
-/* Longest channel name LCM publishes (its own limit). */
-#define MTD_CHANNEL_MAX 63
 
 typedef struct mtd_replies mtd_replies;
 
@@ -29,50 +30,52 @@ mt_status mtd_replies_create(lcm_t *lcm, mtd_error_log *errors, mtd_replies **ou
 /* Frees the request cache (replies still held stay valid). NULL-safe. */
 void mtd_replies_destroy(mtd_replies *replies);
 
-/* A channel the daemon can answer on: 1 to MTD_CHANNEL_MAX printable bytes. */
-bool mtd_reply_channel_ok(const char *channel);
-
 /* Reads the header every request starts with (fingerprint, utime,
  * request_id, reply_channel as int32 length with its NUL, then the bytes),
- * for answering bytes that do not decode. Returns true with the channel
- * copied into channel[MTD_CHANNEL_MAX + 1] when it is one to answer on. */
+ * for answering bytes that do not decode. Returns true with the reply
+ * channel copied into channel[MT_MSGS_CHANNEL_NAME_MAX + 1] when it is one
+ * to answer on (mt_msgs_reply_channel_ok). */
 bool mtd_reply_peek_header(const void *data, size_t size, int64_t *out_request_id, char *channel);
 
-/* Starts a request: checks its reply channel (a bad one is noted and not
+/* Starts a request whose answer is of type `answer` (ack_t for submissions,
+ * reply_t for queries): checks its reply channel (a bad one is noted and not
  * answered) and the request cache. Returns true when the request is new (now
- * marked pending) and must be run; a finished one has had its reply
+ * marked pending) and must be run; a finished one has had its answer
  * published again, a running one is left to finish (both counted as
  * duplicates). */
-bool mtd_reply_begin(mtd_replies *replies, const char *channel, int64_t request_id);
+bool mtd_reply_begin(mtd_replies *replies, const char *reply_channel, int64_t request_id,
+                     const mt_msgs_type *answer);
 
 /* What the request cache knows of a request, without marking it. A finished
  * one is published again when `resend` (and counted as a duplicate). */
-mtd_request_state mtd_reply_state(mtd_replies *replies, const char *channel, int64_t request_id,
-                                  bool resend);
+mtd_request_state mtd_reply_state(mtd_replies *replies, const char *reply_channel,
+                                  int64_t request_id, const mt_msgs_type *answer, bool resend);
 
 /* Removes the pending mark of a request that will not be answered with a
- * remembered reply, so a retry runs it again. */
-void mtd_reply_abandon(mtd_replies *replies, const char *channel, int64_t request_id);
+ * remembered answer, so a retry runs it again. */
+void mtd_reply_abandon(mtd_replies *replies, const char *reply_channel, int64_t request_id,
+                       const mt_msgs_type *answer);
 
-/* Encodes msg of `type` and publishes it on channel; when `remember`, stores
- * it in the request cache under (channel, request_id) first. A status other
- * than OK is noted in the error log with `error`. */
-void mtd_reply_send(mtd_replies *replies, const char *channel, int64_t request_id, bool remember,
-                    const mt_msgs_type *type, const void *msg, int32_t status, const char *error);
+/* Encodes msg of `type` (an answer type) and publishes it on reply_channel +
+ * the type's suffix; when `remember`, stores it in the request cache first.
+ * A status other than OK is noted in the error log with `error`. */
+void mtd_reply_send(mtd_replies *replies, const char *reply_channel, int64_t request_id,
+                    bool remember, const mt_msgs_type *type, const void *msg, int32_t status,
+                    const char *error);
 
 /* An ack_t carrying only a status and an error. */
-void mtd_reply_ack_error(mtd_replies *replies, const char *channel, int64_t request_id,
+void mtd_reply_ack_error(mtd_replies *replies, const char *reply_channel, int64_t request_id,
                          const char *mesh_id, bool remember, int32_t status, const char *error);
 
 /* A reply_t carrying only a status and an error. */
-void mtd_reply_query_error(mtd_replies *replies, const char *channel, int64_t request_id,
+void mtd_reply_query_error(mtd_replies *replies, const char *reply_channel, int64_t request_id,
                            const char *mesh_id, int32_t kind, bool remember, int32_t status,
                            const char *error);
 
 /* Answers bytes received on a request channel that are not a well-formed
- * message of `type` (mesh_t, query_t or mesh_chunk_t), with UNDECODABLE and
- * `why`, when their request header names a reply channel; notes the error
- * either way. */
+ * message of `type` (mesh_t or query_t), with UNDECODABLE and `why` in an
+ * ack_t or reply_t, when their request header names a reply channel; notes
+ * the error either way. */
 void mtd_reply_undecodable(mtd_replies *replies, const mt_msgs_type *type, const void *data,
                            size_t size, const char *why);
 

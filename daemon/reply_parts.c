@@ -15,6 +15,7 @@
 #include "clock.h"
 #include "log.h"
 #include "meshtopo/answer_hash.h"
+#include "meshtopo/channels.h"
 #include "meshtopo/msgs.h"
 
 /* The protocol's numbers (msgs/reply_part_t.lcm, reply_pull_t.lcm) as sizes. */
@@ -58,11 +59,19 @@ static void publish_parts(lcm_t *lcm, const char *channel, int64_t request_id, c
     free(buf);
 }
 
-void mtd_parts_publish(lcm_t *lcm, const char *channel, int64_t request_id, const void *data,
+void mtd_parts_publish(lcm_t *lcm, const char *reply_channel, int64_t request_id, const void *data,
                        size_t size)
 {
-    if (size <= MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX ||
-        mt_msgs_type_of(data, size) != &mt_msgs_type_reply) {
+    const mt_msgs_type *type = mt_msgs_type_of(data, size);
+    bool in_parts = size > MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX && type == &mt_msgs_type_reply;
+    char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    if (mt_msgs_reply_channel_name(reply_channel, in_parts ? &mt_msgs_type_reply_part : type,
+                                   channel) != MT_OK) {
+        mtd_log(MTD_LOG_ERROR, "publish", "reply_channel=%.80s type=%s: no channel to answer on",
+                reply_channel, type ? type->name : "?");
+        return;
+    }
+    if (!in_parts) {
         if (lcm_publish(lcm, channel, data, (unsigned)size) != 0)
             mtd_log(MTD_LOG_ERROR, "publish", "channel=%s bytes=%zu", channel, size);
         return;
@@ -86,12 +95,17 @@ void mtd_parts_serve_pull(lcm_t *lcm, mtd_reqcache *cache, const void *data, siz
     }
     mtd_request_state state = MTD_REQUEST_NEW;
     mtd_reply *stored = NULL;
+    /* The answer is cached under its reply_t channel; its parts go out on
+     * the reply_part_t one. */
+    char key[MT_MSGS_CHANNEL_NAME_MAX + 1], parts[MT_MSGS_CHANNEL_NAME_MAX + 1];
     if (pull.num_ranges > MESHTOPO_REPLY_PULL_T_RANGES_MAX) {
         mtd_log(MTD_LOG_WARN, "reply_pull",
                 "request_id=%" PRId64 " %d ranges (at most %d): ignored", pull.request_id,
                 (int)pull.num_ranges, MESHTOPO_REPLY_PULL_T_RANGES_MAX);
-    } else if (mtd_reqcache_peek(cache, pull.reply_channel, pull.request_id, &state, &stored) ==
+    } else if (mt_msgs_reply_channel_name(pull.reply_channel, &mt_msgs_type_reply, key) == MT_OK &&
+               mt_msgs_reply_channel_name(pull.reply_channel, &mt_msgs_type_reply_part, parts) ==
                    MT_OK &&
+               mtd_reqcache_peek(cache, key, pull.request_id, &state, &stored) == MT_OK &&
                state == MTD_REQUEST_DONE) {
         const uint8_t *bytes = mtd_reply_data(stored);
         size_t total = mtd_reply_size(stored);
@@ -116,8 +130,8 @@ void mtd_parts_serve_pull(lcm_t *lcm, mtd_reqcache *cache, const void *data, siz
                     wanted[k] = 1;
             }
             if (wanted)
-                publish_parts(lcm, pull.reply_channel, pull.request_id, bytes, total, hash, wanted,
-                              num_parts, parts_per_pull);
+                publish_parts(lcm, parts, pull.request_id, bytes, total, hash, wanted, num_parts,
+                              parts_per_pull);
             free(wanted);
         }
     } else {

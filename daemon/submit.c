@@ -150,7 +150,7 @@ static void build_job(void *arg, bool cancelled)
     mtd_replies *replies = sub->deps.replies;
     const meshtopo_mesh_t *m = job->msg;
     if (cancelled) {
-        mtd_reply_abandon(replies, m->reply_channel, m->request_id);
+        mtd_reply_abandon(replies, m->reply_channel, m->request_id, &mt_msgs_type_ack);
         mtd_reply_ack_error(replies, m->reply_channel, m->request_id, m->mesh_id, false,
                             MESHTOPO_STATUS_CODE_T_BUSY,
                             "the daemon is shutting down; the mesh was not built");
@@ -265,7 +265,7 @@ static void submit(mtd_submitter *sub, meshtopo_mesh_t *msg, void *content, size
     }
     submit_job *job = malloc(sizeof *job);
     if (!job) {
-        mtd_reply_abandon(replies, msg->reply_channel, msg->request_id);
+        mtd_reply_abandon(replies, msg->reply_channel, msg->request_id, &mt_msgs_type_ack);
         mtd_reply_ack_error(replies, msg->reply_channel, msg->request_id, msg->mesh_id, false,
                             MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory");
         free_msg(sub, msg, content, capacity);
@@ -281,7 +281,7 @@ static void submit(mtd_submitter *sub, meshtopo_mesh_t *msg, void *content, size
             msg->request_id, msg->num_verts, msg->num_faces);
     mtd_submit_result r = mtd_pool_submit(sub->deps.pool, build_job, job);
     if (r != MTD_SUBMIT_OK) {
-        mtd_reply_abandon(replies, msg->reply_channel, msg->request_id);
+        mtd_reply_abandon(replies, msg->reply_channel, msg->request_id, &mt_msgs_type_ack);
         mtd_reply_ack_error(replies, msg->reply_channel, msg->request_id, msg->mesh_id, false,
                             MESHTOPO_STATUS_CODE_T_BUSY,
                             r == MTD_SUBMIT_BUSY ? "every build worker is busy; retry later"

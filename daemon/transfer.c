@@ -28,7 +28,7 @@ typedef struct mtd_transfer mtd_transfer;
 
 struct mtd_transfer {
     mtd_transfer *next;
-    char channel[MTD_CHANNEL_MAX + 1];
+    char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
     int64_t request_id;
     char *mesh_id, *source;
     bool strict;
@@ -322,7 +322,7 @@ static void finish(mtd_transfers *ts, mtd_transfer *t)
     if (status != MESHTOPO_STATUS_CODE_T_OK) {
         mtd_reply_ack_error(ts->deps.replies, t->channel, t->request_id, t->mesh_id, false, status,
                             error);
-    } else if (mtd_reply_begin(ts->deps.replies, t->channel, t->request_id)) {
+    } else if (mtd_reply_begin(ts->deps.replies, t->channel, t->request_id, &mt_msgs_type_ack)) {
         mtd_submit_content(ts->deps.submitter, msg, t->content, t->capacity, hash); /* takes both */
         t->content = NULL;
     } else {
@@ -364,8 +364,8 @@ static mtd_transfer *take_chunk(mtd_transfers *ts, const meshtopo_mesh_chunk_t *
     mtd_transfer *t = find_transfer(ts, channel, c->request_id);
     if (!t) {
         /* Finished already (building or acked), or new. */
-        mtd_request_state state =
-            mtd_reply_state(ts->deps.replies, channel, c->request_id, c->want_status);
+        mtd_request_state state = mtd_reply_state(ts->deps.replies, channel, c->request_id,
+                                                  &mt_msgs_type_ack, c->want_status);
         if (state != MTD_REQUEST_NEW) {
             if (state == MTD_REQUEST_PENDING && c->want_status)
                 send_status(ts, channel, c->request_id, MESHTOPO_STATUS_CODE_T_OK, "", NULL,
@@ -417,7 +417,7 @@ void mtd_transfers_chunk(mtd_transfers *ts, const void *data, size_t size)
     meshtopo_mesh_chunk_t c;
     char why[MT_MSGS_ERROR_SIZE];
     if (mt_msgs_decode(&mt_msgs_type_mesh_chunk, data, size, &c, why, sizeof why) != 0) {
-        char channel[MTD_CHANNEL_MAX + 1];
+        char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
         char error[MTD_ERROR_MAX];
         int64_t request_id = 0;
         snprintf(error, sizeof error, "undecodable mesh_chunk_t: %s", why);
@@ -429,7 +429,7 @@ void mtd_transfers_chunk(mtd_transfers *ts, const void *data, size_t size)
                     error);
         return;
     }
-    if (!mtd_reply_channel_ok(c.reply_channel)) {
+    if (!mt_msgs_reply_channel_ok(c.reply_channel)) {
         mtd_log(MTD_LOG_WARN, "bad_request",
                 "request_id=%" PRId64
                 " error=mesh_chunk_t with an unusable reply_channel "

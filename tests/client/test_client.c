@@ -161,8 +161,18 @@ static int seen_requests(fixture *f)
     return n;
 }
 
-static void publish_reply(fixture *f, const char *channel, const meshtopo_reply_t *r)
+/* The channel of answers of `type` to a request naming reply_channel. */
+static const char *answer_channel(const char *reply_channel, const mt_msgs_type *type,
+                                  char out[MT_MSGS_CHANNEL_NAME_MAX + 1])
 {
+    CHECK_EQ(mt_msgs_reply_channel_name(reply_channel, type, out), MT_OK);
+    return out;
+}
+
+static void publish_reply(fixture *f, const char *reply_channel, const meshtopo_reply_t *r)
+{
+    char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    answer_channel(reply_channel, &mt_msgs_type_reply, channel);
     int size = meshtopo_reply_t_encoded_size(r);
     uint8_t *buf = malloc((size_t)size);
     CHECK(buf != NULL);
@@ -254,7 +264,9 @@ static void answer_submit(fixture *f, const meshtopo_mesh_t *m, const uint8_t *d
     int n = meshtopo_ack_t_encoded_size(&ack);
     uint8_t *buf = malloc((size_t)n);
     CHECK_EQ(meshtopo_ack_t_encode(buf, 0, n, &ack), n);
-    CHECK_EQ(lcm_publish(f->lcm, m->reply_channel, buf, (unsigned)n), 0);
+    char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    answer_channel(m->reply_channel, &mt_msgs_type_ack, channel);
+    CHECK_EQ(lcm_publish(f->lcm, channel, buf, (unsigned)n), 0);
     free(buf);
 }
 
@@ -292,20 +304,22 @@ static void respond(fixture *f, const uint8_t *data, size_t size)
             break;
         case MODE_NOISE: {
             static const uint8_t garbage[] = "definitely not an LCM message";
-            CHECK_EQ(lcm_publish(f->lcm, q.reply_channel, garbage, sizeof garbage), 0);
+            char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
+            answer_channel(q.reply_channel, &mt_msgs_type_reply, channel);
+            CHECK_EQ(lcm_publish(f->lcm, channel, garbage, sizeof garbage), 0);
             /* A reply's fingerprint followed by bytes cut short. */
             uint8_t cut[12];
             int64_t fp = mt_msgs_type_reply.fingerprint();
             for (int i = 0; i < 8; i++) cut[i] = (uint8_t)((uint64_t)fp >> (56 - 8 * i));
             memset(cut + 8, 0xff, 4);
-            CHECK_EQ(lcm_publish(f->lcm, q.reply_channel, cut, sizeof cut), 0);
+            CHECK_EQ(lcm_publish(f->lcm, channel, cut, sizeof cut), 0);
             answer_query(f, &q, 0, q.request_id + 1000003); /* nobody waits for it */
             meshtopo_ack_t ack;                             /* the right id but the wrong type */
             memset(&ack, 0, sizeof ack);
             ack.request_id = q.request_id;
             ack.error = "";
             ack.mesh_id = q.mesh_id;
-            CHECK_EQ(meshtopo_ack_t_publish(f->lcm, q.reply_channel, &ack), 0);
+            CHECK_EQ(meshtopo_ack_t_publish(f->lcm, channel, &ack), 0); /* on the reply_t channel */
             answer_query(f, &q, 0, q.request_id);
             break;
         }

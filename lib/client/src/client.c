@@ -277,7 +277,7 @@ static void run_deadlines(mt_client *client)
                     p->deadline_us = now + MT__PARTS_QUIET_MS * 1000;
                     mt__msgbuf *pull = pull_locked(client, p);
                     if (pull) {
-                        due[num_due].channel = client->query_channel;
+                        due[num_due].channel = client->pull_channel;
                         due[num_due].buf = pull;
                         num_due++;
                     }
@@ -537,7 +537,7 @@ static void on_part(mt_client *client, const void *data, size_t size)
         }
     } else if (parts->window_have >= parts->window_parts) {
         send = pull_locked(client, p);
-        send_channel = client->query_channel;
+        send_channel = client->pull_channel;
     }
 out:
     pthread_mutex_unlock(&client->mutex);
@@ -608,10 +608,11 @@ static int valid_prefix(const char *s)
 }
 
 /* PREFIX "REPLY_" host_pid_random: unique per client, no regex metacharacter
- * (lcm_subscribe takes a regular expression), within LCM's 63 characters. */
+ * (lcm_subscribe takes a regular expression), within the protocol's
+ * MESHTOPO_MESH_T_REPLY_CHANNEL_MAX (the host name is cut to 7 bytes). */
 static void make_reply_channel(mt_client *client, const char *prefix)
 {
-    char host[17] = "host";
+    char host[8] = "host";
     char raw[256];
     if (gethostname(raw, sizeof raw) == 0) {
         raw[sizeof raw - 1] = '\0';
@@ -682,8 +683,11 @@ mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_di
      * does not repeat recent ones; they stay positive. */
     client->next_request_id = (int64_t)(random_u64() >> 2) + 1;
     snprintf(client->source, sizeof client->source, "%s", source);
-    snprintf(client->submit_channel, sizeof client->submit_channel, "%sSUBMIT", prefix);
-    snprintf(client->query_channel, sizeof client->query_channel, "%sQUERY", prefix);
+    /* valid_prefix keeps every name within LCM's limit. */
+    mt_msgs_channel_name(prefix, MT_MSGS_CHANNEL_SUBMIT, client->submit_channel);
+    mt_msgs_channel_name(prefix, MT_MSGS_CHANNEL_SUBMIT_CHUNK, client->chunk_channel);
+    mt_msgs_channel_name(prefix, MT_MSGS_CHANNEL_QUERY, client->query_channel);
+    mt_msgs_channel_name(prefix, MT_MSGS_CHANNEL_QUERY_PULL, client->pull_channel);
     make_reply_channel(client, prefix);
     if (pthread_mutex_init(&client->mutex, NULL) != 0) {
         free(client);
@@ -711,13 +715,19 @@ mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_di
             goto fail;
         }
     }
-    client->subscription = lcm_subscribe(client->lcm, client->reply_channel, on_reply, client);
-    if (!client->subscription) {
-        status =
-            mt__client_fail(diag, MT_ERR_IO, "lcm_subscribe(%s) failed", client->reply_channel);
-        goto fail;
+    /* One subscription per answer type, each on its own channel. */
+    const mt_msgs_type *answers[4] = {&mt_msgs_type_ack, &mt_msgs_type_reply,
+                                      &mt_msgs_type_reply_part, &mt_msgs_type_mesh_transfer};
+    for (int i = 0; i < 4; i++) {
+        char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
+        mt_msgs_reply_channel_name(client->reply_channel, answers[i], channel);
+        client->subscriptions[i] = lcm_subscribe(client->lcm, channel, on_reply, client);
+        if (!client->subscriptions[i]) {
+            status = mt__client_fail(diag, MT_ERR_IO, "lcm_subscribe(%s) failed", channel);
+            goto fail;
+        }
+        lcm_subscription_set_queue_capacity(client->subscriptions[i], MT__REPLY_QUEUE_CAPACITY);
     }
-    lcm_subscription_set_queue_capacity(client->subscription, MT__REPLY_QUEUE_CAPACITY);
     if (pthread_create(&client->thread, NULL, client_thread, client) != 0) {
         status = mt__client_fail(diag, MT_ERR_IO, "could not start the client thread");
         goto fail;
@@ -741,7 +751,8 @@ void mt_client_destroy(mt_client *client)
         wake_thread(client);
         pthread_join(client->thread, NULL);
     }
-    if (client->subscription) lcm_unsubscribe(client->lcm, client->subscription);
+    for (int i = 0; i < 4; i++)
+        if (client->subscriptions[i]) lcm_unsubscribe(client->lcm, client->subscriptions[i]);
 
     /* Asynchronous requests still waiting get their callback. */
     for (size_t b = 0; b < MT__BUCKETS; b++) {

@@ -73,7 +73,7 @@ static void publish_chunk(chunk_sender *s, size_t index, int want_status, int po
     s->msg.want_status = want_status ? 1 : 0;
     if (want_status) s->asked_us = monotonic_us();
     int size = meshtopo_mesh_chunk_t_encode(s->scratch, 0, s->scratch_size, &s->msg);
-    int failed = size <= 0 || lcm_publish(s->client->lcm, s->client->submit_channel, s->scratch,
+    int failed = size <= 0 || lcm_publish(s->client->lcm, s->client->chunk_channel, s->scratch,
                                           (unsigned)size) != 0;
     pthread_mutex_lock(&s->client->mutex);
     s->client->stats.attempts++;
@@ -148,7 +148,7 @@ mt_status mt__client_submit_chunked(mt_client *client, const meshtopo_mesh_t *m,
     memset(p, 0, sizeof *p);
     p->request_id = m->request_id;
     p->answer_type = &mt_msgs_type_ack;
-    p->channel = client->submit_channel;
+    p->channel = client->chunk_channel;
     p->buf = poll;
     p->transfer = transfer;
     pthread_cond_init(&p->cond, NULL);

@@ -102,7 +102,9 @@ int main(int argc, char **argv)
     char reply_channel[64];
     snprintf(reply_channel, sizeof reply_channel, "MESHTOPO_TEST_CLIENT_%d", (int)getpid());
     lcm_subscribe(lcm, "MESHTOPO_STATUS", on_status, &c);
-    lcm_subscribe(lcm, reply_channel, on_reply, &c);
+    char answers[80];
+    snprintf(answers, sizeof answers, "%s_(ACK|REPLY)", reply_channel);
+    lcm_subscribe(lcm, answers, on_reply, &c);
     for (int i = 0; i < 200 && c.heartbeats == 0; i++) lcm_handle_timeout(lcm, 50);
     if (!c.heartbeats) return fail("%s", "no heartbeat from meshtopod within 10 s");
     printf("heartbeat from meshtopod pid %d\n", (int)c.daemon_pid);

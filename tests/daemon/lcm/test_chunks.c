@@ -93,8 +93,8 @@ static void fixture_start(fixture *fx, const mtd_config *config)
     fx->lcm = lcm_create("memq://");
     CHECK(fx->lcm != NULL);
     CHECK_OK(mtd_daemon_create(config, fx->lcm, &fx->daemon, &diag));
-    lcm_subscribe(fx->lcm, REPLY, on_reply, fx);
-    lcm_subscribe(fx->lcm, REPLY2, on_reply, fx);
+    lcm_subscribe(fx->lcm, REPLY "_(ACK|TRANSFER)", on_reply, fx);
+    lcm_subscribe(fx->lcm, REPLY2 "_(ACK|TRANSFER)", on_reply, fx);
     lcm_subscribe(fx->lcm, "MESHTOPO_STATUS", on_status, fx);
 }
 
@@ -187,7 +187,7 @@ static void publish_chunk(fixture *fx, const meshtopo_mesh_chunk_t *c)
     int size = meshtopo_mesh_chunk_t_encoded_size(c);
     void *buf = malloc((size_t)size);
     CHECK_EQ(meshtopo_mesh_chunk_t_encode(buf, 0, size, c), size);
-    CHECK_EQ(lcm_publish(fx->lcm, "MESHTOPO_SUBMIT", buf, (unsigned)size), 0);
+    CHECK_EQ(lcm_publish(fx->lcm, "MESHTOPO_SUBMIT_CHUNK", buf, (unsigned)size), 0);
     free(buf);
 }
 
@@ -456,7 +456,7 @@ static void test_lying_chunks(void)
     int size = meshtopo_mesh_chunk_t_encoded_size(&c);
     uint8_t *buf = malloc((size_t)size);
     CHECK_EQ(meshtopo_mesh_chunk_t_encode(buf, 0, size, &c), size);
-    CHECK_EQ(lcm_publish(fx.lcm, "MESHTOPO_SUBMIT", buf, (unsigned)(size - 100)), 0);
+    CHECK_EQ(lcm_publish(fx.lcm, "MESHTOPO_SUBMIT_CHUNK", buf, (unsigned)(size - 100)), 0);
     free(buf);
     expect_transfer_error(&fx, 9, MESHTOPO_STATUS_CODE_T_UNDECODABLE, "mesh_chunk_t", __LINE__);
 

@@ -83,7 +83,7 @@ static void fixture_init(fixture *fx)
     fx->lcm = lcm_create("memq://");
     CHECK(fx->lcm != NULL);
     CHECK_OK(mtd_daemon_create(&config, fx->lcm, &fx->daemon, &diag));
-    lcm_subscribe(fx->lcm, REPLY_CHANNEL, on_reply, fx);
+    lcm_subscribe(fx->lcm, REPLY_CHANNEL "_(ACK|REPLY|PART)", on_reply, fx);
     lcm_subscribe(fx->lcm, "MESHTOPO_TOPOLOGY", on_topology, fx);
     lcm_subscribe(fx->lcm, "MESHTOPO_STATUS", on_status, fx);
 }
@@ -174,7 +174,7 @@ static void pull_parts(fixture *fx, int64_t request_id, const parts_buf *pb)
         offsets[pull.num_ranges] = (int64_t)k * pb->part_size;
         lengths[pull.num_ranges++] = pb->part_size;
     }
-    publish(fx, "MESHTOPO_QUERY", &mt_msgs_type_reply_pull, &pull);
+    publish(fx, "MESHTOPO_QUERY_PULL", &mt_msgs_type_reply_pull, &pull);
 }
 
 /* Handles LCM until a message of `type` with request_id arrives (decoded into

@@ -90,11 +90,14 @@ static size_t fake_num_parts(const fake *f)
     return (f->size + FAKE_PART - 1) / FAKE_PART;
 }
 
-static void fake_publish(fake *f, const char *channel, const meshtopo_reply_part_t *part)
+/* Publishes a part on the parts channel of reply_channel. */
+static void fake_publish(fake *f, const char *reply_channel, const meshtopo_reply_part_t *part)
 {
     int size = meshtopo_reply_part_t_encoded_size(part);
     void *buf = malloc((size_t)size);
     CHECK_EQ(meshtopo_reply_part_t_encode(buf, 0, size, part), size);
+    char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    CHECK_EQ(mt_msgs_reply_channel_name(reply_channel, &mt_msgs_type_reply_part, channel), MT_OK);
     CHECK_EQ(lcm_publish(f->lcm, channel, buf, (unsigned)size), 0);
     free(buf);
 }
@@ -202,6 +205,7 @@ static void fake_init(fake *f, int32_t num_items)
     f->lcm = lcm_create("memq://");
     CHECK(f->lcm != NULL);
     lcm_subscribe(f->lcm, "MESHTOPO_QUERY", fake_on_query, f);
+    lcm_subscribe(f->lcm, "MESHTOPO_QUERY_PULL", fake_on_query, f);
 }
 
 static mt_client *fake_client(fake *f, uint64_t max_reply_bytes)
@@ -209,7 +213,9 @@ static mt_client *fake_client(fake *f, uint64_t max_reply_bytes)
     mt_client_options opts;
     memset(&opts, 0, sizeof opts);
     opts.lcm = f->lcm;
-    opts.timeout_ms = 500;
+    /* Long enough that no query is sent twice on a slow (sanitized) run:
+     * the tests count the queries. */
+    opts.timeout_ms = 5000;
     opts.max_reply_bytes = max_reply_bytes;
     mt_client *client = NULL;
     mt_diag diag;
@@ -454,7 +460,7 @@ static void fixture_init(fixture *fx)
     fx->lcm = lcm_create("memq://");
     CHECK(fx->lcm != NULL);
     CHECK_OK(mtd_daemon_create(&config, fx->lcm, &fx->daemon, &diag));
-    lcm_subscribe(fx->lcm, RAW_REPLY, on_raw, fx);
+    lcm_subscribe(fx->lcm, RAW_REPLY "_(REPLY|PART)", on_raw, fx);
 }
 
 static void fixture_drain(fixture *fx)
@@ -614,12 +620,15 @@ static void test_daemon_list(void)
     fixture_free(&fx);
 }
 
+/* Publishes a query_t or reply_pull_t on its channel. */
 static void publish_raw(fixture *fx, const mt_msgs_type *type, const void *msg)
 {
     int size = type->encoded_size(msg);
     void *buf = malloc((size_t)size);
     CHECK_EQ(type->encode(buf, 0, size, msg), size);
-    CHECK_EQ(lcm_publish(fx->lcm, "MESHTOPO_QUERY", buf, (unsigned)size), 0);
+    const char *channel =
+        type == &mt_msgs_type_reply_pull ? "MESHTOPO_QUERY_PULL" : "MESHTOPO_QUERY";
+    CHECK_EQ(lcm_publish(fx->lcm, channel, buf, (unsigned)size), 0);
     free(buf);
 }
 

@@ -12,6 +12,7 @@
 
 #include <lcm/lcm.h>
 
+#include "meshtopo/channels.h"
 #include "meshtopo/face_list.h"
 #include "meshtopo/msgs.h"
 #include "meshtopo/protocol.h"
@@ -27,7 +28,8 @@ typedef struct mt_client mt_client;
 #define MT_CLIENT_DEFAULT_PREFIX "MESHTOPO_"
 #define MT_CLIENT_DEFAULT_TIMEOUT_MS 1000
 #define MT_CLIENT_DEFAULT_RETRIES 3
-/* Longest channel prefix accepted (the reply channel must fit in LCM's 63). */
+/* Longest channel prefix accepted (the client's reply channel, PREFIX "REPLY_"
+ * and a unique tail, must fit MESHTOPO_MESH_T_REPLY_CHANNEL_MAX). */
 #define MT_CLIENT_MAX_PREFIX 24
 /* Content bytes per chunk: the default and the largest allowed (a chunk then
  * encodes to under MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX bytes with the
@@ -62,7 +64,8 @@ typedef struct mt_client_options {
      * never make a synchronous client call itself (it would wait forever). */
     int external_handle;
     /* Channel prefix: 1..MT_CLIENT_MAX_PREFIX of [A-Za-z0-9_-]; NULL = "MESHTOPO_".
-     * Requests go to PREFIX "SUBMIT" and PREFIX "QUERY". */
+     * Requests go to PREFIX "SUBMIT", "SUBMIT_CHUNK", "QUERY" and
+     * "QUERY_PULL", one type each (meshtopo/channels.h). */
     const char *channel_prefix;
     /* Time to wait for a reply to one attempt; 0 = MT_CLIENT_DEFAULT_TIMEOUT_MS. */
     int timeout_ms;
@@ -114,7 +117,9 @@ mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_di
  * No call on this client may run or start meanwhile. NULL-safe. */
 void mt_client_destroy(mt_client *client);
 
-/* The client's private reply channel (valid until destroy). */
+/* The client's private reply channel R, named in its requests (valid until
+ * destroy); answers come on R "_ACK", R "_REPLY", R "_PART" and
+ * R "_TRANSFER" (mt_msgs_reply_channel_name). */
 const char *mt_client_reply_channel(const mt_client *client);
 
 /* A snapshot of the client's counters. */
