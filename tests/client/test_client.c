@@ -48,6 +48,7 @@ typedef enum mode {
     MODE_SILENT,     /* nothing answered */
     MODE_NOISE,      /* garbage, a reply for another id and an ack first, then the answer */
     MODE_ERROR,      /* UNKNOWN_MESH with an error text */
+    MODE_CORRUPT,    /* a reply whose value_offsets decrease */
 } mode;
 
 #define MAX_IDS 4096
@@ -326,6 +327,30 @@ static void respond(fixture *f, const uint8_t *data, size_t size)
         case MODE_ERROR:
             answer_query(f, &q, MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH, q.request_id);
             break;
+        case MODE_CORRUPT: {
+            int8_t item_status[2] = {0, 0}, boundary[2] = {0, 0};
+            int32_t item_offsets[3] = {0, 1, 2}, value_offsets[3] = {0, 2, 1};
+            int32_t value2_offsets[3] = {0, 0, 0}, values[2] = {7, 8};
+            meshtopo_reply_t r;
+            memset(&r, 0, sizeof r);
+            r.request_id = q.request_id;
+            r.error = "";
+            r.mesh_id = q.mesh_id;
+            r.kind = q.kind;
+            r.num_items = 2;
+            r.item_status = item_status;
+            r.num_item_offsets = 3;
+            r.item_offsets = item_offsets;
+            r.num_groups = 2;
+            r.group_boundary = boundary;
+            r.num_value_offsets = 3;
+            r.value_offsets = value_offsets;
+            r.value2_offsets = value2_offsets;
+            r.num_values = 2;
+            r.values = values;
+            publish_reply(f, q.reply_channel, &r);
+            break;
+        }
     }
     meshtopo_query_t_decode_cleanup(&q);
 }
@@ -396,9 +421,13 @@ static void fixture_stop(fixture *f)
 /* Checks a VALENCE reply to ids: item i answers 2 * ids[i]. Returns 1 if right. */
 static int valence_reply_ok(const meshtopo_reply_t *r, const uint32_t *ids, int n)
 {
-    if (r->status != 0 || r->num_items != n || r->num_values != n) return 0;
-    for (int i = 0; i < n; i++)
-        if (r->values[r->value_offsets[r->item_offsets[i]]] != (int32_t)(2 * ids[i])) return 0;
+    if (r->status != 0 || mt_client_reply_num_items(r) != (size_t)n) return 0;
+    for (int i = 0; i < n; i++) {
+        mt_client_item item = mt_client_reply_item(r, (size_t)i);
+        if (item.num_groups != 1) return 0;
+        mt_client_group g = mt_client_item_group(r, &item, 0);
+        if (g.num_values != 1 || g.values[0] != (int32_t)(2 * ids[i])) return 0;
+    }
     return 1;
 }
 
@@ -882,6 +911,273 @@ static void reply_channel_private(void)
     lcm_destroy(lcm);
 }
 
+/* A reply as the daemon builds it: two vertices' one-rings, the first with
+ * two fans (an open one with neighbours 1 2 3 and faces 10 11, a closed one
+ * with 4 5 6 and 12 13 14), the second NOT_FOUND; one real per item. */
+typedef struct sample_reply {
+    int8_t item_status[2];
+    int32_t item_offsets[3];
+    int8_t boundary[2];
+    int32_t value_offsets[3], value2_offsets[3];
+    int32_t values[6], values2[5];
+    double reals[2];
+    meshtopo_reply_t r;
+} sample_reply;
+
+static void sample_reply_init(sample_reply *s)
+{
+    *s = (sample_reply){
+        .item_status = {MESHTOPO_STATUS_CODE_T_OK, MESHTOPO_STATUS_CODE_T_NOT_FOUND},
+        .item_offsets = {0, 2, 2},
+        .boundary = {1, 0},
+        .value_offsets = {0, 3, 6},
+        .value2_offsets = {0, 2, 5},
+        .values = {1, 2, 3, 4, 5, 6},
+        .values2 = {10, 11, 12, 13, 14},
+        .reals = {0.5, -1.0},
+    };
+    meshtopo_reply_t *r = &s->r;
+    r->kind = MESHTOPO_QUERY_T_VERTEX_RING;
+    r->num_items = 2;
+    r->item_status = s->item_status;
+    r->num_item_offsets = 3;
+    r->item_offsets = s->item_offsets;
+    r->num_groups = 2;
+    r->group_boundary = s->boundary;
+    r->num_value_offsets = 3;
+    r->value_offsets = s->value_offsets;
+    r->value2_offsets = s->value2_offsets;
+    r->num_values = 6;
+    r->values = s->values;
+    r->num_values2 = 5;
+    r->values2 = s->values2;
+    r->num_reals = 2;
+    r->reals = s->reals;
+}
+
+static void reply_accessors(void)
+{
+    sample_reply s;
+    sample_reply_init(&s);
+    mt_diag diag;
+    CHECK_OK(mt_client_reply_check(&s.r, &diag));
+    CHECK_EQ(mt_client_reply_num_items(&s.r), 2);
+    mt_client_item first = mt_client_reply_item(&s.r, 0);
+    CHECK_EQ(first.status, MESHTOPO_STATUS_CODE_T_OK);
+    CHECK_EQ(first.num_groups, 2);
+    mt_client_group open = mt_client_item_group(&s.r, &first, 0);
+    mt_client_group closed = mt_client_item_group(&s.r, &first, 1);
+    CHECK(open.boundary && !closed.boundary);
+    CHECK_EQ(open.num_values, 3);
+    CHECK_EQ(open.num_values2, 2);
+    CHECK_EQ(open.values[2], 3);
+    CHECK_EQ(open.values2[1], 11);
+    CHECK_EQ(closed.num_values, 3);
+    CHECK_EQ(closed.num_values2, 3);
+    CHECK_EQ(closed.values[0], 4);
+    CHECK_EQ(closed.values2[2], 14);
+    mt_client_item second = mt_client_reply_item(&s.r, 1);
+    CHECK_EQ(second.status, MESHTOPO_STATUS_CODE_T_NOT_FOUND);
+    CHECK_EQ(second.num_groups, 0);
+    CHECK(mt_client_reply_real(&s.r, 0) == 0.5);
+    CHECK(mt_client_reply_real(&s.r, 1) == -1.0);
+    CHECK(mt_client_reply_real(&s.r, 2) != mt_client_reply_real(&s.r, 2)); /* NaN */
+    /* An empty reply, with or without offsets (the daemon's error replies
+     * carry one 0 each). */
+    meshtopo_reply_t empty;
+    memset(&empty, 0, sizeof empty);
+    CHECK_OK(mt_client_reply_check(&empty, &diag));
+    CHECK_EQ(mt_client_reply_num_items(&empty), 0);
+    int32_t zero[1] = {0};
+    empty.num_item_offsets = empty.num_value_offsets = 1;
+    empty.item_offsets = empty.value_offsets = empty.value2_offsets = zero;
+    CHECK_OK(mt_client_reply_check(&empty, NULL));
+}
+
+/* Every way offsets can fail to describe the arrays is refused, naming the
+ * array and the entry. */
+static void reply_check_names_the_fault(void)
+{
+    static const char *const needles[] = {
+        "item_offsets has 2 entries, expected 3",
+        "item_offsets[0] = 1, expected 0",
+        "item_offsets[2] = 1 is below item_offsets[1] = 2",
+        "item_offsets[2] = 1, expected num_groups = 2",
+        "value_offsets[2] = 6 is below value_offsets[1] = 7",
+        "value_offsets[2] = 5, expected num_values = 6",
+        "value2_offsets[2] = 4, expected num_values2 = 5",
+    };
+    for (size_t i = 0; i < sizeof needles / sizeof needles[0]; i++) {
+        sample_reply s;
+        sample_reply_init(&s);
+        switch (i) {
+            case 0:
+                s.r.num_item_offsets = 2;
+                break;
+            case 1:
+                s.item_offsets[0] = 1;
+                break;
+            case 2:
+                s.item_offsets[2] = 1;
+                break;
+            case 3:
+                s.item_offsets[1] = 1, s.item_offsets[2] = 1;
+                break;
+            case 4:
+                s.value_offsets[1] = 7, s.value_offsets[2] = 6;
+                break;
+            case 5:
+                s.value_offsets[2] = 5;
+                break;
+            default:
+                s.value2_offsets[2] = 4;
+                break;
+        }
+        mt_diag diag;
+        CHECK_STATUS(mt_client_reply_check(&s.r, &diag), MT_ERR_CORRUPT);
+        if (!strstr(diag.message, needles[i]))
+            mt_test_fail(__FILE__, __LINE__, "fault %zu: '%s' does not say '%s'", i, diag.message,
+                         needles[i]);
+    }
+}
+
+/* A reply whose offsets are wrong never reaches the caller. */
+static void corrupt_reply_refused(void)
+{
+    fixture *f = fixture_start(MODE_CORRUPT, 2000, 0);
+    uint32_t ids[] = {1, 2};
+    meshtopo_reply_t reply;
+    mt_diag diag;
+    CHECK_STATUS(
+        mt_client_query(f->client, "bunny", 0, MESHTOPO_QUERY_T_VALENCE, ids, 2, &reply, &diag),
+        MT_ERR_CORRUPT);
+    CHECK(strstr(diag.message, "value_offsets[2] = 1 is below") != NULL);
+    CHECK_EQ(reply.num_items, 0); /* zeroed: nothing to walk */
+    CHECK(reply.value_offsets == NULL);
+    mt_client_reply_free(&reply);
+    fixture_stop(f);
+}
+
+/* Publishes a heartbeat of `pid` on MESHTOPO_STATUS. */
+static void publish_heartbeat(lcm_t *lcm, int32_t pid)
+{
+    meshtopo_status_t st;
+    memset(&st, 0, sizeof st);
+    st.pid = pid;
+    st.name = "meshtopod";
+    st.instance = "test";
+    st.channel_prefix = "MESHTOPO_";
+    st.last_error = "";
+    CHECK_EQ(meshtopo_status_t_publish(lcm, "MESHTOPO_STATUS", &st), 0);
+}
+
+typedef struct heartbeats {
+    lcm_t *lcm;
+    atomic_int stop;
+} heartbeats;
+
+/* Publishes a heartbeat every 20 ms until told to stop. */
+static void *heartbeat_thread(void *arg)
+{
+    heartbeats *h = arg;
+    while (!atomic_load(&h->stop)) {
+        publish_heartbeat(h->lcm, 4242);
+        nanosleep(&(struct timespec){0, 20 * 1000000L}, NULL);
+    }
+    return NULL;
+}
+
+static void wait_daemon_sees_heartbeat(void)
+{
+    fixture *f = fixture_start(MODE_ANSWER, 100, 0);
+    mt_diag diag;
+    meshtopo_status_t *status = NULL;
+    CHECK_STATUS(mt_client_wait_daemon(f->client, 150, &status, &diag), MT_ERR_IO);
+    CHECK(strstr(diag.message, "timeout: no heartbeat") != NULL);
+    CHECK(strstr(diag.message, "MESHTOPO_STATUS") != NULL);
+    CHECK(status == NULL);
+    heartbeats h = {.lcm = f->lcm};
+    pthread_t t;
+    CHECK(pthread_create(&t, NULL, heartbeat_thread, &h) == 0);
+    CHECK_OK(mt_client_wait_daemon(f->client, 5000, &status, &diag));
+    CHECK(status != NULL);
+    if (status) {
+        CHECK_EQ(status->pid, 4242);
+        CHECK(strcmp(status->name, "meshtopod") == 0);
+    }
+    if (status) meshtopo_status_t_destroy(status);
+    CHECK_OK(mt_client_wait_daemon(f->client, 5000, NULL, &diag)); /* no copy wanted */
+    atomic_store(&h.stop, 1);
+    pthread_join(t, NULL);
+    fixture_stop(f);
+}
+
+typedef struct watched {
+    atomic_int statuses, reports;
+    atomic_int last_pid;
+    atomic_int last_version;
+} watched;
+
+static void on_watched_status(const meshtopo_status_t *st, void *user)
+{
+    watched *w = user;
+    atomic_store(&w->last_pid, st->pid);
+    atomic_fetch_add(&w->statuses, 1);
+}
+
+static void on_watched_report(const meshtopo_topology_t *t, void *user)
+{
+    watched *w = user;
+    atomic_store(&w->last_version, t->version);
+    atomic_fetch_add(&w->reports, 1);
+}
+
+/* Polls until cond() or 5 s. */
+static int eventually(const atomic_int *value, int at_least)
+{
+    for (int i = 0; i < 500 && atomic_load(value) < at_least; i++)
+        nanosleep(&(struct timespec){0, 10 * 1000000L}, NULL);
+    return atomic_load(value) >= at_least;
+}
+
+static void watch_decodes_broadcasts(void)
+{
+    fixture *f = fixture_start(MODE_ANSWER, 100, 0);
+    watched w = {0};
+    mt_client_watch_fns fns = {on_watched_status, on_watched_report, &w};
+    mt_client_watch *watch = NULL;
+    mt_diag diag;
+    CHECK_OK(mt_client_watch_start(f->client, &fns, &watch, &diag));
+    publish_heartbeat(f->lcm, 7);
+    meshtopo_topology_t report;
+    memset(&report, 0, sizeof report);
+    report.mesh_id = "room";
+    report.version = 3;
+    report.source = "";
+    CHECK_EQ(meshtopo_topology_t_publish(f->lcm, "MESHTOPO_TOPOLOGY", &report), 0);
+    static const uint8_t garbage[] = "not a status_t";
+    CHECK_EQ(lcm_publish(f->lcm, "MESHTOPO_STATUS", garbage, sizeof garbage), 0);
+    publish_heartbeat(f->lcm, 8);
+    CHECK(eventually(&w.statuses, 2));
+    CHECK(eventually(&w.reports, 1));
+    CHECK_EQ(atomic_load(&w.last_pid), 8);
+    CHECK_EQ(atomic_load(&w.last_version), 3);
+    mt_client_stats st;
+    mt_client_get_stats(f->client, &st);
+    CHECK_EQ(st.undecodable, 1);
+    mt_client_watch_stop(watch);
+    /* Stopped: nothing more is called, even for messages sent right after. */
+    publish_heartbeat(f->lcm, 9);
+    CHECK_EQ(meshtopo_topology_t_publish(f->lcm, "MESHTOPO_TOPOLOGY", &report), 0);
+    meshtopo_reply_t reply; /* a round trip through the client's thread */
+    uint32_t id = 1;
+    CHECK_OK(mt_client_query(f->client, "m", 0, MESHTOPO_QUERY_T_VALENCE, &id, 1, &reply, &diag));
+    mt_client_reply_free(&reply);
+    CHECK_EQ(atomic_load(&w.statuses), 2);
+    CHECK_EQ(atomic_load(&w.reports), 1);
+    fixture_stop(f);
+}
+
 static const mt_test_case cases[] = {
     {"memq_is_per_instance", memq_is_per_instance},
     {"query_answered", query_answered},
@@ -898,5 +1194,10 @@ static const mt_test_case cases[] = {
     {"sync_call_from_callback_refused", sync_call_from_callback_refused},
     {"external_handle_loop", external_handle_loop},
     {"reply_channel_private", reply_channel_private},
+    {"reply_accessors", reply_accessors},
+    {"reply_check_names_the_fault", reply_check_names_the_fault},
+    {"corrupt_reply_refused", corrupt_reply_refused},
+    {"wait_daemon_sees_heartbeat", wait_daemon_sees_heartbeat},
+    {"watch_decodes_broadcasts", watch_decodes_broadcasts},
 };
 const mt_test_table mt_tests_client = {cases, sizeof cases / sizeof cases[0]};

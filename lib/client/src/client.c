@@ -18,6 +18,7 @@
 
 #include "client_internal.h"
 #include "meshtopo/answer_hash.h"
+#include "meshtopo/client_reply.h"
 
 /* LCM keeps at most this many undelivered messages per subscription (30 by
  * default); replies to many asynchronous queries may arrive together. */
@@ -432,14 +433,20 @@ static void handle_answer(mt_client *client, const void *data, size_t size)
     }
     client->stats.replies++;
     drop_parts(client, p);
-    p->answer = answer;
-    p->has_answer = 1;
-    p->status = mt_msgs_status_of_code(code);
-    if (p->status == MT_OK)
-        mt_diag_clear(&p->diag);
-    else
-        mt__client_fail(&p->diag, p->status, "%s: %s", mt_msgs_code_name(code),
-                        text && text[0] ? text : "(no error text)");
+    if (type == &mt_msgs_type_reply && mt_client_reply_check(&answer.reply, &p->diag) != MT_OK) {
+        /* Offsets that do not describe the arrays: never handed out. */
+        p->status = MT_ERR_CORRUPT;
+        type->decode_cleanup(&answer);
+    } else {
+        p->answer = answer;
+        p->has_answer = 1;
+        p->status = mt_msgs_status_of_code(code);
+        if (p->status == MT_OK)
+            mt_diag_clear(&p->diag);
+        else
+            mt__client_fail(&p->diag, p->status, "%s: %s", mt_msgs_code_name(code),
+                            text && text[0] ? text : "(no error text)");
+    }
     p = complete_locked(p);
     pthread_mutex_unlock(&client->mutex);
     if (p) call_back(p);
@@ -688,6 +695,8 @@ mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_di
     mt_msgs_channel_name(prefix, MT_MSGS_CHANNEL_SUBMIT_CHUNK, client->chunk_channel);
     mt_msgs_channel_name(prefix, MT_MSGS_CHANNEL_QUERY, client->query_channel);
     mt_msgs_channel_name(prefix, MT_MSGS_CHANNEL_QUERY_PULL, client->pull_channel);
+    mt_msgs_channel_name(prefix, MT_MSGS_CHANNEL_STATUS, client->status_channel);
+    mt_msgs_channel_name(prefix, MT_MSGS_CHANNEL_TOPOLOGY, client->topology_channel);
     make_reply_channel(client, prefix);
     if (pthread_mutex_init(&client->mutex, NULL) != 0) {
         free(client);

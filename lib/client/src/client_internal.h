@@ -92,6 +92,8 @@ struct mt_client {
     char chunk_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];  /* mesh_chunk_t */
     char query_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];  /* query_t */
     char pull_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];   /* reply_pull_t */
+    char status_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1]; /* status_t, watched */
+    char topology_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1]; /* topology_t, watched */
     char source[256];
     int timeout_ms;
     int attempts;      /* 1 + retries */

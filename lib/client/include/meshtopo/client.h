@@ -13,6 +13,7 @@
 #include <lcm/lcm.h>
 
 #include "meshtopo/channels.h"
+#include "meshtopo/client_reply.h"
 #include "meshtopo/face_list.h"
 #include "meshtopo/msgs.h"
 #include "meshtopo/protocol.h"
@@ -34,7 +35,7 @@ typedef struct mt_client mt_client;
 /* Content bytes per chunk: the default and the largest allowed (a chunk then
  * encodes to under MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX bytes with the
  * longest ids). */
-#define MT_CLIENT_DEFAULT_CHUNK_BYTES 57344
+#define MT_CLIENT_DEFAULT_CHUNK_BYTES MESHTOPO_REPLY_PART_T_PART_SIZE /* a part's size */
 #define MT_CLIENT_MAX_CHUNK_BYTES 59000
 /* Chunks sent before waiting for the daemon's transfer status. */
 #define MT_CLIENT_DEFAULT_WINDOW_CHUNKS 16
@@ -214,6 +215,41 @@ typedef void (*mt_client_reply_fn)(mt_status status, const meshtopo_reply_t *rep
 mt_status mt_client_query_async(mt_client *client, const char *mesh_id, int32_t version,
                                 int32_t kind, const uint32_t *ids, size_t num_ids,
                                 mt_client_reply_fn callback, void *user, mt_diag *diag);
+
+/* ---- The daemon's broadcasts ------------------------------------------- */
+
+/* What mt_client_watch_start calls for each message on PREFIX "STATUS"
+ * (heartbeats) and PREFIX "TOPOLOGY" (the report of every build), decoded
+ * with mt_msgs_decode (undecodable ones are counted in stats.undecodable).
+ * Either function may be NULL. They run on the client's thread, like the
+ * asynchronous callbacks; the message is valid only during the call. */
+typedef struct mt_client_watch_fns {
+    void (*on_status)(const meshtopo_status_t *status, void *user);
+    void (*on_topology)(const meshtopo_topology_t *report, void *user);
+    void *user;
+} mt_client_watch_fns;
+
+typedef struct mt_client_watch mt_client_watch;
+
+/* Starts calling fns for the daemon's broadcasts. MT_OK, MT_ERR_NOMEM or
+ * MT_ERR_IO (LCM refused the subscription). Stop every watch before
+ * destroying the client. */
+mt_status mt_client_watch_start(mt_client *client, const mt_client_watch_fns *fns,
+                                mt_client_watch **out_watch, mt_diag *diag);
+
+/* Stops a watch: once it returns, no callback of it runs (called from one of
+ * its own callbacks, it stops after that callback). NULL-safe. */
+void mt_client_watch_stop(mt_client_watch *watch);
+
+/* Waits until a heartbeat of a daemon on the client's prefix arrives, at
+ * most timeout_ms (0: the client's timeout times its attempts). Wait for the
+ * daemon before the first request: a fresh LCM socket may miss its first
+ * messages. On MT_OK, *out_status (when out_status is not NULL) is a copy of
+ * the heartbeat, to release with meshtopo_status_t_destroy. MT_ERR_IO with
+ * "timeout: no heartbeat ..." when none came; MT_ERR_INVALID_ARG from the
+ * client's own thread. */
+mt_status mt_client_wait_daemon(mt_client *client, int timeout_ms, meshtopo_status_t **out_status,
+                                mt_diag *diag);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,135 @@
+#!/usr/bin/env bash
+# protocol.lcm_log_decodes, run inside netns-run: records a whole meshtopo
+# session with lcm-logger (small meshes as mesh_t, a 200k-triangle grid in
+# chunks, one-rings and boundary loops, a one-ring answer of megabytes in
+# reply_part_t pieces) and has LogDecode decode every event of the log with
+# its channel's one type. Processes are stopped by their PIDs only.
+# usage: lcm_log_session.sh MESHTOPOD MESHTOPO JAVA CLASSPATH WORKDIR
+#   corpus: $MESHTOPO_CORPUS, else ../shared/corpus beside the repository
+# Exit status: LogDecode's (0 every event decoded and every channel seen), 1 a
+# step failed, 2 usage, 77 skipped (lcm-logger missing: Debian liblcm-bin).
+set -uo pipefail
+if [ $# -ne 5 ]; then
+    echo "usage: lcm_log_session.sh MESHTOPOD MESHTOPO JAVA CLASSPATH WORKDIR" >&2
+    exit 2
+fi
+meshtopod=$1 meshtopo=$2 java=$3 classpath=$4 work=$5
+[ "${MESHTOPO_NETNS:-}" = 1 ] || { echo "run me through netns-run" >&2; exit 2; }
+here=$(cd "$(dirname "$0")" && pwd)
+corpus=${MESHTOPO_CORPUS:-$here/../../../shared/corpus}
+for f in cgal_tetrahedron.off npm_bunny.off vcg_nonmanifold.off; do
+    [ -r "$corpus/$f" ] || { echo "no corpus file $corpus/$f (set MESHTOPO_CORPUS)" >&2; exit 2; }
+done
+if ! command -v lcm-logger >/dev/null; then
+    echo "skipped: lcm-logger not found (Debian liblcm-bin)"
+    exit 77
+fi
+
+# A window of chunks or answer parts is megabytes; the kernel's default UDP
+# receive buffer (about 200 KiB) would drop most of it at the logger. Every
+# process asks for 4 MiB in the URL (capped at net.core.rmem_max) like
+# scripts/demo-network.sh; the kernel's settings are left alone (they are not
+# the namespace's own on every kernel).
+echo "net.core.rmem_max $(cat /proc/sys/net/core/rmem_max)," \
+    "net.core.rmem_default $(cat /proc/sys/net/core/rmem_default)"
+url="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
+export MESHTOPO_LCM_URL=$url LCM_DEFAULT_URL=$url
+unset MESHTOPO_PREFIX
+prefix=MESHTOPO_
+
+rm -rf "$work"
+mkdir -p "$work" || exit 1
+log=$work/session.lcmlog daemon_log=$work/meshtopod.log logger_log=$work/lcm-logger.log
+logger_pid= daemon_pid=
+
+# Stops a process this script started: SIGNAL, SIGKILL after 10 s; its status.
+stop() {
+    local pid=$1 sig=$2 name=$3
+    kill "-$sig" "$pid" 2>/dev/null
+    for _ in $(seq 100); do
+        kill -0 "$pid" 2>/dev/null || break
+        sleep 0.1
+    done
+    if kill -0 "$pid" 2>/dev/null; then
+        echo "$name (pid $pid) still runs 10 s after SIG$sig: SIGKILL" >&2
+        kill -KILL "$pid" 2>/dev/null
+    fi
+    wait "$pid"
+}
+cleanup() {
+    [ -n "$daemon_pid" ] && stop "$daemon_pid" TERM meshtopod
+    [ -n "$logger_pid" ] && stop "$logger_pid" INT lcm-logger
+}
+trap cleanup EXIT
+
+fail() {
+    echo "FAIL: $*" >&2
+    echo "meshtopod log (last 30 lines):" >&2
+    tail -30 "$daemon_log" >&2
+    exit 1
+}
+
+# Runs the CLI with a time limit, its output to the session's files.
+cli() {
+    local out=$1 rc
+    shift
+    echo "\$ meshtopo $*"
+    timeout --kill-after=5 60 "$meshtopo" "$@" >"$work/$out" 2>&1
+    rc=$?
+    [ "$rc" -eq 0 ] || { tail -20 "$work/$out" >&2; fail "meshtopo $* exited with $rc"; }
+}
+
+# A 316 x 316 grid of squares cut in two: 100,489 vertices, 199,712
+# triangles, about 5.6 MB of content, so it travels as mesh_chunk_t pieces.
+awk -v n=317 'BEGIN {
+    print "OFF"; print n * n, 2 * (n - 1) * (n - 1), 0
+    for (j = 0; j < n; j++) for (i = 0; i < n; i++) printf "%d %d 0\n", i, j
+    for (j = 0; j < n - 1; j++) for (i = 0; i < n - 1; i++) {
+        a = j * n + i
+        printf "3 %d %d %d\n3 %d %d %d\n", a, a + 1, a + n + 1, a, a + n + 1, a + n
+    }
+}' >"$work/grid.off" || fail "could not write the grid"
+
+# Every channel but LCM_SELF_TEST, which each LCM process's udpm provider
+# publishes for itself when it starts (LCM's, not meshtopo's).
+lcm-logger --lcm-url "$url" --invert-channels --channel LCM_SELF_TEST --force --quiet "$log" \
+    >"$logger_log" 2>&1 &
+logger_pid=$!
+"$meshtopod" --lcm-url "$url" --prefix "$prefix" --heartbeat-ms 200 --workers 2 2>"$daemon_log" &
+daemon_pid=$!
+
+cli watch.txt watch --count 1 --timeout-ms 10000
+for _ in $(seq 100); do
+    [ -s "$log" ] && break
+    sleep 0.1
+done
+[ -s "$log" ] || fail "lcm-logger wrote nothing to $log (its output: $(cat "$logger_log"))"
+
+cli send-tet.txt send "$corpus/cgal_tetrahedron.off" --id tet --quiet
+cli send-bunny.txt send "$corpus/npm_bunny.off" --id bunny --quiet
+cli send-nonmanifold.txt send "$corpus/vcg_nonmanifold.off" --id nonmanifold --quiet
+cli send-grid.txt send "$work/grid.off" --id grid --quiet
+cli ring-tet.txt query tet ring 0-3
+cli ring-bunny.txt query bunny ring 0,78
+cli loops-bunny.txt query bunny boundary-loops
+cli loops-nonmanifold.txt query nonmanifold boundary-loops
+cli loops-grid.txt query grid boundary-loops
+# Every vertex's one-ring: megabytes, far over 60,000 bytes, so the answer
+# comes as reply_part_t pieces and the client pulls the rest (reply_pull_t).
+cli ring-grid.txt query grid ring 0-100488
+lines=$(wc -l <"$work/ring-grid.txt")
+echo "the grid's one-rings: $lines lines, $(wc -c <"$work/ring-grid.txt") bytes printed"
+[ "$lines" -ge 100489 ] || fail "the grid's one-rings came back incomplete ($lines lines)"
+
+stop "$daemon_pid" TERM meshtopod
+rc=$?
+daemon_pid=
+[ "$rc" -eq 0 ] || fail "meshtopod exited with $rc after SIGTERM"
+sleep 0.5  # lcm-logger flushes every 100 ms
+stop "$logger_pid" INT lcm-logger
+rc=$?
+logger_pid=
+[ "$rc" -eq 0 ] || fail "lcm-logger exited with $rc after SIGINT ($(cat "$logger_log"))"
+echo "recorded $(wc -c <"$log") bytes in $log"
+
+"$java" -cp "$classpath" LogDecode --prefix "$prefix" "$log"
