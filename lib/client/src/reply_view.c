@@ -2,29 +2,8 @@
  * CSR, then accessors that index it. Below the rest of the client: it calls
  * nothing of it. */
 #include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
 
 #include "meshtopo/client_reply.h"
-
-static mt_status corrupt(mt_diag *diag, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 2, 3)))
-#endif
-    ;
-
-static mt_status corrupt(mt_diag *diag, const char *fmt, ...)
-{
-    if (diag) {
-        mt_diag_clear(diag);
-        diag->status = MT_ERR_CORRUPT;
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(diag->message, sizeof diag->message, fmt, ap);
-        va_end(ap);
-    }
-    return MT_ERR_CORRUPT;
-}
 
 /* offsets[0 .. count) starts at 0, never decreases and ends at `end`. */
 static mt_status check_offsets(const char *name, const int32_t *offsets, int32_t count,
@@ -32,17 +11,19 @@ static mt_status check_offsets(const char *name, const int32_t *offsets, int32_t
                                mt_diag *diag)
 {
     if (count != expected_count)
-        return corrupt(diag, "reply_t.%s has %d entries, expected %d", name, (int)count,
-                       (int)expected_count);
+        return mt_diag_set(diag, MT_ERR_CORRUPT, "reply_t.%s has %d entries, expected %d", name,
+                           (int)count, (int)expected_count);
     if (offsets[0] != 0)
-        return corrupt(diag, "reply_t.%s[0] = %d, expected 0", name, (int)offsets[0]);
+        return mt_diag_set(diag, MT_ERR_CORRUPT, "reply_t.%s[0] = %d, expected 0", name,
+                           (int)offsets[0]);
     for (int32_t i = 1; i < count; i++)
         if (offsets[i] < offsets[i - 1])
-            return corrupt(diag, "reply_t.%s[%d] = %d is below %s[%d] = %d", name, (int)i,
-                           (int)offsets[i], name, (int)i - 1, (int)offsets[i - 1]);
+            return mt_diag_set(diag, MT_ERR_CORRUPT, "reply_t.%s[%d] = %d is below %s[%d] = %d",
+                               name, (int)i, (int)offsets[i], name, (int)i - 1,
+                               (int)offsets[i - 1]);
     if (offsets[count - 1] != end)
-        return corrupt(diag, "reply_t.%s[%d] = %d, expected %s = %d", name, (int)count - 1,
-                       (int)offsets[count - 1], end_name, (int)end);
+        return mt_diag_set(diag, MT_ERR_CORRUPT, "reply_t.%s[%d] = %d, expected %s = %d", name,
+                           (int)count - 1, (int)offsets[count - 1], end_name, (int)end);
     return MT_OK;
 }
 

@@ -29,6 +29,18 @@ void mt_diag_clear(mt_diag *diag)
     diag->element = MT_NONE;
 }
 
+mt_status mt_diag_set(mt_diag *diag, mt_status status, const char *fmt, ...)
+{
+    if (!diag) return status;
+    mt_diag_clear(diag);
+    diag->status = status;
+    va_list args;
+    va_start(args, fmt);
+    vsnprintf(diag->message, sizeof diag->message, fmt, args);
+    va_end(args);
+    return status;
+}
+
 mt_status mt__fail(mt_diag *diag, mt_status status, uint32_t element, const char *fmt, ...)
 {
     if (!diag) return status;

@@ -53,6 +53,15 @@ typedef struct mt_diag {
 /* Resets a diag to "no error". NULL-safe. */
 void mt_diag_clear(mt_diag *diag);
 
+/* Resets diag (NULL-safe), sets its status and formats its message (cut to
+ * fit). Returns status, so a failing call can end with
+ * `return mt_diag_set(diag, MT_ERR_..., "...", ...);`. */
+mt_status mt_diag_set(mt_diag *diag, mt_status status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
 #ifdef __cplusplus
 }
 #endif
