@@ -1,10 +1,9 @@
-/* The client side of daemon.netns_chunked_*: generates a 2M-triangle grid
- * (mt_gen_grid(1000, 1000, true), ~56 MB of mesh_t content), submits it
- * through meshtopo::client (which sends it as mesh_chunk_t pieces), and
- * checks that it arrived bit-identical (the ack's content hash equals the
- * sender's) and that the daemon's report equals the one built in-process
- * (mtd_topology_fill over the same mesh, encoded byte for byte). Prints the
- * send time and the client's counters. usage: CLIENT NAME */
+/* The client side of daemon.netns_chunked_*: waits for meshtopod, submits a
+ * 2M-triangle grid (~56 MB of mesh_t content) through meshtopo::client, which
+ * sends it as mesh_chunk_t pieces, and checks that it arrived bit-identical
+ * (ack content hash = sender's) with the report built in-process
+ * (mtd_topology_fill, encoded byte for byte). Prints the send time and the
+ * client's counters. usage: CLIENT NAME */
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,31 +14,13 @@
 #include "meshtopo/core.h"
 #include "topology.h"
 
+#define HEARTBEAT_WAIT_MS 10000
+
 static double seconds_now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-/* Waits for the daemon's first heartbeat on PREFIX STATUS. */
-static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
-{
-    (void)rbuf;
-    (void)channel;
-    *(int *)user = 1;
-}
-
-static int wait_heartbeat(void)
-{
-    lcm_t *lcm = lcm_create(NULL);
-    if (!lcm) return -1;
-    int seen = 0;
-    lcm_subscription_t *sub = lcm_subscribe(lcm, "MESHTOPO_STATUS", on_status, &seen);
-    for (int i = 0; i < 100 && !seen; i++) lcm_handle_timeout(lcm, 100);
-    lcm_unsubscribe(lcm, sub);
-    lcm_destroy(lcm);
-    return seen ? 0 : -1;
 }
 
 /* Encodes a topology_t into a new buffer; NULL on failure. */
@@ -58,16 +39,7 @@ static void *encode_topology(const meshtopo_topology_t *t, int *out_size)
 int main(int argc, char **argv)
 {
     const char *name = argc > 1 ? argv[1] : "chunked";
-    if (wait_heartbeat() != 0) {
-        fprintf(stderr, "%s: no heartbeat from meshtopod within 10 s\n", name);
-        return 1;
-    }
-    mt_face_list list;
     mt_diag diag;
-    if (mt_gen_grid(1000, 1000, true, &list) != MT_OK) {
-        fprintf(stderr, "%s: mt_gen_grid failed\n", name);
-        return 1;
-    }
     mt_client_options opts;
     memset(&opts, 0, sizeof opts);
     opts.source = "chunked-test";
@@ -76,6 +48,17 @@ int main(int argc, char **argv)
     mt_client *client = NULL;
     if (mt_client_create(&opts, &client, &diag) != MT_OK) {
         fprintf(stderr, "%s: mt_client_create: %s\n", name, diag.message);
+        return 1;
+    }
+    if (mt_client_wait_daemon(client, HEARTBEAT_WAIT_MS, NULL, &diag) != MT_OK) {
+        fprintf(stderr, "%s: %s\n", name, diag.message);
+        mt_client_destroy(client);
+        return 1;
+    }
+    mt_face_list list;
+    if (mt_gen_grid(1000, 1000, true, &list) != MT_OK) {
+        fprintf(stderr, "%s: mt_gen_grid failed\n", name);
+        mt_client_destroy(client);
         return 1;
     }
     mt_client_ack ack;

@@ -1,23 +1,11 @@
 /* meshtopod_concurrency_client: daemon.concurrency's client, run inside
- * netns-run next to a real meshtopod. It submits three small generated meshes,
- * forks CHILDREN processes that each send QUERIES_PER_CHILD single-vertex
- * VERTEX_RING queries through meshtopo::client (random mesh, random vertex)
- * and check every answer against the core library's mt_vert_ring on the same
- * generated mesh, while this process submits a large grid (several versions)
- * so a build runs during the queries. It prints p50/p99 latency of the
- * queries outside the big submissions, during their transfer and ack only,
- * and during the builds themselves (the daemon's build_duration_us before
- * each ack), and fails on a wrong or lost answer, or when queries waited for
- * a build: p99 during the builds above P99_RATIO_LIMIT times p99 outside AND
- * above half the shortest big build (a query held up by a build waits for a
- * good part of it; noise on a shared machine alone rarely reaches that).
- *
- * usage: meshtopod_concurrency_client
- * Exit status: 0 pass, 1 fail, 77 (ctest skip) when the big mesh cannot fit
- * the UDP receive buffer udpm gets here. */
+ * netns-run next to a real meshtopod. CHILDREN processes send single-vertex
+ * VERTEX_RING queries through meshtopo::client to three small generated
+ * meshes, each answer checked against the core's mt_vert_ring, while this
+ * process submits versions of a large grid so builds run during the queries;
+ * it fails on a wrong or lost answer, or when a build held up the queries. */
 #define _GNU_SOURCE
 #include <inttypes.h>
-#include <lcm/lcm.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,6 +18,19 @@
 #include "meshtopo/client.h"
 #include "meshtopo/core.h"
 
+/* The parent forks the children while it has no thread yet, waits for the
+ * daemon and submits the small meshes; then each child sends
+ * QUERIES_PER_CHILD queries (random mesh, random vertex). The parent prints
+ * p50/p99 latency of the queries outside the big submissions, during their
+ * transfer and ack only, and during the builds themselves (the daemon's
+ * build_duration_us before each ack), and fails when p99 during the builds is
+ * above P99_RATIO_LIMIT times p99 outside AND above half the shortest big
+ * build (a query held up by a build waits for a good part of it; noise on a
+ * shared machine alone rarely reaches that).
+ *
+ * usage: meshtopod_concurrency_client
+ * Exit status: 0 pass, 1 fail, SKIP_STATUS (ctest's skip) when the big mesh
+ * cannot fit the UDP receive buffer udpm gets here. */
 #define SKIP_STATUS 77
 #define CHILDREN 8
 #define QUERIES_PER_CHILD 5000
@@ -117,29 +118,6 @@ static uint64_t mesh_bytes(const mt_face_list *list)
     return 24ull * list->num_verts + 4ull * list->num_faces + 4ull * list->num_indices;
 }
 
-/* ---- the heartbeat (as meshtopod_corpus_client) --------------------------- */
-
-static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
-{
-    (void)channel;
-    meshtopo_status_t st;
-    if (mt_msgs_decode(&mt_msgs_type_status, rbuf->data, rbuf->data_size, &st, NULL, 0) != 0)
-        return;
-    *(int32_t *)user = st.pid;
-    meshtopo_status_t_decode_cleanup(&st);
-}
-
-static int32_t await_heartbeat(lcm_t *lcm)
-{
-    int32_t pid = 0;
-    lcm_subscription_t *sub = lcm_subscribe(lcm, "MESHTOPO_STATUS", on_status, &pid);
-    if (!sub) return 0;
-    for (int waited = 0; waited < HEARTBEAT_WAIT_MS && pid == 0; waited += 50)
-        lcm_handle_timeout(lcm, 50);
-    lcm_unsubscribe(lcm, sub);
-    return pid;
-}
-
 static mt_client *client_new(const char *source)
 {
     mt_client_options opts;
@@ -158,35 +136,41 @@ static mt_client *client_new(const char *source)
 
 /* ---- a child: queries and checks ---------------------------------------- */
 
-/* 1 when the reply's one item equals the local ring of `vert`, fan by fan. */
+/* 1 when the reply's one item equals the local ring of `vert`, fan by fan,
+ * the fans' values in the ring's order (read with the reply accessors). */
 static int ring_matches(const meshtopo_reply_t *rep, const mt_mesh *mesh, uint32_t vert)
 {
     uint32_t nb[RING_CAPACITY], faces[RING_CAPACITY];
     mt_fan fans[RING_CAPACITY];
     mt_ring ring = {nb, RING_CAPACITY, faces, RING_CAPACITY, fans, RING_CAPACITY, 0, 0, 0};
     if (mt_vert_ring(mesh, vert, &ring) != MT_OK) return 0;
-    if (rep->status != MESHTOPO_STATUS_CODE_T_OK || rep->num_items != 1 ||
-        rep->num_item_offsets != 2 || rep->item_status[0] != MESHTOPO_STATUS_CODE_T_OK ||
-        rep->item_offsets[0] != 0 || rep->item_offsets[1] != (int32_t)ring.num_fans ||
+    if (rep->status != MESHTOPO_STATUS_CODE_T_OK || mt_client_reply_num_items(rep) != 1 ||
         rep->num_groups != (int32_t)ring.num_fans ||
-        rep->num_value_offsets != rep->num_groups + 1 ||
         rep->num_values != (int32_t)ring.num_neighbors ||
         rep->num_values2 != (int32_t)ring.num_faces)
         return 0;
+    mt_client_item item = mt_client_reply_item(rep, 0);
+    if (item.status != MESHTOPO_STATUS_CODE_T_OK || item.first_group != 0 ||
+        item.num_groups != ring.num_fans)
+        return 0;
+    /* The groups' values are consecutive (the client checked the offsets):
+     * each fan's starts where the previous one's ended. */
+    size_t at = 0, at2 = 0;
     for (size_t g = 0; g < ring.num_fans; g++) {
         const mt_fan *f = &fans[g];
-        if (rep->group_boundary[g] != (int8_t)f->boundary ||
-            rep->value_offsets[g] != (int32_t)f->neighbor_begin ||
-            rep->value_offsets[g + 1] != (int32_t)(f->neighbor_begin + f->neighbor_count) ||
-            rep->value2_offsets[g] != (int32_t)f->face_begin ||
-            rep->value2_offsets[g + 1] != (int32_t)(f->face_begin + f->face_count))
+        mt_client_group grp = mt_client_item_group(rep, &item, g);
+        if (grp.boundary != f->boundary || at != f->neighbor_begin ||
+            grp.num_values != f->neighbor_count || at2 != f->face_begin ||
+            grp.num_values2 != f->face_count)
             return 0;
+        for (size_t k = 0; k < grp.num_values; k++)
+            if ((uint32_t)grp.values[k] != nb[at + k]) return 0;
+        for (size_t k = 0; k < grp.num_values2; k++)
+            if ((uint32_t)grp.values2[k] != faces[at2 + k]) return 0;
+        at += grp.num_values;
+        at2 += grp.num_values2;
     }
-    for (size_t k = 0; k < ring.num_neighbors; k++)
-        if ((uint32_t)rep->values[k] != nb[k]) return 0;
-    for (size_t k = 0; k < ring.num_faces; k++)
-        if ((uint32_t)rep->values2[k] != faces[k]) return 0;
-    return 1;
+    return at == ring.num_neighbors && at2 == ring.num_faces;
 }
 
 static int child_main(int index, shared_state *sh, mt_mesh *const meshes[NUM_SMALL])
@@ -347,16 +331,16 @@ int main(void)
     }
 
     int ok = 0;
-    lcm_t *lcm = lcm_create(NULL);
-    int32_t daemon_pid = lcm ? await_heartbeat(lcm) : 0;
-    if (lcm) lcm_destroy(lcm);
-    mt_client *client = NULL;
-    if (!daemon_pid) {
-        fprintf(stderr, "no heartbeat on MESHTOPO_STATUS within %d ms\n", HEARTBEAT_WAIT_MS);
-    } else {
-        printf("heartbeat from meshtopod pid %d\n", (int)daemon_pid);
-        client = client_new("conc_parent");
-        ok = client != NULL;
+    mt_client *client = client_new("conc_parent");
+    meshtopo_status_t *heartbeat = NULL;
+    mt_diag diag;
+    mt_diag_clear(&diag);
+    if (client && mt_client_wait_daemon(client, HEARTBEAT_WAIT_MS, &heartbeat, &diag) != MT_OK) {
+        fprintf(stderr, "conc_parent: %s\n", diag.message);
+    } else if (client) {
+        printf("heartbeat from meshtopod pid %d\n", (int)heartbeat->pid);
+        meshtopo_status_t_destroy(heartbeat);
+        ok = 1;
         for (int i = 0; ok && i < NUM_SMALL; i++)
             ok = submit(client, small_ids[i], &small[i], NULL);
     }

@@ -1,10 +1,9 @@
-/* The client side of daemon.netns_parts_*: submits a 2M-triangle grid with
- * 10,000 holes (mt_gen_grid(1000, 1000) less every 10th cell in both
- * directions) through meshtopo::client, then asks in one call each for the
- * one-rings of 100,000 vertices (about 6 MB of reply_t) and for all 10,001
- * boundary loops, both of which arrive as reply_part_t pieces; every answer
- * must equal the core's on the same mesh built in-process. Prints the times
- * and the client's part counters. usage: CLIENT NAME */
+/* The client side of daemon.netns_parts_*: waits for meshtopod and submits a
+ * 2M-triangle grid with 10,000 holes through meshtopo::client, then asks in
+ * one call each for the one-rings of 100,000 vertices (about 6 MB of reply_t)
+ * and all 10,001 boundary loops, both arriving as reply_part_t pieces; every
+ * answer must equal the core's on the same mesh built in-process
+ * (parts_expect.c). Prints times and part counters. usage: CLIENT NAME */
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,6 +15,7 @@
 #include "parts_expect.h"
 
 #define NUM_RING_IDS 100000
+#define HEARTBEAT_WAIT_MS 10000
 
 static double seconds_now(void)
 {
@@ -24,45 +24,10 @@ static double seconds_now(void)
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
-static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
-{
-    (void)rbuf;
-    (void)channel;
-    *(int *)user = 1;
-}
-
-/* Waits for the daemon's first heartbeat on MESHTOPO_STATUS. */
-static int wait_heartbeat(void)
-{
-    lcm_t *lcm = lcm_create(NULL);
-    if (!lcm) return -1;
-    int seen = 0;
-    lcm_subscription_t *sub = lcm_subscribe(lcm, "MESHTOPO_STATUS", on_status, &seen);
-    for (int i = 0; i < 100 && !seen; i++) lcm_handle_timeout(lcm, 100);
-    lcm_unsubscribe(lcm, sub);
-    lcm_destroy(lcm);
-    return seen ? 0 : -1;
-}
-
 int main(int argc, char **argv)
 {
     const char *name = argc > 1 ? argv[1] : "parts";
-    if (wait_heartbeat() != 0) {
-        fprintf(stderr, "%s: no heartbeat from meshtopod within 10 s\n", name);
-        return 1;
-    }
-    mt_face_list list;
     mt_diag diag;
-    if (mt_test_grid_with_holes(1000, 1000, 10, &list) != MT_OK) {
-        fprintf(stderr, "%s: mt_test_grid_with_holes failed\n", name);
-        return 1;
-    }
-    mt_mesh *mesh = NULL;
-    if (mt_mesh_build(&list, NULL, &mesh, &diag) != MT_OK ||
-        mt_mesh_validate(mesh, &diag) != MT_OK) {
-        fprintf(stderr, "%s: in-process build or validate failed: %s\n", name, diag.message);
-        return 1;
-    }
     mt_client_options opts;
     memset(&opts, 0, sizeof opts);
     opts.source = "parts-test";
@@ -71,6 +36,24 @@ int main(int argc, char **argv)
     mt_client *client = NULL;
     if (mt_client_create(&opts, &client, &diag) != MT_OK) {
         fprintf(stderr, "%s: mt_client_create: %s\n", name, diag.message);
+        return 1;
+    }
+    if (mt_client_wait_daemon(client, HEARTBEAT_WAIT_MS, NULL, &diag) != MT_OK) {
+        fprintf(stderr, "%s: %s\n", name, diag.message);
+        mt_client_destroy(client);
+        return 1;
+    }
+    mt_face_list list;
+    if (mt_test_grid_with_holes(1000, 1000, 10, &list) != MT_OK) {
+        fprintf(stderr, "%s: mt_test_grid_with_holes failed\n", name);
+        mt_client_destroy(client);
+        return 1;
+    }
+    mt_mesh *mesh = NULL;
+    if (mt_mesh_build(&list, NULL, &mesh, &diag) != MT_OK ||
+        mt_mesh_validate(mesh, &diag) != MT_OK) {
+        fprintf(stderr, "%s: in-process build or validate failed: %s\n", name, diag.message);
+        mt_client_destroy(client);
         return 1;
     }
     int failed = 0;
@@ -117,8 +100,9 @@ int main(int argc, char **argv)
         if (st != MT_OK) {
             fprintf(stderr, "%s: BOUNDARY_LOOPS: %s\n", name, diag.message);
             failed = 1;
-        } else if (r.num_items != 10001) {
-            fprintf(stderr, "%s: %d boundary loops, expected 10001\n", name, (int)r.num_items);
+        } else if (mt_client_reply_num_items(&r) != 10001) {
+            fprintf(stderr, "%s: %zu boundary loops, expected 10001\n", name,
+                    mt_client_reply_num_items(&r));
             failed = 1;
         } else if (mt_test_check_loops(mesh, &r, why, sizeof why) != 0) {
             fprintf(stderr, "%s: boundary loops differ from the core's: %s\n", name, why);

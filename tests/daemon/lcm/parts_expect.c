@@ -1,6 +1,7 @@
 /* Checks of large answers (VERTEX_RING, BOUNDARY_LOOPS replies) against the
- * core library, and the grid with holes used to make many boundary loops.
- * See parts_expect.h. */
+ * core library, read through the reply accessors (meshtopo/client_reply.h),
+ * and the grid with holes used to make many boundary loops. See
+ * parts_expect.h. */
 #include "parts_expect.h"
 
 #include <stdio.h>
@@ -13,29 +14,20 @@ static int differ(char *why, size_t why_size, const char *what, size_t at, long 
     return -1;
 }
 
-/* The CSR arrays are consistent: counts match and offsets stay in range. */
+/* The reply is OK and its CSR arrays describe it (the check the client runs
+ * on what it hands out; a reply decoded by hand gets it here), so the
+ * accessors below may index it. */
 static int shape_ok(const meshtopo_reply_t *r, char *why, size_t why_size)
 {
     if (r->status != 0) {
         snprintf(why, why_size, "status %d: %s", (int)r->status, r->error);
         return -1;
     }
-    if (r->num_item_offsets != r->num_items + 1 || r->num_value_offsets != r->num_groups + 1) {
-        snprintf(why, why_size, "offset counts %d/%d for %d items, %d groups",
-                 (int)r->num_item_offsets, (int)r->num_value_offsets, (int)r->num_items,
-                 (int)r->num_groups);
+    mt_diag diag;
+    if (mt_client_reply_check(r, &diag) != MT_OK) {
+        snprintf(why, why_size, "offsets: %s", diag.message);
         return -1;
     }
-    for (int32_t i = 0; i < r->num_items; i++)
-        if (r->item_offsets[i] < 0 || r->item_offsets[i] > r->item_offsets[i + 1] ||
-            r->item_offsets[i + 1] > r->num_groups)
-            return differ(why, why_size, "item offset", (size_t)i, r->item_offsets[i], -1);
-    for (int32_t g = 0; g < r->num_groups; g++)
-        if (r->value_offsets[g] < 0 || r->value_offsets[g] > r->value_offsets[g + 1] ||
-            r->value_offsets[g + 1] > r->num_values || r->value2_offsets[g] < 0 ||
-            r->value2_offsets[g] > r->value2_offsets[g + 1] ||
-            r->value2_offsets[g + 1] > r->num_values2)
-            return differ(why, why_size, "group offset", (size_t)g, r->value_offsets[g], -1);
     return 0;
 }
 
@@ -43,7 +35,8 @@ int mt_test_check_rings(const mt_mesh *mesh, const uint32_t *ids, size_t n,
                         const meshtopo_reply_t *r, char *why, size_t why_size)
 {
     if (shape_ok(r, why, why_size) != 0) return -1;
-    if ((size_t)r->num_items != n) return differ(why, why_size, "items", 0, r->num_items, (long)n);
+    size_t num_items = mt_client_reply_num_items(r);
+    if (num_items != n) return differ(why, why_size, "items", 0, (long)num_items, (long)n);
     enum { CAP = 4096 };
     uint32_t nb[CAP], fc[CAP];
     mt_fan fans[256];
@@ -53,29 +46,25 @@ int mt_test_check_rings(const mt_mesh *mesh, const uint32_t *ids, size_t n,
             snprintf(why, why_size, "mt_vert_ring(%u) failed", ids[i]);
             return -1;
         }
-        int32_t g0 = r->item_offsets[i], g1 = r->item_offsets[i + 1];
-        if ((size_t)(g1 - g0) != ring.num_fans)
-            return differ(why, why_size, "fans of item", i, g1 - g0, (long)ring.num_fans);
+        mt_client_item item = mt_client_reply_item(r, i);
+        if (item.num_groups != ring.num_fans)
+            return differ(why, why_size, "fans of item", i, (long)item.num_groups,
+                          (long)ring.num_fans);
         for (size_t f = 0; f < ring.num_fans; f++) {
-            int32_t g = g0 + (int32_t)f;
-            const int32_t *v = r->values + r->value_offsets[g];
-            const int32_t *v2 = r->values2 + r->value2_offsets[g];
-            if ((uint32_t)(r->value_offsets[g + 1] - r->value_offsets[g]) !=
-                    fans[f].neighbor_count ||
-                (uint32_t)(r->value2_offsets[g + 1] - r->value2_offsets[g]) != fans[f].face_count)
-                return differ(why, why_size, "fan size of item", i,
-                              r->value_offsets[g + 1] - r->value_offsets[g],
+            mt_client_group g = mt_client_item_group(r, &item, f);
+            if (g.num_values != fans[f].neighbor_count || g.num_values2 != fans[f].face_count)
+                return differ(why, why_size, "fan size of item", i, (long)g.num_values,
                               (long)fans[f].neighbor_count);
-            if ((r->group_boundary[g] != 0) != fans[f].boundary)
-                return differ(why, why_size, "fan boundary flag of item", i, r->group_boundary[g],
+            if (g.boundary != fans[f].boundary)
+                return differ(why, why_size, "fan boundary flag of item", i, g.boundary,
                               fans[f].boundary);
             for (uint32_t k = 0; k < fans[f].neighbor_count; k++)
-                if ((uint32_t)v[k] != nb[fans[f].neighbor_begin + k])
-                    return differ(why, why_size, "neighbour of item", i, v[k],
+                if ((uint32_t)g.values[k] != nb[fans[f].neighbor_begin + k])
+                    return differ(why, why_size, "neighbour of item", i, g.values[k],
                                   (long)nb[fans[f].neighbor_begin + k]);
             for (uint32_t k = 0; k < fans[f].face_count; k++)
-                if ((uint32_t)v2[k] != fc[fans[f].face_begin + k])
-                    return differ(why, why_size, "face of item", i, v2[k],
+                if ((uint32_t)g.values2[k] != fc[fans[f].face_begin + k])
+                    return differ(why, why_size, "face of item", i, g.values2[k],
                                   (long)fc[fans[f].face_begin + k]);
         }
     }
@@ -94,23 +83,29 @@ int mt_test_check_loops(const mt_mesh *mesh, const meshtopo_reply_t *r, char *wh
     uint32_t *verts = malloc((num_verts + 1) * sizeof *verts);
     uint32_t *offsets = malloc((num_loops + 1) * sizeof *offsets);
     int rc = -1;
+    size_t num_items = mt_client_reply_num_items(r);
     if (!verts || !offsets ||
         mt_boundary_loops(mesh, verts, num_verts + 1, offsets, num_loops + 1, &num_verts,
                           &num_loops) != MT_OK) {
         snprintf(why, why_size, "mt_boundary_loops failed");
-    } else if ((size_t)r->num_items != num_loops || (size_t)r->num_groups != num_loops) {
-        differ(why, why_size, "loops", 0, r->num_items, (long)num_loops);
+    } else if (num_items != num_loops || (size_t)r->num_groups != num_loops) {
+        differ(why, why_size, "loops", 0, (long)num_items, (long)num_loops);
     } else if ((size_t)r->num_values != num_verts) {
         differ(why, why_size, "loop vertices", 0, r->num_values, (long)num_verts);
     } else {
+        /* One group per loop, in order: its start is the vertices before it. */
         rc = 0;
-        for (size_t l = 0; l < num_loops && rc == 0; l++)
-            if ((uint32_t)r->value_offsets[l] != offsets[l])
-                rc = differ(why, why_size, "start of loop", l, r->value_offsets[l],
-                            (long)offsets[l]);
-        for (size_t k = 0; k < num_verts && rc == 0; k++)
-            if ((uint32_t)r->values[k] != verts[k])
-                rc = differ(why, why_size, "loop vertex", k, r->values[k], (long)verts[k]);
+        size_t start = 0;
+        for (size_t l = 0; l < num_loops && rc == 0; l++) {
+            mt_client_group g = mt_client_reply_group(r, l);
+            if (start != offsets[l])
+                rc = differ(why, why_size, "start of loop", l, (long)start, (long)offsets[l]);
+            for (size_t k = 0; k < g.num_values && rc == 0; k++)
+                if ((uint32_t)g.values[k] != verts[start + k])
+                    rc = differ(why, why_size, "loop vertex", start + k, g.values[k],
+                                (long)verts[start + k]);
+            start += g.num_values;
+        }
     }
     free(verts);
     free(offsets);
