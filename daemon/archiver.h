@@ -6,7 +6,9 @@
  * worker that fetches it, or all at start with --preload), and keeps the
  * store within --memory-budget by dropping the least recently queried
  * archived versions. Without --archive it only adds built meshes to the
- * store. Calls down into the store only; nothing here answers requests. */
+ * store. Calls down into the store only; nothing here answers requests.
+ * Threads: build workers (stores, loads), the async writer, the LCM thread
+ * (catalog look-ups through the backing, stats for the heartbeat). */
 #ifndef MESHTOPOD_ARCHIVER_H
 #define MESHTOPOD_ARCHIVER_H
 

@@ -1,6 +1,7 @@
 /* meshtopod's byte-range set (byte_ranges.h): insertion finds the first
  * range ending at or after the new start by binary search, merges every
- * range the new one touches or overlaps, and shifts the tail once. */
+ * range the new one touches or overlaps, and shifts the tail once. One
+ * owner, no lock: the LCM thread, for its transfer. */
 #include "byte_ranges.h"
 
 #include <stdlib.h>

@@ -1,7 +1,8 @@
 /* meshtopod's record of which bytes of a chunked submission have arrived: a
  * sorted array of disjoint, non-touching [start, end) ranges. Adding a range
  * merges it with its neighbours, so chunks arriving in order keep one range
- * and each loss adds at most one. LCM-free; one owner, no locking. */
+ * and each loss adds at most one. LCM-free; one owner, no locking (the LCM
+ * thread, which owns the transfers). */
 #ifndef MESHTOPOD_BYTE_RANGES_H
 #define MESHTOPOD_BYTE_RANGES_H
 

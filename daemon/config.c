@@ -1,7 +1,8 @@
 /* meshtopod's flags and MESHTOPOD_* variables, from one table. Parsing is
  * by hand over that table rather than getopt_long: the same entry then
  * serves the flag, its variable, range checks and the help text, and the
- * parser keeps no global state between calls (tests parse many times). */
+ * parser keeps no global state between calls (tests parse many times).
+ * Runs once, on the main thread, before any other thread starts. */
 #include "config.h"
 
 #include <errno.h>

@@ -1,7 +1,8 @@
 /* meshtopod's settings: each one a command-line flag with an environment
  * default (flag > environment > built-in default), checked and reported by
  * name when wrong. The table in config.c is the one list: parsing, --help
- * and the unit file's documentation all follow it. */
+ * and the unit file's documentation all follow it. Parsed once on the main
+ * thread; every thread then reads the settings, nobody writes them. */
 #ifndef MESHTOPOD_CONFIG_H
 #define MESHTOPOD_CONFIG_H
 

@@ -1,6 +1,7 @@
 /* meshtopod's one-line-per-event log on stderr (format in log.h). syslog(3)
  * is not used: under systemd stderr already goes to the journal, and in a
- * terminal or a test it stays readable and capturable. */
+ * terminal or a test it stays readable and capturable. Any thread: the level
+ * and fd are set before threads start, each line is one write(2). */
 #define _DEFAULT_SOURCE /* gmtime_r */
 #include "log.h"
 

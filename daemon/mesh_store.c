@@ -15,7 +15,9 @@
  * before mtd_store_add and queries run on an acquired entry after the lock is
  * dropped, so nobody holds the lock long enough for shared reading to pay;
  * glibc's rwlock costs more per acquisition and, preferring readers, lets a
- * steady stream of queries starve add and remove. */
+ * steady stream of queries starve add and remove. Any thread: the LCM
+ * thread fetches for queries, workers add built and loaded meshes, the
+ * archive writer evicts; the backing is called outside the lock. */
 #include "mesh_store.h"
 
 #include <pthread.h>

@@ -6,7 +6,8 @@
  * Written by hand because libc has no fitting table: hsearch() is one global
  * table without removal, and tsearch() would still need the arrival list
  * beside it. The bucket array is sized once from max_entries (a power of two
- * at least that large), so the table never rehashes. */
+ * at least that large), so the table never rehashes. Any thread (the reply
+ * module calls it from the LCM thread and from build workers). */
 #include "request_cache.h"
 
 #include <pthread.h>

@@ -1,7 +1,8 @@
 /* The worker pool: a ring buffer of jobs guarded by one mutex and a
  * condition variable the workers wait on. The lock is held only to move a job
  * in or out of the ring, never while a job runs; shutdown sets `stopping`,
- * wakes every worker and joins them once the queue is empty. */
+ * wakes every worker and joins them once the queue is empty. Jobs are
+ * submitted from the LCM thread; they run on the pool's own threads. */
 #include "worker_pool.h"
 
 #include <pthread.h>

@@ -11,8 +11,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "archive_bench.h"
 #include "bench.h"
+#include "bench_archive.h"
 #include "meshtopo/mesh_parts.h"
 
 #define MAX_DATASETS 24

@@ -11,6 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <time.h>
 
 #include "meshtopo/face_list.h"
 
@@ -133,8 +134,10 @@ int mt__bench_command(int argc, char **argv);
 double mt__bench_median_of(double *values, uint32_t n);
 double mt__bench_quantile(double *values, uint32_t n, double q); /* nearest rank, q in [0, 1] */
 
-/* bench_clock.c */
+/* bench_clock.c; mt__bench_elapsed_us: microseconds from a to b
+ * (CLOCK_MONOTONIC readings). */
 double mt__bench_now_ms(void);
+double mt__bench_elapsed_us(const struct timespec *a, const struct timespec *b);
 int64_t mt__bench_heap_bytes(void);
 
 /* bench_input.c: the meshes of a run (all: bunny, a closed corpus mesh,

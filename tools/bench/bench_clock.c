@@ -1,7 +1,8 @@
-/* The two meters of meshtopo-bench: a monotonic clock in milliseconds and
- * the bytes the heap has handed out (mallinfo2: all arenas plus mmapped
- * blocks, so a difference taken around a build is the memory the build
- * keeps). Without glibc 2.33+ the heap meter answers -1 (unknown). */
+/* The two meters of meshtopo-bench: a monotonic clock (milliseconds, and the
+ * microseconds between two readings) and the bytes the heap has handed out
+ * (mallinfo2: all arenas plus mmapped blocks, so a difference taken around a
+ * build is the memory the build keeps). Without glibc 2.33+ the heap meter
+ * answers -1 (unknown). */
 #include <time.h>
 
 #include "bench.h"
@@ -16,6 +17,11 @@ double mt__bench_now_ms(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+double mt__bench_elapsed_us(const struct timespec *a, const struct timespec *b)
+{
+    return (double)(b->tv_sec - a->tv_sec) * 1e6 + (double)(b->tv_nsec - a->tv_nsec) / 1e3;
 }
 
 int64_t mt__bench_heap_bytes(void)

@@ -1,15 +1,16 @@
 /* The meshtopo-bench executable (also run as `meshtopo bench`):
  *   meshtopo-bench [build] [options]   the core build benchmark (bench.c)
  *   meshtopo-bench rtt [options]       query round trips to meshtopod (rtt.c)
- *   meshtopo-bench transfer [options]  large submissions vs a raw LCM push (transfer.c)
- *   meshtopo-bench archive [options]   archive write and reload vs bare HDF5 (archive.c) */
+ *   meshtopo-bench transfer [options]  large submissions vs a raw LCM push (bench_transfer.c)
+ *   meshtopo-bench archive [options]   archive write and reload vs bare HDF5
+ *                                      (bench_archive.c) */
 #include <stdio.h>
 #include <string.h>
 
-#include "archive_bench.h"
 #include "bench.h"
+#include "bench_archive.h"
+#include "bench_transfer.h"
 #include "rtt.h"
-#include "transfer.h"
 
 int main(int argc, char **argv)
 {

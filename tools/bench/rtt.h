@@ -10,8 +10,8 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <sys/types.h>
-#include <time.h>
 
+#include "bench.h"
 #include "meshtopo/client.h"
 #include "meshtopo/mesh.h"
 
@@ -72,8 +72,16 @@ bool mt__rtt_daemon_start(const char *path, mt__rtt_daemon *out, char *err, size
 /* SIGTERM to the daemon's PID, SIGKILL after 10 s; true on a clean exit. */
 bool mt__rtt_daemon_stop(mt__rtt_daemon *daemon, char *err, size_t err_size);
 
-/* A client on MT__RTT_LCM_URL (1 s per attempt, 3 retries). NULL on failure. */
+/* ---- rtt_client.c -------------------------------------------------------- */
+
+/* A client on MT__RTT_LCM_URL (1 s per attempt, 3 retries). NULL on failure,
+ * said on stderr. */
 mt_client *mt__rtt_client_new(const char *source);
+
+/* Waits, through a client of its own that is destroyed before returning,
+ * until a heartbeat of the meshtopod with this PID arrives; false after
+ * timeout_ms. */
+bool mt__rtt_daemon_wait(pid_t pid, int timeout_ms);
 
 /* ---- rtt_pingpong.c ------------------------------------------------------ */
 
@@ -122,12 +130,5 @@ bool mt__rtt_query_throughput(const mt_mesh *local, uint32_t clients, uint32_t b
  * with the difference in err. */
 bool mt__rtt_ring_matches(const mt_mesh *local, const meshtopo_reply_t *reply, uint32_t item,
                           uint32_t vert, char *err, size_t err_size);
-
-/* ---- time ---------------------------------------------------------------- */
-
-static inline double mt__rtt_elapsed_us(const struct timespec *a, const struct timespec *b)
-{
-    return (double)(b->tv_sec - a->tv_sec) * 1e6 + (double)(b->tv_nsec - a->tv_nsec) / 1e3;
-}
 
 #endif

@@ -1,10 +1,9 @@
-/* The meshtopod of a `meshtopo-bench rtt` run: started as a child process on
- * the run's LCM URL, awaited by its first heartbeat on MESHTOPO_STATUS, and
- * stopped by its PID (SIGTERM, then SIGKILL after 10 s). Also the clients the
- * run talks to it with. */
+/* The meshtopod of a `meshtopo-bench rtt` or `transfer` run: started as a
+ * child process on the run's LCM URL, awaited by its first heartbeat
+ * (mt__rtt_daemon_wait, rtt_client.c), and stopped by its PID (SIGTERM, then
+ * SIGKILL after 10 s). */
 #include <errno.h>
 #include <fcntl.h>
-#include <lcm/lcm.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,35 +12,10 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "meshtopo/msgs.h"
 #include "rtt.h"
 
 #define HEARTBEAT_WAIT_MS 10000
 #define STOP_WAIT_MS 10000
-
-static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
-{
-    (void)channel;
-    meshtopo_status_t st;
-    if (mt_msgs_decode(&mt_msgs_type_status, rbuf->data, rbuf->data_size, &st, NULL, 0) != 0)
-        return;
-    *(int32_t *)user = st.pid;
-    meshtopo_status_t_decode_cleanup(&st);
-}
-
-/* Waits for a heartbeat from `pid`; false after HEARTBEAT_WAIT_MS. */
-static bool await_heartbeat(pid_t pid)
-{
-    lcm_t *lcm = lcm_create(MT__RTT_LCM_URL);
-    if (!lcm) return false;
-    int32_t heard = 0;
-    lcm_subscription_t *sub = lcm_subscribe(lcm, "MESHTOPO_STATUS", on_status, &heard);
-    for (int waited = 0; sub && heard != (int32_t)pid && waited < HEARTBEAT_WAIT_MS; waited += 50)
-        lcm_handle_timeout(lcm, 50);
-    if (sub) lcm_unsubscribe(lcm, sub);
-    lcm_destroy(lcm);
-    return heard == (int32_t)pid;
-}
 
 bool mt__rtt_daemon_start(const char *path, mt__rtt_daemon *out, char *err, size_t err_size)
 {
@@ -72,7 +46,7 @@ bool mt__rtt_daemon_start(const char *path, mt__rtt_daemon *out, char *err, size
     }
     close(log_fd);
     out->pid = pid;
-    if (!await_heartbeat(pid)) {
+    if (!mt__rtt_daemon_wait(pid, HEARTBEAT_WAIT_MS)) {
         snprintf(err, err_size, "no heartbeat from %s (pid %d) within %d ms; its log: %s", path,
                  (int)pid, HEARTBEAT_WAIT_MS, out->log_path);
         char ignored[8];
@@ -126,20 +100,4 @@ const char *mt__rtt_daemon_find(const char *given, char *buf, size_t size)
         return MESHTOPO_BENCH_DAEMON_BUILD_PATH;
 #endif
     return "meshtopod";
-}
-
-mt_client *mt__rtt_client_new(const char *source)
-{
-    mt_client_options opts;
-    memset(&opts, 0, sizeof opts);
-    opts.lcm_url = MT__RTT_LCM_URL;
-    opts.source = source;
-    mt_client *client = NULL;
-    mt_diag diag;
-    mt_diag_clear(&diag);
-    mt_status st = mt_client_create(&opts, &client, &diag);
-    if (st != MT_OK)
-        fprintf(stderr, "meshtopo-bench rtt: %s: cannot create a client: %s (%s)\n", source,
-                mt_strerror(st), diag.message);
-    return client;
 }

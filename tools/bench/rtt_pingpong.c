@@ -1,10 +1,9 @@
-/* The raw LCM baseline of `meshtopo-bench rtt`: a ping of the query's encoded
+/* The raw LCM floor of `meshtopo-bench rtt`: a ping of the query's encoded
  * size goes out on RTT_PING, an echo process answers with a pong of the
- * reply's encoded size (named in the ping) on RTT_PONG, and the pinger times
- * the round trip. Both
- * ends use LCM exactly as meshtopod and the client do (lcm_get_fileno, poll,
- * lcm_handle) with no meshtopo code between, so the difference between this
- * and a query's round trip is what meshtopo adds. */
+ * reply's size (named in the ping) on RTT_PONG, and the pinger times the round
+ * trip. It measures LCM itself, so it calls LCM directly, as meshtopod and the
+ * client do (lcm_get_fileno, poll, lcm_handle), with no meshtopo code between:
+ * with transfer_raw.c, the only files of tools/ that use LCM without the client. */
 #include <errno.h>
 #include <lcm/lcm.h>
 #include <poll.h>
@@ -109,7 +108,7 @@ static bool ping_once(lcm_t *lcm, pinger *p, unsigned char *ping, size_t ping_si
     clock_gettime(CLOCK_MONOTONIC, &start);
     for (;;) {
         clock_gettime(CLOCK_MONOTONIC, &now);
-        int left = wait_ms - (int)(mt__rtt_elapsed_us(&start, &now) / 1000);
+        int left = wait_ms - (int)(mt__bench_elapsed_us(&start, &now) / 1000);
         if (left < 0) return false;
         if (poll(&pfd, 1, left) <= 0) continue;
         p->got = false;
@@ -161,7 +160,7 @@ bool mt__rtt_pingpong(size_t ping_size, size_t pong_size, uint32_t count, double
             snprintf(err, err_size, "ping %u got no pong after %d attempts", i, ATTEMPTS);
             ok = false;
         }
-        out_us[i] = mt__rtt_elapsed_us(&t0, &t1);
+        out_us[i] = mt__bench_elapsed_us(&t0, &t1);
     }
     if (sub) lcm_unsubscribe(lcm, sub);
     if (lcm) lcm_destroy(lcm);

@@ -2,8 +2,8 @@
  * trips through mt_client_query, and throughput runs in which several client
  * processes keep queries in flight with mt_client_query_async. Every answer
  * is checked (status, one item per id), and the one-rings are compared with
- * mt_vert_ring on the same grid built in this process, so a fast wrong
- * answer never counts. */
+ * mt_vert_ring on the same grid built in this process (read through the
+ * client's reply accessors), so a fast wrong answer never counts. */
 #include <errno.h>
 #include <pthread.h>
 #include <signal.h>
@@ -46,30 +46,24 @@ bool mt__rtt_ring_matches(const mt_mesh *local, const meshtopo_reply_t *reply, u
         snprintf(err, err_size, "local one-ring of vertex %u: %s", vert, mt_strerror(st));
         return false;
     }
-    if (item >= (uint32_t)reply->num_items || reply->num_item_offsets != reply->num_items + 1 ||
-        reply->item_status[item] != MESHTOPO_STATUS_CODE_T_OK) {
+    bool answered = item < mt_client_reply_num_items(reply);
+    mt_client_item answer = answered ? mt_client_reply_item(reply, item) : (mt_client_item){0};
+    if (!answered || answer.status != MESHTOPO_STATUS_CODE_T_OK) {
         snprintf(err, err_size, "vertex %u: no answer in the reply", vert);
         return false;
     }
-    int32_t first = reply->item_offsets[item], end = reply->item_offsets[item + 1];
-    if (first < 0 || end < first || end > reply->num_groups ||
-        (size_t)(end - first) != ring.num_fans) {
-        snprintf(err, err_size, "vertex %u: %d fans over the wire, %zu locally", vert, end - first,
-                 ring.num_fans);
+    if (answer.num_groups != ring.num_fans) {
+        snprintf(err, err_size, "vertex %u: %zu fans over the wire, %zu locally", vert,
+                 answer.num_groups, ring.num_fans);
         return false;
     }
     for (size_t f = 0; f < ring.num_fans; f++) {
-        int32_t g = first + (int32_t)f;
-        int32_t v0 = reply->value_offsets[g], v1 = reply->value_offsets[g + 1];
-        int32_t w0 = reply->value2_offsets[g], w1 = reply->value2_offsets[g + 1];
+        mt_client_group g = mt_client_item_group(reply, &answer, f);
         const mt_fan *fan = &fans[f];
-        bool same = v0 >= 0 && v1 <= reply->num_values && w0 >= 0 && w1 <= reply->num_values2 &&
-                    (size_t)(v1 - v0) == fan->neighbor_count &&
-                    (size_t)(w1 - w0) == fan->face_count &&
-                    (reply->group_boundary[g] != 0) == fan->boundary &&
-                    range_equals(reply->values + v0, neighbors + fan->neighbor_begin,
-                                 fan->neighbor_count) &&
-                    range_equals(reply->values2 + w0, faces + fan->face_begin, fan->face_count);
+        bool same = g.num_values == fan->neighbor_count && g.num_values2 == fan->face_count &&
+                    g.boundary == fan->boundary &&
+                    range_equals(g.values, neighbors + fan->neighbor_begin, fan->neighbor_count) &&
+                    range_equals(g.values2, faces + fan->face_begin, fan->face_count);
         if (!same) {
             snprintf(err, err_size, "vertex %u: fan %zu differs from the local one-ring", vert, f);
             return false;
@@ -94,7 +88,7 @@ bool mt__rtt_query_latency(mt_client *client, const mt_mesh *local, uint32_t cou
         mt_status st = mt_client_query(client, MT__RTT_MESH_ID, 0, MESHTOPO_QUERY_T_VERTEX_RING,
                                        &vert, 1, &reply, &diag);
         clock_gettime(CLOCK_MONOTONIC, &t1);
-        out_us[i] = mt__rtt_elapsed_us(&t0, &t1);
+        out_us[i] = mt__bench_elapsed_us(&t0, &t1);
         bool ok = st == MT_OK && mt__rtt_ring_matches(local, &reply, 0, vert, err, err_size);
         if (st != MT_OK)
             snprintf(err, err_size, "query %u (vertex %u): %s (%s)", i, vert, mt_strerror(st),
@@ -136,7 +130,7 @@ static bool past(const struct timespec *deadline)
 {
     struct timespec now;
     clock_gettime(CLOCK_MONOTONIC, &now);
-    return mt__rtt_elapsed_us(deadline, &now) >= 0;
+    return mt__bench_elapsed_us(deadline, &now) >= 0;
 }
 
 static void on_reply(mt_status status, const meshtopo_reply_t *reply, const mt_diag *diag,
@@ -168,9 +162,9 @@ static void on_reply(mt_status status, const meshtopo_reply_t *reply, const mt_d
     pthread_mutex_lock(&s->lock);
     s->in_flight--;
     bool ok = status == MT_OK && reply && reply->status == MESHTOPO_STATUS_CODE_T_OK &&
-              reply->num_items == (int32_t)s->batch;
-    for (int32_t i = 0; ok && i < reply->num_items; i++)
-        ok = reply->item_status[i] == MESHTOPO_STATUS_CODE_T_OK;
+              mt_client_reply_num_items(reply) == s->batch;
+    for (size_t i = 0; ok && i < s->batch; i++)
+        ok = mt_client_reply_item(reply, i).status == MESHTOPO_STATUS_CODE_T_OK;
     if (!ok && !s->error[0])
         snprintf(s->error, sizeof s->error, "reply: %s (%s)", mt_strerror(status),
                  diag ? diag->message : "wrong shape");
@@ -314,7 +308,7 @@ bool mt__rtt_query_throughput(const mt_mesh *local, uint32_t clients, uint32_t b
         }
     }
     clock_gettime(CLOCK_MONOTONIC, &t1);
-    out->seconds = mt__rtt_elapsed_us(&t0, &t1) / 1e6;
+    out->seconds = mt__bench_elapsed_us(&t0, &t1) / 1e6;
     close(result_pipe[0]);
     for (uint32_t i = 0; i < started; i++) {
         int status = 0;

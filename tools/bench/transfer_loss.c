@@ -8,7 +8,7 @@
 #include <string.h>
 #include <sys/wait.h>
 
-#include "transfer.h"
+#include "bench_transfer.h"
 
 #define TABLE "meshtopo_bench_loss"
 

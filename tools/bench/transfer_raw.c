@@ -1,9 +1,9 @@
-/* The raw baseline of `meshtopo-bench transfer`: the bytes of the mesh pushed
- * as single-datagram LCM messages (TRANSFER_RAW: a 16-byte header, then the
- * payload), a window at a time, the last message of each window asking the
- * acker process for an acknowledgement (TRANSFER_RAW_ACK). No reassembly,
- * hashing, missing-range lists or decoding: what is left is LCM, the kernel
- * and the acknowledgement round trips meshtopo's protocol also waits for. */
+/* The raw LCM floor of `meshtopo-bench transfer`: the mesh's bytes pushed as
+ * single-datagram messages (TRANSFER_RAW: a 16-byte header, then the payload),
+ * a window at a time, the last of each asking the acker process for an
+ * acknowledgement (TRANSFER_RAW_ACK). It measures LCM itself, so it calls LCM
+ * directly (with rtt_pingpong.c, the only files of tools/ that do): no
+ * reassembly, hashing or decoding, only LCM, the kernel and the ack round trips. */
 #include <errno.h>
 #include <lcm/lcm.h>
 #include <poll.h>
@@ -15,8 +15,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench_transfer.h"
 #include "rtt.h"
-#include "transfer.h"
 
 #define DATA_CHANNEL "TRANSFER_RAW"
 #define ACK_CHANNEL "TRANSFER_RAW_ACK"
@@ -102,7 +102,7 @@ static bool await_ack(lcm_t *lcm, pusher *p, uint64_t number, int wait_ms)
     clock_gettime(CLOCK_MONOTONIC, &start);
     while (p->acked < number) {
         clock_gettime(CLOCK_MONOTONIC, &now);
-        int left = wait_ms - (int)(mt__rtt_elapsed_us(&start, &now) / 1000);
+        int left = wait_ms - (int)(mt__bench_elapsed_us(&start, &now) / 1000);
         if (left < 0) return false;
         if (poll(&pfd, 1, left) > 0 && lcm_handle(lcm) != 0) return false;
     }
@@ -162,7 +162,7 @@ bool mt__raw_push(const uint8_t *bytes, uint64_t total, uint32_t chunk, uint32_t
         }
     }
     clock_gettime(CLOCK_MONOTONIC, &t1);
-    *out_seconds = mt__rtt_elapsed_us(&t0, &t1) / 1e6;
+    *out_seconds = mt__bench_elapsed_us(&t0, &t1) / 1e6;
     if (sub) lcm_unsubscribe(lcm, sub);
     if (lcm) lcm_destroy(lcm);
     free(msg);

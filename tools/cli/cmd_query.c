@@ -1,9 +1,9 @@
 /* `meshtopo query ID KIND IDS...`: one batch query to meshtopod (one-rings,
  * valences, face neighbours, edge faces, boundary loops, components, the
  * report, the defect lists, dihedral angles, angle deficits, convexity) and
- * its answer, one line per item (fans and
- * sides labelled) or one JSON object per item. The reply's offsets come from
- * the network and are checked before any array is indexed with them. */
+ * its answer, one line per item (fans and sides labelled) or one JSON object
+ * per item. The reply is read through the client's accessors
+ * (meshtopo/client_reply.h), which the client checked before handing it out. */
 #include <inttypes.h>
 #include <math.h>
 #include <stdlib.h>
@@ -62,51 +62,24 @@ static const mt_cli_option options[] = {
 
 /* ---- Reading the reply ------------------------------------------------- */
 
-/* True when every offset array has its documented length, starts at 0, never
- * decreases and stays within the array it points into. */
-static bool offsets_ok(const int32_t *offsets, int32_t count, int32_t expected_count, int32_t limit)
+/* Whether a reply the client accepted has the items, reports and reals this
+ * query asked for. */
+static bool reply_fits(const meshtopo_reply_t *r, const query_kind *qk, const mt_id_list *ids)
 {
-    if (count != expected_count) return false;
-    if (count > 0 && offsets[0] != 0) return false;
-    for (int32_t i = 0; i < count; i++) {
-        if (offsets[i] < 0 || offsets[i] > limit) return false;
-        if (i > 0 && offsets[i] < offsets[i - 1]) return false;
-    }
-    return true;
+    size_t items = mt_client_reply_num_items(r);
+    if (qk->kind == MESHTOPO_QUERY_T_REPORT && r->num_reports != 1) return false;
+    if (takes_pairs(qk->kind) && items * 2 != ids->count) return false;
+    if (ids->count > 0 && !takes_pairs(qk->kind) && items != ids->count) return false;
+    if (qk->kind == MESHTOPO_QUERY_T_CONVEXITY && items != 1) return false;
+    return r->num_reals == expected_reals(qk->kind, r->num_items);
 }
 
-static bool reply_consistent(const meshtopo_reply_t *r)
+/* Group k of an item, or an empty one when the item has fewer groups. */
+static mt_client_group group_of(const meshtopo_reply_t *r, const mt_client_item *item, size_t k)
 {
-    int32_t items = r->num_items, groups = r->num_groups;
-    /* "both 1 when there is nothing"; tolerate 0 for an empty list too */
-    if (items == 0 && r->num_item_offsets == 0 && groups == 0 && r->num_value_offsets == 0)
-        return true;
-    return offsets_ok(r->item_offsets, r->num_item_offsets, items + 1, groups) &&
-           offsets_ok(r->value_offsets, r->num_value_offsets, groups + 1, r->num_values) &&
-           offsets_ok(r->value2_offsets, r->num_value_offsets, groups + 1, r->num_values2);
-}
-
-typedef struct span {
-    const int32_t *v;
-    int32_t n;
-} span;
-
-/* A group's values; an empty array may be NULL, so no arithmetic on it then. */
-static span span_of(const int32_t *array, const int32_t *offsets, int32_t g)
-{
-    span s = {NULL, offsets[g + 1] - offsets[g]};
-    if (s.n > 0) s.v = array + offsets[g];
-    return s;
-}
-
-static span values_of(const meshtopo_reply_t *r, int32_t g)
-{
-    return span_of(r->values, r->value_offsets, g);
-}
-
-static span values2_of(const meshtopo_reply_t *r, int32_t g)
-{
-    return span_of(r->values2, r->value2_offsets, g);
+    if (k < item->num_groups) return mt_client_item_group(r, item, k);
+    mt_client_group none = {false, NULL, 0, NULL, 0};
+    return none;
 }
 
 static const char *defect_name(int64_t kind)
@@ -117,19 +90,19 @@ static const char *defect_name(int64_t kind)
 
 /* The element an item answers: the queried id, or its position when the
  * kind lists every element (boundary loops, components or defects without ids). */
-static int64_t item_subject(const mt_id_list *ids, int32_t kind, int32_t i)
+static int64_t item_subject(const mt_id_list *ids, int32_t kind, size_t i)
 {
-    if (takes_pairs(kind)) return ids->ids[2 * (size_t)i];
-    if ((size_t)i < ids->count) return ids->ids[i];
-    return i;
+    if (takes_pairs(kind)) return ids->ids[2 * i];
+    if (i < ids->count) return ids->ids[i];
+    return (int64_t)i;
 }
 
 /* ---- Readable output --------------------------------------------------- */
 
-static void print_span(span s)
+static void print_values(const int32_t *v, size_t n)
 {
-    if (s.n == 0) printf(" none");
-    for (int32_t k = 0; k < s.n; k++) printf(" %" PRId32, s.v[k]);
+    if (n == 0) printf(" none");
+    for (size_t k = 0; k < n; k++) printf(" %" PRId32, v[k]);
 }
 
 static const char *shape_name(int32_t shape)
@@ -139,14 +112,14 @@ static const char *shape_name(int32_t shape)
 }
 
 /* The rest of a geometry item's line (after its label); false for other kinds. */
-static bool print_geometry_text(const meshtopo_reply_t *r, int32_t kind, int32_t i, int32_t g0,
-                                int32_t g1)
+static bool print_geometry_text(const meshtopo_reply_t *r, int32_t kind, size_t i,
+                                const mt_client_item *item)
 {
     const double degrees = 180.0 / 3.14159265358979323846;
+    mt_client_group first = group_of(r, item, 0);
     if (kind == MESHTOPO_QUERY_T_DIHEDRAL_ANGLES) {
-        span v = values_of(r, g0);
-        double angle = r->reals[i];
-        printf(" %s", v.n == 1 ? shape_name(v.v[0]) : "?");
+        double angle = mt_client_reply_real(r, i);
+        printf(" %s", first.num_values == 1 ? shape_name(first.values[0]) : "?");
         if (isnan(angle))
             printf(" (no dihedral angle)\n");
         else
@@ -154,94 +127,96 @@ static bool print_geometry_text(const meshtopo_reply_t *r, int32_t kind, int32_t
         return true;
     }
     if (kind == MESHTOPO_QUERY_T_ANGLE_DEFICITS) {
-        printf(" angle deficit %.9g rad%s\n", r->reals[i],
-               r->group_boundary[g0] ? " (boundary: pi minus the corner angles)" : "");
+        printf(" angle deficit %.9g rad%s\n", mt_client_reply_real(r, i),
+               first.boundary ? " (boundary: pi minus the corner angles)" : "");
         return true;
     }
     if (kind != MESHTOPO_QUERY_T_CONVEXITY) return false;
-    span head = values_of(r, g0), edges = g1 > g0 + 1 ? values_of(r, g0 + 1) : (span){NULL, 0};
-    if (head.n != 4) {
+    mt_client_group edges = group_of(r, item, 1);
+    if (first.num_values != 4) {
         printf(" malformed answer\n");
         return true;
     }
+    const int32_t *head = first.values;
     char reasons[256];
-    mt_convexity_describe((uint32_t)head.v[1], reasons, sizeof reasons);
-    printf(" %s", head.v[0] ? "convex" : "not convex");
-    if (!head.v[0]) printf(" (%s)", reasons);
-    printf(", volume %.9g", r->reals[0]);
-    if (head.v[3]) printf(", %" PRId32 " degenerate faces", head.v[3]);
-    if (head.v[2]) {
-        printf(", %" PRId32 " reflex edges:", head.v[2]);
-        for (int32_t k = 0; k + 1 < edges.n; k += 2)
-            printf(" %" PRId32 "-%" PRId32, edges.v[k], edges.v[k + 1]);
+    mt_convexity_describe((uint32_t)head[1], reasons, sizeof reasons);
+    printf(" %s", head[0] ? "convex" : "not convex");
+    if (!head[0]) printf(" (%s)", reasons);
+    printf(", volume %.9g", mt_client_reply_real(r, 0));
+    if (head[3]) printf(", %" PRId32 " degenerate faces", head[3]);
+    if (head[2]) {
+        printf(", %" PRId32 " reflex edges:", head[2]);
+        for (size_t k = 0; k + 1 < edges.num_values; k += 2)
+            printf(" %" PRId32 "-%" PRId32, edges.values[k], edges.values[k + 1]);
     }
     putchar('\n');
     return true;
 }
 
 static void print_item_text(const meshtopo_reply_t *r, const query_kind *qk, const mt_id_list *ids,
-                            int32_t i)
+                            size_t i)
 {
     int64_t subject = item_subject(ids, qk->kind, i);
     if (takes_pairs(qk->kind))
-        printf("edge %" PRId64 "-%" PRIu32 ":", subject, ids->ids[2 * (size_t)i + 1]);
+        printf("edge %" PRId64 "-%" PRIu32 ":", subject, ids->ids[2 * i + 1]);
     else if (qk->kind == MESHTOPO_QUERY_T_CONVEXITY)
         printf("mesh:");
     else if (qk->kind == MESHTOPO_QUERY_T_DEFECTS)
         printf("%s:", defect_name(subject));
     else
         printf("%s %" PRId64 ":", qk->of, subject);
-    if (r->item_status[i] != MESHTOPO_STATUS_CODE_T_OK) {
-        printf(" %s\n", r->item_status[i] == MESHTOPO_STATUS_CODE_T_NOT_FOUND
+    mt_client_item item = mt_client_reply_item(r, i);
+    if (item.status != MESHTOPO_STATUS_CODE_T_OK) {
+        printf(" %s\n", item.status == MESHTOPO_STATUS_CODE_T_NOT_FOUND
                             ? "not found"
-                            : mt_msgs_code_name(r->item_status[i]));
+                            : mt_msgs_code_name(item.status));
         return;
     }
-    int32_t g0 = r->item_offsets[i], g1 = r->item_offsets[i + 1];
-    if (print_geometry_text(r, qk->kind, i, g0, g1)) return;
-    if (qk->kind == MESHTOPO_QUERY_T_VERTEX_RING && g0 == g1) printf(" isolated (no fans)");
-    for (int32_t g = g0; g < g1; g++) {
-        span v = values_of(r, g), v2 = values2_of(r, g);
-        const char *sep = g > g0 ? " |" : "";
+    if (print_geometry_text(r, qk->kind, i, &item)) return;
+    if (qk->kind == MESHTOPO_QUERY_T_VERTEX_RING && item.num_groups == 0)
+        printf(" isolated (no fans)");
+    for (size_t k = 0; k < item.num_groups; k++) {
+        mt_client_group g = mt_client_item_group(r, &item, k);
+        const char *sep = k > 0 ? " |" : "";
         switch (qk->kind) {
             case MESHTOPO_QUERY_T_VERTEX_RING:
-                printf("%s fan %" PRId32 " %s: vertices", sep, g - g0,
-                       r->group_boundary[g] ? "open" : "closed");
-                print_span(v);
+                printf("%s fan %zu %s: vertices", sep, k, g.boundary ? "open" : "closed");
+                print_values(g.values, g.num_values);
                 printf("; faces");
-                print_span(v2);
+                print_values(g.values2, g.num_values2);
                 break;
             case MESHTOPO_QUERY_T_FACE_NEIGHBORS:
-                printf("%s side %" PRId32, sep, g - g0);
-                if (v2.n == 2) printf(" (%" PRId32 "-%" PRId32 ")", v2.v[0], v2.v[1]);
-                if (r->group_boundary[g])
+                printf("%s side %zu", sep, k);
+                if (g.num_values2 == 2)
+                    printf(" (%" PRId32 "-%" PRId32 ")", g.values2[0], g.values2[1]);
+                if (g.boundary)
                     printf(": boundary");
                 else {
                     printf(": faces");
-                    print_span(v);
+                    print_values(g.values, g.num_values);
                 }
                 break;
             case MESHTOPO_QUERY_T_VALENCE:
                 printf(" valence");
-                print_span(v);
+                print_values(g.values, g.num_values);
                 break;
             case MESHTOPO_QUERY_T_COMPONENTS:
                 printf(" component");
-                print_span(v);
+                print_values(g.values, g.num_values);
                 break;
             case MESHTOPO_QUERY_T_BOUNDARY_LOOPS:
-                printf(" %" PRId32 " vertices:", v.n);
-                print_span(v);
+                printf(" %zu vertices:", g.num_values);
+                print_values(g.values, g.num_values);
                 break;
             case MESHTOPO_QUERY_T_DEFECTS:
-                printf(" %" PRId32 " %s", v.n / 3, v.n / 3 == 1 ? "defect" : "defects");
-                for (int32_t k = 0; k + 2 < v.n; k += 3)
-                    printf("%s (%" PRId32 ", %" PRId32 ", %" PRId32 ")", k ? "," : "", v.v[k],
-                           v.v[k + 1], v.v[k + 2]);
+                printf(" %zu %s", g.num_values / 3, g.num_values / 3 == 1 ? "defect" : "defects");
+                for (size_t d = 0; d + 2 < g.num_values; d += 3)
+                    printf("%s (%" PRId32 ", %" PRId32 ", %" PRId32 ")", d ? "," : "", g.values[d],
+                           g.values[d + 1], g.values[d + 2]);
                 break;
             default: /* EDGE_FACES */
                 printf(" faces");
-                print_span(v);
+                print_values(g.values, g.num_values);
                 break;
         }
     }
@@ -250,61 +225,61 @@ static void print_item_text(const meshtopo_reply_t *r, const query_kind *qk, con
 
 /* ---- JSON output ------------------------------------------------------- */
 
-static void write_span(mt_json *j, span s)
+static void write_values(mt_json *j, const int32_t *v, size_t n)
 {
     mt_json_array_begin(j);
-    for (int32_t k = 0; k < s.n; k++) mt_json_int(j, s.v[k]);
+    for (size_t k = 0; k < n; k++) mt_json_int(j, v[k]);
     mt_json_array_end(j);
 }
 
 /* The fields of a geometry item; false for other kinds. */
-static bool write_geometry_json(mt_json *j, const meshtopo_reply_t *r, int32_t kind, int32_t i,
-                                int32_t g0, int32_t g1)
+static bool write_geometry_json(mt_json *j, const meshtopo_reply_t *r, int32_t kind, size_t i,
+                                const mt_client_item *item)
 {
+    mt_client_group first = group_of(r, item, 0);
     if (kind == MESHTOPO_QUERY_T_DIHEDRAL_ANGLES) {
-        if (g1 > g0) {
-            span v = values_of(r, g0);
+        if (item->num_groups > 0) {
             mt_json_key(j, "shape");
-            mt_json_string(j, v.n == 1 ? shape_name(v.v[0]) : "unknown");
+            mt_json_string(j, first.num_values == 1 ? shape_name(first.values[0]) : "unknown");
         }
         mt_json_key(j, "dihedral_angle");
-        mt_json_double(j, r->reals[i]);
+        mt_json_double(j, mt_client_reply_real(r, i));
         return true;
     }
     if (kind == MESHTOPO_QUERY_T_ANGLE_DEFICITS) {
         mt_json_key(j, "angle_deficit");
-        mt_json_double(j, r->reals[i]);
+        mt_json_double(j, mt_client_reply_real(r, i));
         mt_json_key(j, "boundary");
-        mt_json_bool(j, g1 > g0 && r->group_boundary[g0] != 0);
+        mt_json_bool(j, first.boundary);
         return true;
     }
     if (kind != MESHTOPO_QUERY_T_CONVEXITY) return false;
-    span head = g1 > g0 ? values_of(r, g0) : (span){NULL, 0};
-    span edges = g1 > g0 + 1 ? values_of(r, g0 + 1) : (span){NULL, 0};
+    mt_client_group edges = group_of(r, item, 1);
+    const int32_t *head = first.num_values == 4 ? first.values : NULL;
     char reasons[256];
     mt_json_key(j, "convex");
-    mt_json_bool(j, head.n == 4 && head.v[0] != 0);
+    mt_json_bool(j, head && head[0] != 0);
     mt_json_key(j, "reasons");
-    mt_convexity_describe(head.n == 4 ? (uint32_t)head.v[1] : 0, reasons, sizeof reasons);
+    mt_convexity_describe(head ? (uint32_t)head[1] : 0, reasons, sizeof reasons);
     mt_json_string(j, reasons);
     mt_json_key(j, "degenerate_faces");
-    mt_json_int(j, head.n == 4 ? head.v[3] : 0);
+    mt_json_int(j, head ? head[3] : 0);
     mt_json_key(j, "reflex_edges");
     mt_json_array_begin(j);
-    for (int32_t k = 0; k + 1 < edges.n; k += 2) {
+    for (size_t k = 0; k + 1 < edges.num_values; k += 2) {
         mt_json_array_begin(j);
-        mt_json_int(j, edges.v[k]);
-        mt_json_int(j, edges.v[k + 1]);
+        mt_json_int(j, edges.values[k]);
+        mt_json_int(j, edges.values[k + 1]);
         mt_json_array_end(j);
     }
     mt_json_array_end(j);
     mt_json_key(j, "volume");
-    mt_json_double(j, r->reals[0]);
+    mt_json_double(j, mt_client_reply_real(r, 0));
     return true;
 }
 
 static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_kind *qk,
-                            const mt_id_list *ids, int32_t i)
+                            const mt_id_list *ids, size_t i)
 {
     int64_t subject = item_subject(ids, qk->kind, i);
     mt_json_object_begin(j);
@@ -312,7 +287,7 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
         mt_json_key(j, "edge");
         mt_json_array_begin(j);
         mt_json_int(j, subject);
-        mt_json_uint(j, ids->ids[2 * (size_t)i + 1]);
+        mt_json_uint(j, ids->ids[2 * i + 1]);
         mt_json_array_end(j);
     } else if (qk->kind == MESHTOPO_QUERY_T_DEFECTS) {
         mt_json_key(j, "kind");
@@ -323,10 +298,10 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
         mt_json_key(j, qk->of);
         mt_json_int(j, subject);
     }
+    mt_client_item item = mt_client_reply_item(r, i);
     mt_json_key(j, "status");
-    mt_json_string(j, mt_msgs_code_name(r->item_status[i]));
-    int32_t g0 = r->item_offsets[i], g1 = r->item_offsets[i + 1];
-    if (write_geometry_json(j, r, qk->kind, i, g0, g1)) {
+    mt_json_string(j, mt_msgs_code_name(item.status));
+    if (write_geometry_json(j, r, qk->kind, i, &item)) {
         mt_json_object_end(j);
         return;
     }
@@ -334,14 +309,15 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
         case MESHTOPO_QUERY_T_VERTEX_RING:
             mt_json_key(j, "fans");
             mt_json_array_begin(j);
-            for (int32_t g = g0; g < g1; g++) {
+            for (size_t k = 0; k < item.num_groups; k++) {
+                mt_client_group g = mt_client_item_group(r, &item, k);
                 mt_json_object_begin(j);
                 mt_json_key(j, "boundary");
-                mt_json_bool(j, r->group_boundary[g] != 0);
+                mt_json_bool(j, g.boundary);
                 mt_json_key(j, "vertices");
-                write_span(j, values_of(r, g));
+                write_values(j, g.values, g.num_values);
                 mt_json_key(j, "faces");
-                write_span(j, values2_of(r, g));
+                write_values(j, g.values2, g.num_values2);
                 mt_json_object_end(j);
             }
             mt_json_array_end(j);
@@ -349,14 +325,15 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
         case MESHTOPO_QUERY_T_FACE_NEIGHBORS:
             mt_json_key(j, "sides");
             mt_json_array_begin(j);
-            for (int32_t g = g0; g < g1; g++) {
+            for (size_t k = 0; k < item.num_groups; k++) {
+                mt_client_group g = mt_client_item_group(r, &item, k);
                 mt_json_object_begin(j);
                 mt_json_key(j, "vertices");
-                write_span(j, values2_of(r, g));
+                write_values(j, g.values2, g.num_values2);
                 mt_json_key(j, "boundary");
-                mt_json_bool(j, r->group_boundary[g] != 0);
+                mt_json_bool(j, g.boundary);
                 mt_json_key(j, "faces");
-                write_span(j, values_of(r, g));
+                write_values(j, g.values, g.num_values);
                 mt_json_object_end(j);
             }
             mt_json_array_end(j);
@@ -364,16 +341,16 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
         case MESHTOPO_QUERY_T_DEFECTS:
             mt_json_key(j, "defects");
             mt_json_array_begin(j);
-            for (int32_t g = g0; g < g1; g++) {
-                span v = values_of(r, g);
-                for (int32_t k = 0; k + 2 < v.n; k += 3) {
+            for (size_t k = 0; k < item.num_groups; k++) {
+                mt_client_group g = mt_client_item_group(r, &item, k);
+                for (size_t d = 0; d + 2 < g.num_values; d += 3) {
                     mt_json_object_begin(j);
                     mt_json_key(j, "a");
-                    mt_json_int(j, v.v[k]);
+                    mt_json_int(j, g.values[d]);
                     mt_json_key(j, "b");
-                    mt_json_int(j, v.v[k + 1]);
+                    mt_json_int(j, g.values[d + 1]);
                     mt_json_key(j, "c");
-                    mt_json_int(j, v.v[k + 2]);
+                    mt_json_int(j, g.values[d + 2]);
                     mt_json_object_end(j);
                 }
             }
@@ -387,25 +364,23 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
                                                                         : "vertices";
             bool scalar =
                 qk->kind == MESHTOPO_QUERY_T_VALENCE || qk->kind == MESHTOPO_QUERY_T_COMPONENTS;
+            mt_client_group g = group_of(r, &item, 0);
             mt_json_key(j, key);
-            if (g1 == g0) {
+            if (item.num_groups == 0)
                 mt_json_null(j);
-            } else if (scalar) {
-                span v = values_of(r, g0);
-                if (v.n == 1)
-                    mt_json_int(j, v.v[0]);
-                else
-                    write_span(j, v);
-            } else {
-                write_span(j, values_of(r, g0));
-            }
+            else if (scalar && g.num_values == 1)
+                mt_json_int(j, g.values[0]);
+            else
+                write_values(j, g.values, g.num_values);
             break;
         }
     }
     mt_json_object_end(j);
 }
 
-static void print_json(const meshtopo_reply_t *r, const query_kind *qk, const mt_id_list *ids)
+/* report: the REPORT query's report converted, NULL for the other kinds. */
+static void print_json(const meshtopo_reply_t *r, const query_kind *qk, const mt_id_list *ids,
+                       const mt_cli_report *report)
 {
     mt_json j;
     mt_json_init(&j, stdout);
@@ -416,13 +391,14 @@ static void print_json(const meshtopo_reply_t *r, const query_kind *qk, const mt
     mt_json_int(&j, r->version);
     mt_json_key(&j, "kind");
     mt_json_string(&j, qk->name);
-    if (qk->kind == MESHTOPO_QUERY_T_REPORT) {
+    if (report) {
         mt_json_key(&j, "report");
-        mt_cli_topology_write_json(&j, &r->reports[0]);
+        mt_cli_report_write_json(&j, report);
     } else {
         mt_json_key(&j, "items");
         mt_json_array_begin(&j);
-        for (int32_t i = 0; i < r->num_items; i++) write_item_json(&j, r, qk, ids, i);
+        for (size_t i = 0; i < mt_client_reply_num_items(r); i++)
+            write_item_json(&j, r, qk, ids, i);
         mt_json_array_end(&j);
     }
     mt_json_object_end(&j);
@@ -518,24 +494,30 @@ static int run_query(const mt_cli_args *args)
     mt_diag_clear(&diag);
     mt_status st =
         mt_client_query(client, mesh_id, version, qk->kind, ids.ids, ids.count, &reply, &diag);
-    if (st != MT_OK) {
-        code = mt_cli_call_failed("query", mesh_id, &remote, st, reply.mesh_id != NULL, &diag);
-    } else if (!reply_consistent(&reply) ||
-               (qk->kind == MESHTOPO_QUERY_T_REPORT && reply.num_reports != 1) ||
-               (takes_pairs(qk->kind) && (size_t)reply.num_items * 2 != ids.count) ||
-               (ids.count > 0 && !takes_pairs(qk->kind) && (size_t)reply.num_items != ids.count) ||
-               reply.num_reals != expected_reals(qk->kind, reply.num_items) ||
-               (qk->kind == MESHTOPO_QUERY_T_CONVEXITY && reply.num_items != 1)) {
+    size_t num_items = mt_client_reply_num_items(&reply);
+    bool answered = reply.mesh_id != NULL, json = mt_cli_flag(args, "json");
+    mt_cli_report report;
+    memset(&report, 0, sizeof report);
+    if ((st == MT_ERR_CORRUPT && !answered) || (st == MT_OK && !reply_fits(&reply, qk, &ids))) {
+        /* Unanswered MT_ERR_CORRUPT: the client refused a reply whose offsets
+         * do not describe its arrays. */
         mt_cli_error("query", "mesh '%s': the reply's items and offsets do not fit together",
                      mesh_id);
         code = MT_CLI_EXIT_REFUSED;
-    } else if (mt_cli_flag(args, "json")) {
-        print_json(&reply, qk, &ids);
+    } else if (st != MT_OK) {
+        code = mt_cli_call_failed("query", mesh_id, &remote, st, answered, &diag);
     } else if (qk->kind == MESHTOPO_QUERY_T_REPORT) {
-        mt_cli_topology_print_text(&reply.reports[0], stdout);
+        code = mt_cli_report_take("query", &reply.reports[0], &report);
+        if (code == MT_CLI_EXIT_OK && json)
+            print_json(&reply, qk, &ids, &report);
+        else if (code == MT_CLI_EXIT_OK)
+            mt_cli_report_print_text(&report, stdout);
+    } else if (json) {
+        print_json(&reply, qk, &ids, NULL);
     } else {
-        for (int32_t i = 0; i < reply.num_items; i++) print_item_text(&reply, qk, &ids, i);
+        for (size_t i = 0; i < num_items; i++) print_item_text(&reply, qk, &ids, i);
     }
+    mt_cli_report_free(&report);
     code = mt_cli_finish_output("query", code, MT_CLI_EXIT_USAGE);
     mt_client_reply_free(&reply);
     mt_client_destroy(client);

@@ -57,7 +57,8 @@ static void draw_progress(uint64_t done, uint64_t total, void *user)
     p->drawn = done < total;
 }
 
-static void print_json(const char *path, const mt_client_ack *ack)
+/* report: the ack's report converted, NULL when it carries none. */
+static void print_json(const char *path, const mt_client_ack *ack, const mt_cli_report *report)
 {
     char hash[24];
     mt_json j;
@@ -76,16 +77,15 @@ static void print_json(const char *path, const mt_client_ack *ack)
     mt_json_key(&j, "content_hash");
     mt_json_string(&j, mt_cli_hash_text(ack->msg.content_hash, hash, sizeof hash));
     mt_json_key(&j, "report");
-    const meshtopo_topology_t *t = mt_client_ack_report(ack);
-    if (t)
-        mt_cli_topology_write_json(&j, t);
+    if (report)
+        mt_cli_report_write_json(&j, report);
     else
         mt_json_null(&j);
     mt_json_object_end(&j);
     mt_json_finish(&j);
 }
 
-static void print_text(const char *path, const mt_client_ack *ack)
+static void print_text(const char *path, const mt_client_ack *ack, const mt_cli_report *report)
 {
     char hash[24];
     if (ack->msg.status == MESHTOPO_STATUS_CODE_T_OK)
@@ -94,8 +94,7 @@ static void print_text(const char *path, const mt_client_ack *ack)
     else
         printf("meshtopod refused %s as mesh %s: %s: %s\n", path, ack->msg.mesh_id,
                mt_msgs_code_name(ack->msg.status), ack->msg.error);
-    const meshtopo_topology_t *t = mt_client_ack_report(ack);
-    if (t) mt_cli_topology_print_text(t, stdout);
+    if (report) mt_cli_report_print_text(report, stdout);
 }
 
 static int run_send(const mt_cli_args *args)
@@ -130,10 +129,16 @@ static int run_send(const mt_cli_args *args)
     bool answered = ack.msg.mesh_id != NULL;
     if (progress.drawn) fputc('\n', stderr); /* a bar left unfinished by a failure */
     if (answered) {
+        const meshtopo_topology_t *t = mt_client_ack_report(&ack);
+        mt_cli_report report;
+        memset(&report, 0, sizeof report);
+        if (t) code = mt_cli_report_take("send", t, &report);
+        const mt_cli_report *shown = t && code == MT_CLI_EXIT_OK ? &report : NULL;
         if (mt_cli_flag(args, "json"))
-            print_json(path, &ack);
+            print_json(path, &ack, shown);
         else
-            print_text(path, &ack);
+            print_text(path, &ack, shown);
+        mt_cli_report_free(&report);
     }
     if (st != MT_OK) code = mt_cli_call_failed("send", id, &remote, st, answered, &diag);
     code = mt_cli_finish_output("send", code, MT_CLI_EXIT_USAGE);

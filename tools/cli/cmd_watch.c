@@ -1,14 +1,13 @@
-/* `meshtopo watch`: subscribe to PREFIX TOPOLOGY (a report per build) and
- * PREFIX STATUS (the daemon's heartbeat) and print every message decoded,
- * one line each (JSON Lines with --json). Bytes from the network are decoded
- * only with mt_msgs_decode; the loop waits with lcm_get_fileno + poll so
- * SIGINT, --count and --timeout-ms stop it cleanly. */
-#include <errno.h>
+/* `meshtopo watch`: print every report meshtopod publishes on PREFIX TOPOLOGY
+ * (one per build) and every heartbeat on PREFIX STATUS as it arrives, one
+ * line each (JSON Lines with --json), through the client's watch
+ * (mt_client_watch_start). The callbacks print on the client's thread under
+ * one lock; the main thread waits for --count, --timeout-ms, SIGINT or SIGTERM. */
 #include <inttypes.h>
-#include <lcm/lcm.h>
-#include <poll.h>
+#include <pthread.h>
 #include <signal.h>
 #include <string.h>
+#include <time.h>
 
 #include "remote.h"
 
@@ -26,9 +25,14 @@ static void on_sigint(int sig)
     interrupted = 1;
 }
 
+/* Shared by the callbacks (client's thread) and the waiting main thread. */
 typedef struct watch_state {
+    pthread_mutex_t lock;
+    pthread_cond_t printed_one;
     bool json;
-    long printed;
+    long count;     /* stop after this many messages; 0 = never */
+    long printed;   /* messages printed */
+    double last_ms; /* when the last one was printed (or the watch started) */
     char topology_channel[64];
     char status_channel[64];
 } watch_state;
@@ -91,58 +95,116 @@ static void status_text(const char *channel, const meshtopo_status_t *s)
     putchar('\n');
 }
 
-static void topology_text(const char *channel, const meshtopo_topology_t *t)
+/* One JSON line {channel, type, message}; the message written by the caller's
+ * writer. */
+static void json_line_begin(mt_json *j, const char *channel, const mt_msgs_type *type)
 {
-    printf("%s %s version %" PRId32 ": V %" PRId32 ", F %" PRId32 " (%" PRId32 " valid), E %" PRId64
-           "; %" PRId64 " boundary edges in %" PRId32 " loops; %" PRId32
-           " components; Euler characteristic %" PRId64 "; %s, %s, %s; %" PRId64
-           " defects; built in %.3f ms\n",
-           channel, t->mesh_id, t->version, t->num_verts, t->num_faces, t->num_faces_valid,
-           t->num_edges, t->boundary_edges, t->boundary_loops, t->connected_components,
-           t->euler_characteristic, t->closed ? "closed" : "open",
-           t->manifold ? "manifold" : "non-manifold",
-           t->orientable ? "orientable" : "non-orientable", t->num_defects,
-           (double)t->build_duration_us / 1000.0);
+    mt_json_init(j, stdout);
+    j->compact = true;
+    mt_json_object_begin(j);
+    mt_json_key(j, "channel");
+    mt_json_string(j, channel);
+    mt_json_key(j, "type");
+    mt_json_string(j, type->name);
+    mt_json_key(j, "message");
 }
 
-static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+static void json_line_end(mt_json *j)
+{
+    mt_json_object_end(j);
+    mt_json_finish(j);
+}
+
+/* Whether another message may be printed; call with the lock held. */
+static bool wants_more(const watch_state *w)
+{
+    return w->count == 0 || w->printed < w->count;
+}
+
+/* After printing one message; call with the lock held. */
+static void message_printed(watch_state *w)
+{
+    fflush(stdout);
+    w->printed++;
+    w->last_ms = mt_cli_now_ms();
+    pthread_cond_signal(&w->printed_one);
+}
+
+static void on_status(const meshtopo_status_t *status, void *user)
 {
     watch_state *w = user;
-    bool is_status = strcmp(channel, w->status_channel) == 0;
-    const mt_msgs_type *type = is_status ? &mt_msgs_type_status : &mt_msgs_type_topology;
-    union {
-        meshtopo_status_t status;
-        meshtopo_topology_t topology;
-    } msg;
-    char error[MT_MSGS_ERROR_SIZE];
-    if (mt_msgs_decode(type, rbuf->data, rbuf->data_size, &msg, error, sizeof error) != 0) {
-        mt_cli_error("watch", "%s: undecodable %s: %s", channel, type->name, error);
-        return;
+    pthread_mutex_lock(&w->lock);
+    if (wants_more(w)) {
+        if (w->json) {
+            mt_json j;
+            json_line_begin(&j, w->status_channel, &mt_msgs_type_status);
+            status_json(&j, status);
+            json_line_end(&j);
+        } else {
+            status_text(w->status_channel, status);
+        }
+        message_printed(w);
     }
-    if (w->json) {
-        mt_json j;
-        mt_json_init(&j, stdout);
-        j.compact = true;
-        mt_json_object_begin(&j);
-        mt_json_key(&j, "channel");
-        mt_json_string(&j, channel);
-        mt_json_key(&j, "type");
-        mt_json_string(&j, type->name);
-        mt_json_key(&j, "message");
-        if (is_status)
-            status_json(&j, &msg.status);
-        else
-            mt_cli_topology_write_json(&j, &msg.topology);
-        mt_json_object_end(&j);
-        mt_json_finish(&j);
-    } else if (is_status) {
-        status_text(channel, &msg.status);
-    } else {
-        topology_text(channel, &msg.topology);
+    pthread_mutex_unlock(&w->lock);
+}
+
+static void on_topology(const meshtopo_topology_t *topology, void *user)
+{
+    watch_state *w = user;
+    mt_cli_report report;
+    mt_diag diag;
+    mt_status st = mt_cli_report_from_topology(topology, &report, &diag);
+    pthread_mutex_lock(&w->lock);
+    if (st != MT_OK) {
+        mt_cli_error("watch", "%s: undecodable %s: %s", w->topology_channel,
+                     mt_msgs_type_topology.name, diag.message);
+    } else if (wants_more(w)) {
+        if (w->json) {
+            mt_json j;
+            json_line_begin(&j, w->topology_channel, &mt_msgs_type_topology);
+            mt_cli_report_write_json(&j, &report);
+            json_line_end(&j);
+        } else {
+            mt_cli_report_print_line(&report, w->topology_channel, stdout);
+        }
+        message_printed(w);
     }
-    fflush(stdout);
-    type->decode_cleanup(&msg);
-    w->printed++;
+    pthread_mutex_unlock(&w->lock);
+    mt_cli_report_free(&report);
+}
+
+/* Waits until --count messages were printed, a signal came or (with
+ * --timeout-ms) nothing came for that long; reports messages the client
+ * could not decode. Returns the exit code. */
+static int wait_for_end(watch_state *w, mt_client *client, const mt_cli_remote *remote)
+{
+    int code = MT_CLI_EXIT_OK;
+    uint64_t undecodable = 0;
+    pthread_mutex_lock(&w->lock);
+    while (!interrupted && wants_more(w)) {
+        if (remote->timeout_given && mt_cli_now_ms() - w->last_ms > remote->timeout_ms) {
+            mt_cli_error("watch", "no message on %s or %s for %d ms", w->topology_channel,
+                         w->status_channel, remote->timeout_ms);
+            code = MT_CLI_EXIT_NO_ANSWER;
+            break;
+        }
+        struct timespec wake;
+        clock_gettime(CLOCK_MONOTONIC, &wake);
+        wake.tv_nsec += 100 * 1000 * 1000;
+        if (wake.tv_nsec >= 1000000000L) {
+            wake.tv_sec++;
+            wake.tv_nsec -= 1000000000L;
+        }
+        pthread_cond_timedwait(&w->printed_one, &w->lock, &wake);
+        mt_client_stats stats;
+        mt_client_get_stats(client, &stats);
+        if (stats.undecodable > undecodable)
+            mt_cli_error("watch", "%s or %s: %" PRIu64 " undecodable message(s)",
+                         w->topology_channel, w->status_channel, stats.undecodable - undecodable);
+        undecodable = stats.undecodable;
+    }
+    pthread_mutex_unlock(&w->lock);
+    return code;
 }
 
 static int run_watch(const mt_cli_args *args)
@@ -159,56 +221,55 @@ static int run_watch(const mt_cli_args *args)
     watch_state w;
     memset(&w, 0, sizeof w);
     w.json = mt_cli_flag(args, "json");
+    w.count = count;
     snprintf(w.topology_channel, sizeof w.topology_channel, "%sTOPOLOGY", remote.prefix);
     snprintf(w.status_channel, sizeof w.status_channel, "%sSTATUS", remote.prefix);
 
-    /* Compute every fingerprint once (msgs.h, Threads). */
-    (void)mt_msgs_type_of(NULL, 0);
-    lcm_t *lcm = lcm_create(remote.lcm_url);
-    if (!lcm) {
-        mt_cli_error("watch", "cannot talk LCM (%s)",
-                     remote.lcm_url ? remote.lcm_url : "default URL");
-        return MT_CLI_EXIT_NO_ANSWER;
+    /* SIGINT and SIGTERM go to this thread only: the client's thread starts
+     * with them blocked. */
+    sigset_t stop_signals, old_mask;
+    sigemptyset(&stop_signals);
+    sigaddset(&stop_signals, SIGINT);
+    sigaddset(&stop_signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stop_signals, &old_mask);
+    mt_client *client = NULL;
+    code = mt_cli_client_create("watch", &remote, &client);
+    if (code != MT_CLI_EXIT_OK) {
+        pthread_sigmask(SIG_SETMASK, &old_mask, NULL);
+        return code;
     }
-    lcm_subscription_t *subs[2] = {lcm_subscribe(lcm, w.topology_channel, on_message, &w),
-                                   lcm_subscribe(lcm, w.status_channel, on_message, &w)};
     struct sigaction sa, old_int, old_term;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_sigint;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, &old_int);
     sigaction(SIGTERM, &sa, &old_term);
+    pthread_sigmask(SIG_SETMASK, &old_mask, NULL);
 
-    double last = mt_cli_now_ms();
-    while (!interrupted && (count == 0 || w.printed < count)) {
-        struct pollfd pfd = {lcm_get_fileno(lcm), POLLIN, 0};
-        int ready = poll(&pfd, 1, 100);
-        if (ready < 0 && errno != EINTR) {
-            mt_cli_error("watch", "poll: %s", strerror(errno));
-            code = MT_CLI_EXIT_NO_ANSWER;
-            break;
-        }
-        if (ready > 0) {
-            long before = w.printed;
-            if (lcm_handle(lcm) != 0) {
-                mt_cli_error("watch", "LCM stopped receiving");
-                code = MT_CLI_EXIT_NO_ANSWER;
-                break;
-            }
-            if (w.printed != before) last = mt_cli_now_ms();
-        }
-        if (remote.timeout_given && mt_cli_now_ms() - last > remote.timeout_ms) {
-            mt_cli_error("watch", "no message on %s or %s for %d ms", w.topology_channel,
-                         w.status_channel, remote.timeout_ms);
-            code = MT_CLI_EXIT_NO_ANSWER;
-            break;
-        }
+    pthread_mutex_init(&w.lock, NULL);
+    pthread_condattr_t attr;
+    pthread_condattr_init(&attr);
+    pthread_condattr_setclock(&attr, CLOCK_MONOTONIC);
+    pthread_cond_init(&w.printed_one, &attr);
+    pthread_condattr_destroy(&attr);
+    w.last_ms = mt_cli_now_ms();
+    mt_client_watch_fns fns = {on_status, on_topology, &w};
+    mt_client_watch *watch = NULL;
+    mt_diag diag;
+    mt_status st = mt_client_watch_start(client, &fns, &watch, &diag);
+    if (st != MT_OK) {
+        mt_cli_error("watch", "cannot watch %s and %s: %s", w.topology_channel, w.status_channel,
+                     diag.message[0] ? diag.message : mt_strerror(st));
+        code = MT_CLI_EXIT_NO_ANSWER;
+    } else {
+        code = wait_for_end(&w, client, &remote);
     }
+    mt_client_watch_stop(watch); /* no callback runs past here */
+    mt_client_destroy(client);
     sigaction(SIGINT, &old_int, NULL);
     sigaction(SIGTERM, &old_term, NULL);
-    for (int i = 0; i < 2; i++)
-        if (subs[i]) lcm_unsubscribe(lcm, subs[i]);
-    lcm_destroy(lcm);
+    pthread_cond_destroy(&w.printed_one);
+    pthread_mutex_destroy(&w.lock);
     return code;
 }
 

@@ -1,113 +1,21 @@
 /* `meshtopo inspect --json`: one JSON object with exactly the keys of the
  * corpus answers (shared/corpus/DEFINITIONS.md) in their order, so it diffs
  * cleanly against NAME.expected.json (which adds only "oracle_version");
- * undefined genera are null; --json-defects appends "defects". Built in
- * memory and written only when every query succeeded: never half a document. */
+ * undefined genera are null (the summary is cli_report_json.c's, shared with
+ * the daemon's reports); --json-defects appends "defects". Built in memory and
+ * written only when every query succeeded: never half a document. */
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_report.h"
 #include "inspect.h"
 #include "json_writer.h"
-
-enum { LIST_HEAD = 20 }; /* length of nonmanifold_vertices_list_head */
-
-static void write_histogram(mt_json *j, const mt_histogram_bin *bins, size_t count)
-{
-    mt_json_object_begin(j);
-    for (size_t i = 0; i < count; i++) {
-        char key[16];
-        snprintf(key, sizeof key, "%u", (unsigned)bins[i].key);
-        mt_json_key(j, key);
-        mt_json_uint(j, bins[i].count);
-    }
-    mt_json_object_end(j);
-}
 
 static void write_ids(mt_json *j, const uint32_t *ids, size_t count)
 {
     mt_json_array_begin(j);
     for (size_t i = 0; i < count; i++) mt_json_uint(j, ids[i]);
     mt_json_array_end(j);
-}
-
-static void write_genus(mt_json *j, int32_t genus)
-{
-    if (genus < 0)
-        mt_json_null(j);
-    else
-        mt_json_int(j, genus);
-}
-
-static void write_nonmanifold_head(mt_json *j, const mt_report *r)
-{
-    uint32_t head[LIST_HEAD];
-    size_t n = 0;
-    /* The defect list is sorted by kind, then id; keep the smallest anyway. */
-    for (size_t i = 0; i < r->num_defects; i++) {
-        if (r->defects[i].kind != MT_DEFECT_NONMANIFOLD_VERTEX) continue;
-        uint32_t v = r->defects[i].a;
-        if (n < LIST_HEAD) {
-            head[n++] = v;
-        } else {
-            size_t max = 0;
-            for (size_t k = 1; k < n; k++)
-                if (head[k] > head[max]) max = k;
-            if (v < head[max]) head[max] = v;
-        }
-    }
-    n = mt_inspect_sort_unique(head, n);
-    write_ids(j, head, n);
-}
-
-static int compare_genus(const void *a, const void *b)
-{
-    /* ascending, undefined (-1) last */
-    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-    if (x < 0 || y < 0) return (x < 0) - (y < 0);
-    return (x > y) - (x < y);
-}
-
-static bool write_component_genera(mt_json *j, const mt_report *r)
-{
-    int32_t *g = calloc((size_t)r->connected_components + 1, sizeof *g);
-    if (!g) return false;
-    for (uint32_t i = 0; i < r->connected_components; i++) g[i] = r->components[i].genus;
-    qsort(g, r->connected_components, sizeof *g, compare_genus);
-    mt_json_array_begin(j);
-    for (uint32_t i = 0; i < r->connected_components; i++) write_genus(j, g[i]);
-    mt_json_array_end(j);
-    free(g);
-    return true;
-}
-
-static void write_component(mt_json *j, const mt_component_info *c)
-{
-    mt_json_object_begin(j);
-    mt_json_key(j, "faces");
-    mt_json_uint(j, c->faces);
-    mt_json_key(j, "vertices");
-    mt_json_uint(j, c->vertices);
-    mt_json_key(j, "edges");
-    mt_json_uint(j, c->edges);
-    mt_json_key(j, "euler_characteristic");
-    mt_json_int(j, c->euler_characteristic);
-    mt_json_key(j, "boundary_edges");
-    mt_json_uint(j, c->boundary_edges);
-    mt_json_key(j, "boundary_loops");
-    mt_json_uint(j, c->boundary_loops);
-    mt_json_key(j, "closed");
-    mt_json_bool(j, c->closed);
-    mt_json_key(j, "manifold");
-    mt_json_bool(j, c->manifold);
-    mt_json_key(j, "orientable");
-    mt_json_bool(j, c->orientable);
-    mt_json_key(j, "genus");
-    write_genus(j, c->genus);
-    mt_json_key(j, "genus_with_boundary");
-    write_genus(j, c->genus_with_boundary);
-    mt_json_key(j, "min_face_index");
-    mt_json_uint(j, c->min_face);
-    mt_json_object_end(j);
 }
 
 static mt_status write_vertex_queries(mt_json *j, const mt_mesh *mesh, const mt_id_list *verts,
@@ -256,81 +164,6 @@ static void write_defect(mt_json *j, const mt_defect *d)
     mt_json_object_end(j);
 }
 
-/* Everything before the queries: counts, histograms, flags, components. */
-static bool write_summary(mt_json *j, const mt_report *r)
-{
-    mt_json_key(j, "V");
-    mt_json_uint(j, r->num_verts);
-    mt_json_key(j, "F");
-    mt_json_uint(j, r->num_faces);
-    mt_json_key(j, "F_valid");
-    mt_json_uint(j, r->num_faces_valid);
-    mt_json_key(j, "E");
-    mt_json_uint(j, r->num_edges);
-    mt_json_key(j, "half_edges");
-    mt_json_uint(j, r->num_half_edges);
-    mt_json_key(j, "face_size_histogram");
-    write_histogram(j, r->face_size_histogram, r->num_face_size_bins);
-    mt_json_key(j, "edge_use_histogram");
-    write_histogram(j, r->edge_use_histogram, r->num_edge_use_bins);
-    mt_json_key(j, "boundary_edges");
-    mt_json_uint(j, r->boundary_edges);
-    mt_json_key(j, "boundary_loops");
-    mt_json_object_begin(j);
-    mt_json_key(j, "count");
-    mt_json_uint(j, r->boundary_loops);
-    mt_json_key(j, "lengths");
-    write_ids(j, r->boundary_loop_lengths, r->boundary_loops);
-    mt_json_key(j, "ambiguous");
-    mt_json_bool(j, r->boundary_loops_ambiguous);
-    mt_json_object_end(j);
-    mt_json_key(j, "nonmanifold_edges");
-    mt_json_uint(j, r->nonmanifold_edges);
-    mt_json_key(j, "inconsistent_orientation_edges");
-    mt_json_uint(j, r->inconsistent_orientation_edges);
-    mt_json_key(j, "duplicate_directed_edges");
-    mt_json_uint(j, r->duplicate_directed_edges);
-    mt_json_key(j, "nonmanifold_vertices");
-    mt_json_uint(j, r->nonmanifold_vertices);
-    mt_json_key(j, "nonmanifold_vertices_list_head");
-    write_nonmanifold_head(j, r);
-    mt_json_key(j, "bowtie_vertices");
-    mt_json_uint(j, r->bowtie_vertices);
-    mt_json_key(j, "isolated_vertices");
-    mt_json_uint(j, r->isolated_vertices);
-    mt_json_key(j, "unreferenced_vertices");
-    mt_json_uint(j, r->unreferenced_vertices);
-    mt_json_key(j, "degenerate_faces");
-    mt_json_uint(j, r->degenerate_faces);
-    mt_json_key(j, "out_of_range_indices");
-    mt_json_uint(j, r->out_of_range_indices);
-    mt_json_key(j, "faces_with_out_of_range_indices");
-    mt_json_uint(j, r->faces_with_out_of_range_indices);
-    mt_json_key(j, "connected_components");
-    mt_json_uint(j, r->connected_components);
-    mt_json_key(j, "vertex_connected_components");
-    mt_json_uint(j, r->vertex_connected_components);
-    mt_json_key(j, "euler_characteristic");
-    mt_json_int(j, r->euler_characteristic);
-    mt_json_key(j, "closed");
-    mt_json_bool(j, r->closed);
-    mt_json_key(j, "manifold");
-    mt_json_bool(j, r->manifold);
-    mt_json_key(j, "orientable");
-    mt_json_bool(j, r->orientable);
-    mt_json_key(j, "consistently_oriented");
-    mt_json_bool(j, r->consistently_oriented);
-    mt_json_key(j, "genus");
-    write_genus(j, r->genus);
-    mt_json_key(j, "component_genera");
-    if (!write_component_genera(j, r)) return false;
-    mt_json_key(j, "components");
-    mt_json_array_begin(j);
-    for (uint32_t i = 0; i < r->connected_components; i++) write_component(j, &r->components[i]);
-    mt_json_array_end(j);
-    return true;
-}
-
 int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
 {
     const mt_mesh *mesh = req->mesh->mesh;
@@ -345,7 +178,8 @@ int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
     mt_json j;
     mt_json_init(&j, mem);
     mt_json_object_begin(&j);
-    bool ok = write_summary(&j, r);
+    mt_cli_report summary = mt_cli_report_local(r);
+    bool ok = mt_cli_report_write_summary(&j, &summary, MT_CLI_REPORT_KEYS_CORPUS);
     uint32_t failed = MT_NONE;
     mt_status st = MT_OK;
     const char *what = "vertex";

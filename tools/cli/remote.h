@@ -1,7 +1,7 @@
 /* The pieces shared by the commands that talk to meshtopod over LCM (send,
  * query, list, watch): the common connection options and their environment
- * defaults, creating the client, turning a call's outcome into an exit code
- * and a message, and printing a topology_t report as text or JSON. */
+ * defaults, creating the client, and turning a call's outcome into an exit
+ * code and a message. Reports are printed through cli_report.h. */
 #ifndef MESHTOPO_CLI_REMOTE_H
 #define MESHTOPO_CLI_REMOTE_H
 
@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "cli_report.h"
 #include "json_writer.h"
 #include "meshtopo/client.h"
 #include "meshtopo/msgs.h"
@@ -61,13 +62,6 @@ int mt_cli_call_failed(const char *command, const char *mesh_id, const mt_cli_re
 
 /* Parses a non-negative decimal that fits an int; false otherwise. */
 bool mt_cli_parse_int(const char *text, int *out);
-
-/* Readable report: counts, boundary, components, flags, defect counts. */
-void mt_cli_topology_print_text(const meshtopo_topology_t *t, FILE *out);
-
-/* The report as one JSON object (keys named as in the corpus answers where
- * they mean the same). */
-void mt_cli_topology_write_json(mt_json *j, const meshtopo_topology_t *t);
 
 /* A 64-bit content hash as 16 hex digits (buf of at least 17 bytes). */
 const char *mt_cli_hash_text(int64_t hash, char *buf, size_t size);

@@ -1,14 +1,9 @@
-/* `meshtopo-bench archive [--faces N] [--reps N] [--dir DIR] [--keep] [--quick] [--scan]`:
- * archives a triangle grid with mt_archive_write_with and reloads it with
- * mt_archive_load_mesh_file, each timed (medians) next to bare HDF5 writes
- * and reads of the same datasets in the same layout (archive_bare.c) and
- * next to a reload by reading the face list and building from scratch, for
- * contiguous storage and for shuffle + deflate level 1. fsync is timed
- * separately; archive and bare writes alternate which goes first and the
- * four read steps take turns at going first (use a multiple of 4 reps). --scan
- * permutes vertex and face order and jitters the positions, like a scanned
- * mesh (a generated grid's arrays compress unrealistically well). Page
- * cache is not dropped: reads are from memory. */
+/* `meshtopo-bench archive`: a triangle grid archived with
+ * mt_archive_write_with and reloaded with mt_archive_load_mesh_file, each
+ * timed (medians) next to bare HDF5 writes and reads of the same datasets in
+ * the same layout (archive_bare.c) and next to a rebuild from the face list,
+ * for contiguous storage and for shuffle + deflate level 1. Options: --faces
+ * N, --reps N, --dir DIR, --keep, --quick, --scan. */
 #include <dirent.h>
 #include <errno.h>
 #include <math.h>
@@ -18,10 +13,16 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "archive_bench.h"
 #include "bench.h"
+#include "bench_archive.h"
 #include "meshtopo/archive.h"
 #include "meshtopo/core.h"
+
+/* fsync is timed separately; archive and bare writes alternate which goes
+ * first and the four read steps take turns at going first (use a multiple of
+ * 4 reps). --scan permutes vertex and face order and jitters the positions,
+ * like a scanned mesh (a generated grid's arrays compress unrealistically
+ * well). Page cache is not dropped: reads are from memory. */
 
 enum {
     M_WRITE,

@@ -1,7 +1,7 @@
 /* `meshtopo-bench archive`: archive write and reload of a large grid timed
  * next to bare HDF5 writes and reads of the same datasets (same layout and
- * filters) and next to a reload by rebuild from the face list. archive.c
- * drives and prints; archive_bare.c holds the bare HDF5 side. */
+ * filters) and next to a reload by rebuild from the face list.
+ * bench_archive.c drives and prints; archive_bare.c holds the bare HDF5 side. */
 #ifndef MESHTOPO_BENCH_ARCHIVE_H
 #define MESHTOPO_BENCH_ARCHIVE_H
 

@@ -1,11 +1,8 @@
-/* `meshtopo-bench transfer`: what a large submission costs end to end. In
- * one run and one private network namespace (rtt_netns.c) with a meshtopod
- * started for it (rtt_daemon.c): the encoded bytes of a grid mesh pushed raw
- * (transfer_raw.c: single-datagram LCM messages, the client's chunk size and
- * acknowledgement window, no protocol) alternating with mt_client_submit of
- * the same mesh (send -> built -> acked; the transfer part is that minus the
- * daemon's build time from the ack), then the submission again with a share
- * of UDP packets dropped (transfer_loss.c). Medians of the repetitions are
+/* `meshtopo-bench transfer`: what a large submission costs end to end, in a
+ * private network namespace (rtt_netns.c) with a meshtopod started for the
+ * run (rtt_daemon.c): a grid's encoded bytes pushed raw (transfer_raw.c)
+ * alternating with mt_client_submit of the same mesh, then the submission
+ * again with a share of UDP packets dropped (transfer_loss.c). Medians are
  * shown with the issue's targets; a missed target is printed, not failed. */
 #include <errno.h>
 #include <inttypes.h>
@@ -19,9 +16,14 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "bench_transfer.h"
 #include "meshtopo/generate.h"
 #include "rtt.h"
-#include "transfer.h"
+
+/* The raw push sends single-datagram LCM messages with the client's chunk
+ * size and acknowledgement window and no protocol. A submission is timed
+ * from send to ack (built and acked); its transfer part is that minus the
+ * daemon's build time from the ack. */
 
 #ifndef PATH_MAX
 #define PATH_MAX 4096
@@ -145,7 +147,7 @@ static double seconds_since(const struct timespec *t0)
 {
     struct timespec t1;
     clock_gettime(CLOCK_MONOTONIC, &t1);
-    return mt__rtt_elapsed_us(t0, &t1) / 1e6;
+    return mt__bench_elapsed_us(t0, &t1) / 1e6;
 }
 
 /* One mt_client_submit of the grid: end-to-end seconds and the daemon's build
