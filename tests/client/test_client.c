@@ -1109,6 +1109,13 @@ static void wait_daemon_sees_heartbeat(void)
     CHECK_OK(mt_client_wait_daemon(f->client, 5000, NULL, &diag)); /* no copy wanted */
     atomic_store(&h.stop, 1);
     pthread_join(t, NULL);
+    /* A round trip behind the last heartbeats (memq is one queue): LCM frees
+     * a subscription removed while messages for it wait only once they are
+     * handled, not at lcm_destroy. */
+    meshtopo_reply_t reply;
+    uint32_t id = 1;
+    CHECK_OK(mt_client_query(f->client, "m", 0, MESHTOPO_QUERY_T_VALENCE, &id, 1, &reply, &diag));
+    mt_client_reply_free(&reply);
     fixture_stop(f);
 }
 

@@ -86,13 +86,13 @@ struct mt_client {
     lcm_t *lcm;
     int own_lcm;
     int external_handle;
-    lcm_subscription_t *subscriptions[4];                 /* R_ACK, R_REPLY, R_PART, R_TRANSFER */
-    char reply_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];  /* R: answers come on R_ACK, ... */
-    char submit_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1]; /* mesh_t */
-    char chunk_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];  /* mesh_chunk_t */
-    char query_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];  /* query_t */
-    char pull_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];   /* reply_pull_t */
-    char status_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1]; /* status_t, watched */
+    lcm_subscription_t *subscriptions[4];                   /* R_ACK, R_REPLY, R_PART, R_TRANSFER */
+    char reply_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];    /* R: answers come on R_ACK, ... */
+    char submit_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];   /* mesh_t */
+    char chunk_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];    /* mesh_chunk_t */
+    char query_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];    /* query_t */
+    char pull_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];     /* reply_pull_t */
+    char status_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1];   /* status_t, watched */
     char topology_channel[LCM_MAX_CHANNEL_NAME_LENGTH + 1]; /* topology_t, watched */
     char source[256];
     int timeout_ms;

@@ -4,6 +4,7 @@
  * mt_client_wait_daemon, a watch that waits for the first heartbeat. */
 #include <errno.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -14,6 +15,11 @@ struct mt_client_watch {
     mt_client *client;
     mt_client_watch_fns fns;
     lcm_subscription_t *status_sub, *topology_sub;
+    /* Set (release) once the fields above are written, read (acquire) by
+     * the handlers: LCM hands the watch to the client's thread under a GLib
+     * mutex, which ThreadSanitizer cannot see; this states the order in C11
+     * terms. */
+    atomic_bool ready;
 };
 
 static void count_undecodable(mt_client *client)
@@ -27,6 +33,7 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *use
 {
     (void)channel;
     mt_client_watch *w = user;
+    if (!atomic_load_explicit(&w->ready, memory_order_acquire)) return;
     meshtopo_status_t msg;
     if (mt_msgs_decode(&mt_msgs_type_status, rbuf->data, rbuf->data_size, &msg, NULL, 0) != 0) {
         count_undecodable(w->client);
@@ -40,6 +47,7 @@ static void on_topology(const lcm_recv_buf_t *rbuf, const char *channel, void *u
 {
     (void)channel;
     mt_client_watch *w = user;
+    if (!atomic_load_explicit(&w->ready, memory_order_acquire)) return;
     meshtopo_topology_t msg;
     if (mt_msgs_decode(&mt_msgs_type_topology, rbuf->data, rbuf->data_size, &msg, NULL, 0) != 0) {
         count_undecodable(w->client);
@@ -61,6 +69,7 @@ mt_status mt_client_watch_start(mt_client *client, const mt_client_watch_fns *fn
     if (!w) return mt__client_fail(diag, MT_ERR_NOMEM, "no memory for a watch");
     w->client = client;
     w->fns = *fns;
+    atomic_store_explicit(&w->ready, true, memory_order_release);
     w->status_sub = lcm_subscribe(client->lcm, client->status_channel, on_status, w);
     w->topology_sub = lcm_subscribe(client->lcm, client->topology_channel, on_topology, w);
     if (!w->status_sub || !w->topology_sub) {
