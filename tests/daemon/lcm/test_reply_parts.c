@@ -43,6 +43,9 @@ typedef struct fake {
     uint8_t sent[FAKE_MAX_PARTS];
     uint8_t *answer;
     size_t size;
+    /* All of the above: the fake's handler runs on the client's thread, the
+     * test reads and changes the script between calls. */
+    pthread_mutex_t lock;
 } fake;
 
 /* The answer to a query: a VALENCE reply_t with num_items items of one value. */
@@ -160,6 +163,7 @@ static void fake_on_query(const lcm_recv_buf_t *rbuf, const char *channel, void 
 {
     (void)channel;
     fake *f = user;
+    pthread_mutex_lock(&f->lock);
     const mt_msgs_type *type = mt_msgs_type_of(rbuf->data, rbuf->data_size);
     if (type == &mt_msgs_type_query) {
         meshtopo_query_t q;
@@ -195,6 +199,7 @@ static void fake_on_query(const lcm_recv_buf_t *rbuf, const char *channel, void 
         }
         meshtopo_reply_pull_t_decode_cleanup(&pull);
     }
+    pthread_mutex_unlock(&f->lock);
 }
 
 static void fake_init(fake *f, int32_t num_items)
@@ -202,6 +207,7 @@ static void fake_init(fake *f, int32_t num_items)
     memset(f, 0, sizeof *f);
     for (int i = 0; i < 8; i++) f->drop_first[i] = -1;
     f->num_items = num_items;
+    pthread_mutex_init(&f->lock, NULL);
     f->lcm = lcm_create("memq://");
     CHECK(f->lcm != NULL);
     lcm_subscribe(f->lcm, "MESHTOPO_QUERY", fake_on_query, f);
@@ -227,13 +233,16 @@ static void fake_free(fake *f)
 {
     lcm_destroy(f->lcm);
     free(f->answer);
+    pthread_mutex_destroy(&f->lock);
 }
 
 /* The reply equals the scripted answer, field by field. */
-static void check_fake_reply(const fake *f, const meshtopo_reply_t *r, int line)
+static void check_fake_reply(fake *f, const meshtopo_reply_t *r, int line)
 {
     meshtopo_reply_t want;
+    pthread_mutex_lock(&f->lock);
     CHECK_EQ(mt_msgs_decode(&mt_msgs_type_reply, f->answer, f->size, &want, NULL, 0), 0);
+    pthread_mutex_unlock(&f->lock);
     if (r->num_items != want.num_items || r->num_values != want.num_values ||
         memcmp(r->values, want.values, (size_t)want.num_values * sizeof *r->values) != 0 ||
         memcmp(r->value_offsets, want.value_offsets,
@@ -256,10 +265,10 @@ typedef struct async_wait {
     int done;
     mt_status status;
     bool equal;
-    const fake *f;
+    fake *f;
 } async_wait;
 
-static void async_init(async_wait *w, const fake *f)
+static void async_init(async_wait *w, fake *f)
 {
     memset(w, 0, sizeof *w);
     pthread_mutex_init(&w->lock, NULL);
@@ -311,7 +320,9 @@ static void test_out_of_order_duplicates(void)
     mt_client_get_stats(client, &st);
     CHECK_EQ(st.reply_parts, fake_num_parts(&f));
     CHECK_EQ(st.bad_parts, 0);
+    pthread_mutex_lock(&f.lock);
     CHECK_EQ(f.queries, 1);
+    pthread_mutex_unlock(&f.lock);
     mt_client_reply_free(&r);
     mt_client_destroy(client);
     fake_free(&f);
@@ -337,6 +348,7 @@ static void test_missing_recovered(void)
     mt_client_get_stats(client, &st);
     CHECK_EQ(st.reply_parts, fake_num_parts(&f));
     CHECK(st.reply_pulls >= 3); /* 50 parts in windows of 16, plus the lost ones */
+    pthread_mutex_lock(&f.lock);
     CHECK_EQ(f.queries, 1);
     CHECK(f.pulls >= 3);
     for (size_t k = 0; k <= last; k++) CHECK(f.sent[k]);
@@ -346,13 +358,16 @@ static void test_missing_recovered(void)
     memset(f.sent, 0, sizeof f.sent);
     f.drop_first[0] = (int)last;
     f.drop_first[1] = 0;
+    pthread_mutex_unlock(&f.lock);
     async_wait w;
     async_init(&w, &f);
     CHECK_OK(mt_client_query_async(client, "scripted", 0, MESHTOPO_QUERY_T_VALENCE, (uint32_t[]){0},
                                    1, on_async_reply, &w, &diag));
     CHECK_OK(async_wait_done(&w));
     CHECK(w.equal);
+    pthread_mutex_lock(&f.lock);
     CHECK_EQ(f.queries, 2);
+    pthread_mutex_unlock(&f.lock);
     mt_client_destroy(client);
     fake_free(&f);
 }
@@ -394,7 +409,9 @@ static void test_bad_hash(void)
     check_fake_reply(&f, &r, __LINE__);
     mt_client_stats st;
     mt_client_get_stats(client, &st);
+    pthread_mutex_lock(&f.lock);
     CHECK_EQ(f.queries, 2);
+    pthread_mutex_unlock(&f.lock);
     CHECK_EQ(st.bad_parts, 1);
     mt_client_reply_free(&r);
     mt_client_destroy(client);
@@ -414,8 +431,10 @@ static void test_memory_cap(void)
     CHECK_STATUS(fake_query(client, &r, &diag), MT_ERR_TOO_LARGE);
     CHECK(strstr(diag.message, "max_reply_bytes") != NULL);
     CHECK(r.num_items == 0);
+    pthread_mutex_lock(&f.lock);
     f.num_items = 5000; /* ~50 KB */
     f.lie = true;       /* the lying part of twice the size must not count either */
+    pthread_mutex_unlock(&f.lock);
     CHECK_OK(fake_query(client, &r, &diag));
     check_fake_reply(&f, &r, __LINE__);
     mt_client_reply_free(&r);
