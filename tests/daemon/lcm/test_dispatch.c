@@ -38,10 +38,17 @@ typedef struct fixture {
     int64_t next_request_id;
 } fixture;
 
+/* Keeps an answer; each answer channel carries its one type (R_ACK ack_t,
+ * R_REPLY reply_t, R_PART reply_part_t). */
 static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
-    (void)channel;
     fixture *fx = user;
+    char expected[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    const mt_msgs_type *type = mt_msgs_type_of(rbuf->data, rbuf->data_size);
+    if (!type || mt_msgs_reply_channel_name(REPLY_CHANNEL, type, expected) != MT_OK ||
+        strcmp(channel, expected) != 0)
+        mt_test_fail(__FILE__, __LINE__, "a %s on channel %s", type ? type->name : "non-message",
+                     channel);
     if (fx->num_inbox == MAX_RECEIVED) return;
     void *copy = malloc(rbuf->data_size);
     memcpy(copy, rbuf->data, rbuf->data_size);
@@ -1123,6 +1130,59 @@ static void test_nan_positions(void)
     fixture_free(&fx);
 }
 
+/* A request is remembered under the channel of its answer: a query_t that
+ * reuses the request id of an earlier mesh_t is a new request and gets a
+ * reply_t, not the remembered ack; both stay remembered apart. */
+static void test_request_id_shared_by_kinds(void)
+{
+    fixture fx;
+    fixture_init(&fx);
+    mt_face_list tet;
+    CHECK_OK(mt_gen_platonic(MT_TETRAHEDRON, &tet));
+    meshtopo_mesh_t m = mesh_msg(&fx, "tet", &tet);
+    m.request_id = 4242;
+    meshtopo_ack_t ack;
+    if (submit(&fx, &m, &ack) == 0) {
+        CHECK_EQ(ack.status, 0);
+        meshtopo_ack_t_decode_cleanup(&ack);
+    }
+    meshtopo_query_t q;
+    memset(&q, 0, sizeof q);
+    q.request_id = 4242;
+    q.reply_channel = REPLY_CHANNEL;
+    q.mesh_id = "tet";
+    q.kind = MESHTOPO_QUERY_T_VALENCE;
+    int32_t v = 0;
+    q.num_ids = 1;
+    q.ids = &v;
+    meshtopo_reply_t r;
+    publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    if (wait_for(&fx, &mt_msgs_type_reply, 4242, &r) == 0) {
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.num_items, 1);
+        CHECK_EQ(r.values[0], 3); /* a tetrahedron's vertex has three neighbours */
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    /* Each sent again: each answered from its own memory, nothing run twice. */
+    mtd_counters before;
+    mtd_daemon_get_counts(fx.daemon, &before);
+    if (submit(&fx, &m, &ack) == 0) {
+        CHECK_EQ(ack.version, 1);
+        meshtopo_ack_t_decode_cleanup(&ack);
+    }
+    publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    if (wait_for(&fx, &mt_msgs_type_reply, 4242, &r) == 0) {
+        CHECK_EQ(r.num_items, 1);
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    mtd_counters after;
+    mtd_daemon_get_counts(fx.daemon, &after);
+    CHECK_EQ(after.builds, before.builds);
+    CHECK_EQ(after.duplicates, before.duplicates + 2);
+    mt_face_list_free(&tet);
+    fixture_free(&fx);
+}
+
 static void test_duplicate_request(void)
 {
     fixture fx;
@@ -1208,6 +1268,7 @@ static const mt_test_case cases[] = {
     {"geometry_kinds", test_geometry_kinds},
     {"nan_positions", test_nan_positions},
     {"duplicate_request", test_duplicate_request},
+    {"request_id_shared_by_kinds", test_request_id_shared_by_kinds},
     {"heartbeat", test_heartbeat},
 };
 const mt_test_table mt_tests_dispatch = {cases, sizeof cases / sizeof cases[0]};
