@@ -1109,13 +1109,6 @@ static void wait_daemon_sees_heartbeat(void)
     CHECK_OK(mt_client_wait_daemon(f->client, 5000, NULL, &diag)); /* no copy wanted */
     atomic_store(&h.stop, 1);
     pthread_join(t, NULL);
-    /* A round trip behind the last heartbeats (memq is one queue): LCM frees
-     * a subscription removed while messages for it wait only once they are
-     * handled, not at lcm_destroy. */
-    meshtopo_reply_t reply;
-    uint32_t id = 1;
-    CHECK_OK(mt_client_query(f->client, "m", 0, MESHTOPO_QUERY_T_VALENCE, &id, 1, &reply, &diag));
-    mt_client_reply_free(&reply);
     fixture_stop(f);
 }
 
@@ -1145,6 +1138,20 @@ static int eventually(const atomic_int *value, int at_least)
     for (int i = 0; i < 500 && atomic_load(value) < at_least; i++)
         nanosleep(&(struct timespec){0, 10 * 1000000L}, NULL);
     return atomic_load(value) >= at_least;
+}
+
+/* A watch that stops itself from its first callback. */
+typedef struct self_stopping {
+    mt_client_watch *watch;
+    atomic_int calls;
+} self_stopping;
+
+static void stop_from_callback(const meshtopo_status_t *st, void *user)
+{
+    (void)st;
+    self_stopping *s = user;
+    atomic_fetch_add(&s->calls, 1);
+    mt_client_watch_stop(s->watch);
 }
 
 static void watch_decodes_broadcasts(void)
@@ -1182,6 +1189,17 @@ static void watch_decodes_broadcasts(void)
     mt_client_reply_free(&reply);
     CHECK_EQ(atomic_load(&w.statuses), 2);
     CHECK_EQ(atomic_load(&w.reports), 1);
+
+    /* Stopped from its own callback: that callback finishes, no other runs. */
+    self_stopping s = {.watch = NULL};
+    mt_client_watch_fns self_fns = {.on_status = stop_from_callback, .user = &s};
+    CHECK_OK(mt_client_watch_start(f->client, &self_fns, &s.watch, &diag));
+    publish_heartbeat(f->lcm, 10);
+    publish_heartbeat(f->lcm, 11);
+    publish_heartbeat(f->lcm, 12);
+    CHECK_OK(mt_client_query(f->client, "m", 0, MESHTOPO_QUERY_T_VALENCE, &id, 1, &reply, &diag));
+    mt_client_reply_free(&reply);
+    CHECK_EQ(atomic_load(&s.calls), 1);
     fixture_stop(f);
 }
 

@@ -568,6 +568,42 @@ static void on_reply(const lcm_recv_buf_t *rbuf, const char *channel, void *user
     handle_answer(user, rbuf->data, rbuf->data_size);
 }
 
+void mt__client_run_on_thread(mt_client *client, void (*fn)(void *arg), void *arg)
+{
+    if (client->external_handle || !client->thread_started ||
+        pthread_equal(pthread_self(), client->thread)) {
+        fn(arg);
+        return;
+    }
+    mt__thread_call call = {.fn = fn, .arg = arg};
+    pthread_mutex_lock(&client->mutex);
+    call.next = client->calls;
+    client->calls = &call;
+    pthread_mutex_unlock(&client->mutex);
+    wake_thread(client);
+    pthread_mutex_lock(&client->mutex);
+    while (!call.done) pthread_cond_wait(&client->calls_done, &client->mutex);
+    pthread_mutex_unlock(&client->mutex);
+}
+
+/* Runs the calls waiting for the client's thread (on it). */
+static void run_calls(mt_client *client)
+{
+    pthread_mutex_lock(&client->mutex);
+    mt__thread_call *calls = client->calls;
+    client->calls = NULL;
+    pthread_mutex_unlock(&client->mutex);
+    if (!calls) return;
+    for (mt__thread_call *c = calls; c; c = c->next) c->fn(c->arg);
+    pthread_mutex_lock(&client->mutex);
+    for (mt__thread_call *c = calls, *next; c; c = next) {
+        next = c->next; /* read before done: the waiter's frame holds c */
+        c->done = 1;
+    }
+    pthread_cond_broadcast(&client->calls_done);
+    pthread_mutex_unlock(&client->mutex);
+}
+
 static void *client_thread(void *arg)
 {
     mt_client *client = arg;
@@ -595,6 +631,7 @@ static void *client_thread(void *arg)
         if (n > 0 && lcm_fd >= 0 && (fds[1].revents & (POLLIN | POLLERR | POLLHUP)))
             lcm_handle(client->lcm);
         run_deadlines(client);
+        run_calls(client);
     }
     return NULL;
 }
@@ -702,6 +739,7 @@ mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_di
         free(client);
         return mt__client_fail(diag, MT_ERR_NOMEM, "mt_client_create: no mutex");
     }
+    pthread_cond_init(&client->calls_done, NULL);
 
     mt_status status = MT_OK;
     if (pipe(client->wake_pipe) != 0) {
@@ -778,6 +816,7 @@ void mt_client_destroy(mt_client *client)
     if (client->own_lcm && client->lcm) lcm_destroy(client->lcm);
     for (int i = 0; i < 2; i++)
         if (client->wake_pipe[i] >= 0) close(client->wake_pipe[i]);
+    pthread_cond_destroy(&client->calls_done);
     pthread_mutex_destroy(&client->mutex);
     free(client);
 }

@@ -82,6 +82,15 @@ typedef struct mt__pending {
 
 #define MT__BUCKETS 256
 
+/* A function the client's thread runs between two lcm_handle calls
+ * (mt__client_run_on_thread). */
+typedef struct mt__thread_call {
+    struct mt__thread_call *next;
+    void (*fn)(void *arg);
+    void *arg;
+    int done;
+} mt__thread_call;
+
 struct mt_client {
     lcm_t *lcm;
     int own_lcm;
@@ -111,6 +120,8 @@ struct mt_client {
     pthread_mutex_t mutex;
     int stop;
     mt__pending *buckets[MT__BUCKETS];
+    mt__thread_call *calls;    /* waiting for the client's thread */
+    pthread_cond_t calls_done; /* broadcast when one has run */
     size_t num_pending;
     int64_t next_deadline_us;
     int64_t next_request_id;
@@ -173,5 +184,11 @@ size_t mt__parts_missing(const mt__parts *parts, size_t max_parts, size_t max_ra
 /* Waits until the synchronous request p completes (it is then out of the
  * table) and releases its buffer. */
 void mt__client_wait(mt_client *client, mt__pending *p);
+
+/* Runs fn(arg) on the client's thread between two lcm_handle calls, so that
+ * no LCM handler runs meanwhile, and returns once it has run. On the
+ * client's thread itself (or with external_handle, where the caller's own
+ * thread handles LCM) it runs fn at once. */
+void mt__client_run_on_thread(mt_client *client, void (*fn)(void *arg), void *arg);
 
 #endif

@@ -1,10 +1,14 @@
 /* The daemon's broadcasts for the client's users (meshtopo/client.h):
  * watches over PREFIX STATUS and PREFIX TOPOLOGY whose handlers decode with
  * mt_msgs_decode and call the user's functions on the client's thread, and
- * mt_client_wait_daemon, a watch that waits for the first heartbeat. */
+ * mt_client_wait_daemon, a watch that waits for the first heartbeat. A
+ * watch is started and stopped on the thread that handles LCM, between two
+ * lcm_handle calls (mt__client_run_on_thread): LCM 1.3 runs a handler with
+ * its lock released, so an unsubscribe from another thread could neither
+ * wait for a running callback nor, racing a dispatch, be sure LCM frees the
+ * subscription; every field of a watch is then that thread's alone. */
 #include <errno.h>
 #include <pthread.h>
-#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -15,12 +19,26 @@ struct mt_client_watch {
     mt_client *client;
     mt_client_watch_fns fns;
     lcm_subscription_t *status_sub, *topology_sub;
-    /* Set (release) once the fields above are written, read (acquire) by
-     * the handlers: LCM hands the watch to the client's thread under a GLib
-     * mutex, which ThreadSanitizer cannot see; this states the order in C11
-     * terms. */
-    atomic_bool ready;
+    bool stopped;     /* no callback runs any more */
+    bool in_callback; /* one runs now: it frees the watch when stopped in it */
 };
+
+/* Whether a callback may run now (the watch is not stopped); it then runs
+ * between begin_call and end_call. */
+static bool begin_call(mt_client_watch *w)
+{
+    if (w->stopped) return false;
+    w->in_callback = true;
+    return true;
+}
+
+/* Frees a watch that its own callback stopped: unsubscribed, LCM will not
+ * call it again. w must not be used after. */
+static void end_call(mt_client_watch *w)
+{
+    w->in_callback = false;
+    if (w->stopped) free(w);
+}
 
 static void count_undecodable(mt_client *client)
 {
@@ -33,13 +51,15 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *use
 {
     (void)channel;
     mt_client_watch *w = user;
-    if (!atomic_load_explicit(&w->ready, memory_order_acquire)) return;
     meshtopo_status_t msg;
     if (mt_msgs_decode(&mt_msgs_type_status, rbuf->data, rbuf->data_size, &msg, NULL, 0) != 0) {
         count_undecodable(w->client);
         return;
     }
-    if (w->fns.on_status) w->fns.on_status(&msg, w->fns.user);
+    if (w->fns.on_status && begin_call(w)) {
+        w->fns.on_status(&msg, w->fns.user);
+        end_call(w);
+    }
     meshtopo_status_t_decode_cleanup(&msg);
 }
 
@@ -47,14 +67,40 @@ static void on_topology(const lcm_recv_buf_t *rbuf, const char *channel, void *u
 {
     (void)channel;
     mt_client_watch *w = user;
-    if (!atomic_load_explicit(&w->ready, memory_order_acquire)) return;
     meshtopo_topology_t msg;
     if (mt_msgs_decode(&mt_msgs_type_topology, rbuf->data, rbuf->data_size, &msg, NULL, 0) != 0) {
         count_undecodable(w->client);
         return;
     }
-    if (w->fns.on_topology) w->fns.on_topology(&msg, w->fns.user);
+    if (w->fns.on_topology && begin_call(w)) {
+        w->fns.on_topology(&msg, w->fns.user);
+        end_call(w);
+    }
     meshtopo_topology_t_decode_cleanup(&msg);
+}
+
+/* A watch to subscribe, and whether both subscriptions were made. */
+typedef struct start_call {
+    mt_client_watch *w;
+    bool subscribed;
+} start_call;
+
+/* Subscribes w, on the thread that handles LCM; when LCM refuses either
+ * subscription, undoes the other and frees w (no callback can have run: this
+ * thread has not handled a message since). Once it returns, a callback may
+ * run (and stop and free w): the caller reads only the start_call. */
+static void start_on_lcm_thread(void *arg)
+{
+    start_call *call = arg;
+    mt_client_watch *w = call->w;
+    lcm_t *lcm = w->client->lcm;
+    w->status_sub = lcm_subscribe(lcm, w->client->status_channel, on_status, w);
+    w->topology_sub = lcm_subscribe(lcm, w->client->topology_channel, on_topology, w);
+    call->subscribed = w->status_sub && w->topology_sub;
+    if (call->subscribed) return;
+    if (w->status_sub) lcm_unsubscribe(lcm, w->status_sub);
+    if (w->topology_sub) lcm_unsubscribe(lcm, w->topology_sub);
+    free(w);
 }
 
 mt_status mt_client_watch_start(mt_client *client, const mt_client_watch_fns *fns,
@@ -69,26 +115,33 @@ mt_status mt_client_watch_start(mt_client *client, const mt_client_watch_fns *fn
     if (!w) return mt__client_fail(diag, MT_ERR_NOMEM, "no memory for a watch");
     w->client = client;
     w->fns = *fns;
-    atomic_store_explicit(&w->ready, true, memory_order_release);
-    w->status_sub = lcm_subscribe(client->lcm, client->status_channel, on_status, w);
-    w->topology_sub = lcm_subscribe(client->lcm, client->topology_channel, on_topology, w);
-    if (!w->status_sub || !w->topology_sub) {
-        mt_client_watch_stop(w);
+    *out_watch = w; /* before any callback: one may stop its own watch */
+    start_call call = {.w = w};
+    mt__client_run_on_thread(client, start_on_lcm_thread, &call);
+    if (!call.subscribed) { /* w is freed */
+        *out_watch = NULL;
         return mt__client_fail(diag, MT_ERR_IO, "lcm_subscribe(%s, %s) failed",
                                client->status_channel, client->topology_channel);
     }
-    *out_watch = w;
     return MT_OK;
+}
+
+/* Unsubscribes and frees w, or leaves the freeing to its running callback.
+ * On the thread that handles LCM, between two lcm_handle calls or inside a
+ * callback. */
+static void stop_on_lcm_thread(void *arg)
+{
+    mt_client_watch *w = arg;
+    w->stopped = true;
+    if (w->status_sub) lcm_unsubscribe(w->client->lcm, w->status_sub);
+    if (w->topology_sub) lcm_unsubscribe(w->client->lcm, w->topology_sub);
+    if (!w->in_callback) free(w);
 }
 
 void mt_client_watch_stop(mt_client_watch *w)
 {
     if (!w) return;
-    /* LCM holds its handler lock while it dispatches: once unsubscribed, no
-     * handler of this watch is running or will run. */
-    if (w->status_sub) lcm_unsubscribe(w->client->lcm, w->status_sub);
-    if (w->topology_sub) lcm_unsubscribe(w->client->lcm, w->topology_sub);
-    free(w);
+    mt__client_run_on_thread(w->client, stop_on_lcm_thread, w);
 }
 
 /* The first heartbeat, handed from the client's thread to the waiter. */

@@ -231,14 +231,17 @@ typedef struct mt_client_watch_fns {
 
 typedef struct mt_client_watch mt_client_watch;
 
-/* Starts calling fns for the daemon's broadcasts. MT_OK, MT_ERR_NOMEM or
- * MT_ERR_IO (LCM refused the subscription). Stop every watch before
- * destroying the client. */
+/* Starts calling fns for the daemon's broadcasts; *out_watch is set before
+ * the first callback can run (a callback may stop its own watch). MT_OK,
+ * MT_ERR_NOMEM or MT_ERR_IO (LCM refused the subscription). Stop every watch
+ * before destroying the client. */
 mt_status mt_client_watch_start(mt_client *client, const mt_client_watch_fns *fns,
                                 mt_client_watch **out_watch, mt_diag *diag);
 
 /* Stops a watch: once it returns, no callback of it runs (called from one of
- * its own callbacks, it stops after that callback). NULL-safe. */
+ * its own callbacks, none runs after that callback). It waits for the
+ * client's thread to be between two messages; with external_handle, call it
+ * from the thread that runs lcm_handle. NULL-safe. */
 void mt_client_watch_stop(mt_client_watch *watch);
 
 /* Waits until a heartbeat of a daemon on the client's prefix arrives, at
