@@ -33,8 +33,8 @@ typedef struct watch_state {
     long count;     /* stop after this many messages; 0 = never */
     long printed;   /* messages printed */
     double last_ms; /* when the last one was printed (or the watch started) */
-    char topology_channel[64];
-    char status_channel[64];
+    char topology_channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    char status_channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
 } watch_state;
 
 static void status_json(mt_json *j, const meshtopo_status_t *s)
@@ -222,8 +222,10 @@ static int run_watch(const mt_cli_args *args)
     memset(&w, 0, sizeof w);
     w.json = mt_cli_flag(args, "json");
     w.count = count;
-    snprintf(w.topology_channel, sizeof w.topology_channel, "%sTOPOLOGY", remote.prefix);
-    snprintf(w.status_channel, sizeof w.status_channel, "%sSTATUS", remote.prefix);
+    /* The prefix is checked when the client is created; the names are only
+     * printed. */
+    mt_msgs_channel_name(remote.prefix, MT_MSGS_CHANNEL_TOPOLOGY, w.topology_channel);
+    mt_msgs_channel_name(remote.prefix, MT_MSGS_CHANNEL_STATUS, w.status_channel);
 
     /* SIGINT and SIGTERM go to this thread only: the client's thread starts
      * with them blocked. */
