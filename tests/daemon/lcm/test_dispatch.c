@@ -765,6 +765,103 @@ static void test_bad_undecodable(void)
     fixture_free(&fx);
 }
 
+/* Counts what arrives on one channel. */
+static void count_message(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)rbuf;
+    (void)channel;
+    (*(int *)user)++;
+}
+
+/* Each request channel takes its one type: a chunk on SUBMIT or a pull on
+ * QUERY is answered UNDECODABLE and starts nothing; a query on QUERY_PULL is
+ * dropped. A reply channel too long for its answers' suffixes (55 bytes) is
+ * never answered but counted as an error, while 54 bytes are answered; the
+ * daemon keeps serving. */
+static void test_bad_channels(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    uint8_t data[4] = {1, 2, 3, 4};
+    meshtopo_mesh_chunk_t c;
+    memset(&c, 0, sizeof c);
+    c.request_id = 5100;
+    c.reply_channel = REPLY_CHANNEL;
+    c.mesh_id = "piece";
+    c.source = "";
+    c.total_size = 4;
+    c.length = 4;
+    c.data = data;
+    c.want_status = true;
+    publish(&fx, "MESHTOPO_SUBMIT", &mt_msgs_type_mesh_chunk, &c);
+    meshtopo_ack_t ack;
+    if (wait_for(&fx, &mt_msgs_type_ack, 5100, &ack) == 0) {
+        CHECK_ERROR(ack.status, ack.error, MESHTOPO_STATUS_CODE_T_UNDECODABLE,
+                    "not a meshtopo.mesh_t");
+        meshtopo_ack_t_decode_cleanup(&ack);
+    }
+    meshtopo_reply_pull_t pull;
+    memset(&pull, 0, sizeof pull);
+    pull.request_id = 5101;
+    pull.reply_channel = REPLY_CHANNEL;
+    publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_reply_pull, &pull);
+    meshtopo_reply_t r;
+    if (wait_for(&fx, &mt_msgs_type_reply, 5101, &r) == 0) {
+        CHECK_ERROR(r.status, r.error, MESHTOPO_STATUS_CODE_T_UNDECODABLE,
+                    "not a meshtopo.query_t");
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    int32_t vertex = 0;
+    meshtopo_query_t q;
+    memset(&q, 0, sizeof q);
+    q.request_id = 5102;
+    q.reply_channel = REPLY_CHANNEL;
+    q.mesh_id = "cube";
+    q.kind = MESHTOPO_QUERY_T_VALENCE;
+    q.num_ids = 1;
+    q.ids = &vertex;
+    publish(&fx, "MESHTOPO_QUERY_PULL", &mt_msgs_type_query, &q);
+    /* The chunk counts as a (refused) message on SUBMIT and started no
+     * transfer. */
+    mtd_daemon_heartbeat(fx.daemon);
+    for (int i = 0; i < 100 && !fx.have_status; i++) lcm_handle_timeout(fx.lcm, 50);
+    CHECK(fx.have_status);
+    CHECK_EQ(fx.last_status.submissions, 2);
+    CHECK_EQ(fx.last_status.chunks, 0);
+    CHECK_EQ(fx.last_status.transfers_active, 0);
+    mtd_counters counts;
+    mtd_daemon_get_counts(fx.daemon, &counts);
+
+    char too_long[MESHTOPO_MESH_T_REPLY_CHANNEL_MAX + 2],
+        longest[MESHTOPO_MESH_T_REPLY_CHANNEL_MAX + 1];
+    memset(too_long, 'L', sizeof too_long - 1);
+    too_long[sizeof too_long - 1] = '\0';
+    memset(longest, 'M', sizeof longest - 1);
+    longest[sizeof longest - 1] = '\0';
+    char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    int on_too_long = 0, on_longest = 0;
+    CHECK(snprintf(channel, sizeof channel, "%s_REPLY", too_long) < (int)sizeof channel);
+    lcm_subscription_t *sub_too_long = lcm_subscribe(fx.lcm, channel, count_message, &on_too_long);
+    CHECK_OK(mt_msgs_reply_channel_name(longest, &mt_msgs_type_reply, channel));
+    lcm_subscription_t *sub_longest = lcm_subscribe(fx.lcm, channel, count_message, &on_longest);
+    int64_t errors_before = counts.errors;
+    q.reply_channel = too_long;
+    q.request_id = 5103;
+    publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    q.reply_channel = longest;
+    q.request_id = 5104;
+    publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    for (int i = 0; i < 400 && on_longest == 0; i++) lcm_handle_timeout(fx.lcm, 5);
+    CHECK_EQ(on_longest, 1);
+    CHECK_EQ(on_too_long, 0);
+    mtd_daemon_get_counts(fx.daemon, &counts);
+    CHECK_EQ(counts.errors, errors_before + 1);
+    lcm_unsubscribe(fx.lcm, sub_too_long);
+    lcm_unsubscribe(fx.lcm, sub_longest);
+    check_still_serving(&fx, "cube");
+    fixture_free(&fx);
+}
+
 static void test_bad_fingerprint(void)
 {
     fixture fx;
@@ -1261,6 +1358,7 @@ static const mt_test_case cases[] = {
     {"content_hash", test_content_hash},
     {"bad_undecodable", test_bad_undecodable},
     {"bad_fingerprint", test_bad_fingerprint},
+    {"bad_channels", test_bad_channels},
     {"bad_counts", test_bad_counts},
     {"bad_too_large", test_bad_too_large},
     {"bad_mesh_ids", test_bad_mesh_ids},
