@@ -42,23 +42,10 @@ mkdir -p "$work" || exit 1
 log=$work/session.lcmlog daemon_log=$work/meshtopod.log logger_log=$work/lcm-logger.log
 logger_pid= daemon_pid=
 
-# Stops a process this script started: SIGNAL, SIGKILL after 10 s; its status.
-stop() {
-    local pid=$1 sig=$2 name=$3
-    kill "-$sig" "$pid" 2>/dev/null
-    for _ in $(seq 100); do
-        kill -0 "$pid" 2>/dev/null || break
-        sleep 0.1
-    done
-    if kill -0 "$pid" 2>/dev/null; then
-        echo "$name (pid $pid) still runs 10 s after SIG$sig: SIGKILL" >&2
-        kill -KILL "$pid" 2>/dev/null
-    fi
-    wait "$pid"
-}
+. "$here/../netns/stop_pid.sh"
 cleanup() {
-    [ -n "$daemon_pid" ] && stop "$daemon_pid" TERM meshtopod
-    [ -n "$logger_pid" ] && stop "$logger_pid" INT lcm-logger
+    [ -n "$daemon_pid" ] && mt_stop_pid "$daemon_pid" TERM meshtopod
+    [ -n "$logger_pid" ] && mt_stop_pid "$logger_pid" INT lcm-logger
 }
 trap cleanup EXIT
 
@@ -121,12 +108,12 @@ lines=$(wc -l <"$work/ring-grid.txt")
 echo "the grid's one-rings: $lines lines, $(wc -c <"$work/ring-grid.txt") bytes printed"
 [ "$lines" -ge 100489 ] || fail "the grid's one-rings came back incomplete ($lines lines)"
 
-stop "$daemon_pid" TERM meshtopod
+mt_stop_pid "$daemon_pid" TERM meshtopod
 rc=$?
 daemon_pid=
 [ "$rc" -eq 0 ] || fail "meshtopod exited with $rc after SIGTERM"
 sleep 0.5  # lcm-logger flushes every 100 ms
-stop "$logger_pid" INT lcm-logger
+mt_stop_pid "$logger_pid" INT lcm-logger
 rc=$?
 logger_pid=
 [ "$rc" -eq 0 ] || fail "lcm-logger exited with $rc after SIGINT ($(cat "$logger_log"))"

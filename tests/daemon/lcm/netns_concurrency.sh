@@ -7,6 +7,7 @@
 # Exit status: the client's (77 = skipped), or 1 when the daemon did not stop cleanly.
 set -uo pipefail
 meshtopod=$1 client=$2
+. "$(dirname "$0")/../../netns/stop_pid.sh"
 [ "${MESHTOPO_NETNS:-}" = 1 ] || { echo "run me through netns-run" >&2; exit 2; }
 # Both ends ask for a 4 MiB UDP receive buffer (see netns_corpus.sh): the big
 # mesh is one message of several MiB, and every client's socket sees it too.
@@ -21,17 +22,7 @@ timeout --kill-after=5 200 "$client"
 rc=$?
 [ "$rc" -eq 124 ] && echo "meshtopod_concurrency_client timed out after 200 s" >&2
 
-# Stop the daemon this script started, by its PID only.
-kill -TERM "$daemon_pid" 2>/dev/null
-for _ in $(seq 100); do
-    kill -0 "$daemon_pid" 2>/dev/null || break
-    sleep 0.1
-done
-if kill -0 "$daemon_pid" 2>/dev/null; then
-    echo "meshtopod (pid $daemon_pid) still runs 10 s after SIGTERM: SIGKILL" >&2
-    kill -KILL "$daemon_pid" 2>/dev/null
-fi
-wait "$daemon_pid"
+mt_stop_pid "$daemon_pid" TERM meshtopod
 daemon_rc=$?
 grep ' built ' "$log" | sed 's/^/meshtopod: /'
 if [ "$rc" -ne 0 ] && [ "$rc" -ne 77 ]; then

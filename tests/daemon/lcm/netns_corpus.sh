@@ -8,6 +8,7 @@
 # message or the UDP receive buffer), or 1 when the daemon did not stop cleanly.
 set -uo pipefail
 meshtopod=$1 client=$2 name=$3
+. "$(dirname "$0")/../../netns/stop_pid.sh"
 [ "${MESHTOPO_NETNS:-}" = 1 ] || { echo "run me through netns-run" >&2; exit 2; }
 # LCM's udpm keeps the kernel's default UDP receive buffer (rmem_default,
 # often 208 KiB) unless the URL asks for more, and a submission larger than
@@ -24,17 +25,7 @@ timeout --kill-after=5 100 "$client" "$name"
 rc=$?
 [ "$rc" -eq 124 ] && echo "meshtopod_corpus_client timed out after 100 s" >&2
 
-# Stop the daemon this script started, by its PID only.
-kill -TERM "$daemon_pid" 2>/dev/null
-for _ in $(seq 100); do
-    kill -0 "$daemon_pid" 2>/dev/null || break
-    sleep 0.1
-done
-if kill -0 "$daemon_pid" 2>/dev/null; then
-    echo "meshtopod (pid $daemon_pid) still runs 10 s after SIGTERM: SIGKILL" >&2
-    kill -KILL "$daemon_pid" 2>/dev/null
-fi
-wait "$daemon_pid"
+mt_stop_pid "$daemon_pid" TERM meshtopod
 daemon_rc=$?
 if [ "$rc" -ne 0 ] && [ "$rc" -ne 77 ]; then
     echo "daemon log:" >&2

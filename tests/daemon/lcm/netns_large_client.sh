@@ -8,6 +8,7 @@
 # usage: netns_large_client.sh MESHTOPOD CLIENT NAME
 set -uo pipefail
 meshtopod=$1 client=$2 name=$3
+. "$(dirname "$0")/../../netns/stop_pid.sh"
 [ "${MESHTOPO_NETNS:-}" = 1 ] || { echo "run me through netns-run" >&2; exit 2; }
 export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
 log=$(mktemp)
@@ -20,13 +21,7 @@ timeout --kill-after=5 100 "$client" "$name"
 rc=$?
 [ "$rc" -eq 124 ] && echo "$name: client timed out after 100 s" >&2
 
-kill -TERM "$daemon_pid" 2>/dev/null
-for _ in $(seq 100); do
-    kill -0 "$daemon_pid" 2>/dev/null || break
-    sleep 0.1
-done
-kill -0 "$daemon_pid" 2>/dev/null && kill -KILL "$daemon_pid" 2>/dev/null
-wait "$daemon_pid"
+mt_stop_pid "$daemon_pid" TERM meshtopod
 daemon_rc=$?
 grep -E ' (transfer_[a-z]+|built|chunk_error|reply_pull) ' "$log" | sed 's/^/meshtopod: /'
 if [ "$rc" -ne 0 ]; then
