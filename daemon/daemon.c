@@ -89,7 +89,7 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
     if (mtd_store_create(&store_options, &d->store) != MT_OK) return fail_nomem(diag, "mesh store");
     if (mtd_pool_create(c->workers, BUILD_QUEUE_CAPACITY, &d->pool) != MT_OK)
         return fail_nomem(diag, "worker pool");
-    if (mtd_replies_create(d->lcm, d->errors, &d->replies) != MT_OK)
+    if (mtd_replies_create(d->lcm, c->channel_prefix, d->errors, &d->replies) != MT_OK)
         return fail_nomem(diag, "request cache");
     mt_status s = mtd_archiver_open(c, d->store, d->errors, &d->archiver, diag);
     if (s != MT_OK) return s;

@@ -17,17 +17,20 @@
 
 struct mtd_replies {
     lcm_t *lcm;            /* not owned */
+    char prefix[64];       /* the daemon's channel prefix */
     mtd_error_log *errors; /* not owned */
     mtd_reqcache *cache;   /* owned */
     atomic_int_fast64_t duplicates;
 };
 
-mt_status mtd_replies_create(lcm_t *lcm, mtd_error_log *errors, mtd_replies **out_replies)
+mt_status mtd_replies_create(lcm_t *lcm, const char *prefix, mtd_error_log *errors,
+                             mtd_replies **out_replies)
 {
     *out_replies = NULL;
     mtd_replies *r = calloc(1, sizeof *r);
     if (!r) return MT_ERR_NOMEM;
     r->lcm = lcm;
+    snprintf(r->prefix, sizeof r->prefix, "%s", prefix);
     r->errors = errors;
     if (mtd_reqcache_create(NULL, &r->cache) != MT_OK) {
         free(r);
@@ -68,6 +71,24 @@ bool mtd_reply_peek_header(const void *data, size_t size, int64_t *out_request_i
 static bool answer_channel(const char *reply_channel, const mt_msgs_type *answer, char *out)
 {
     return mt_msgs_reply_channel_name(reply_channel, answer, out) == MT_OK;
+}
+
+bool mtd_reply_channel_check(mtd_replies *r, const char *reply_channel, int64_t request_id)
+{
+    if (mt_msgs_reply_channel_allowed(r->prefix, reply_channel)) return true;
+    char error[MTD_ERROR_MAX];
+    if (mt_msgs_reply_channel_ok(reply_channel))
+        snprintf(error, sizeof error,
+                 "reply_channel '%s': names a daemon channel of prefix '%s' (answers there "
+                 "would reach daemons, not the requester)",
+                 reply_channel, r->prefix);
+    else
+        snprintf(error, sizeof error, "reply_channel '%.80s': must be 1 to %d printable bytes",
+                 reply_channel, MESHTOPO_MESH_T_REPLY_CHANNEL_MAX);
+    mtd_error_log_note(r->errors, error);
+    mtd_log(MTD_LOG_WARN, "bad_request", "request_id=%" PRId64 " error=%s (not answered)",
+            request_id, error);
+    return false;
 }
 
 void mtd_reply_send(mtd_replies *r, const char *reply_channel, int64_t request_id, bool remember,
@@ -148,6 +169,7 @@ void mtd_reply_undecodable(mtd_replies *r, const mt_msgs_type *type, const void 
                 size, error);
         return;
     }
+    if (!mtd_reply_channel_check(r, channel, request_id)) return;
     if (type == &mt_msgs_type_mesh)
         mtd_reply_ack_error(r, channel, request_id, "", false, MESHTOPO_STATUS_CODE_T_UNDECODABLE,
                             error);
@@ -160,15 +182,9 @@ bool mtd_reply_begin(mtd_replies *r, const char *reply_channel, int64_t request_
                      const mt_msgs_type *answer)
 {
     char key[MT_MSGS_CHANNEL_NAME_MAX + 1];
-    if (!answer_channel(reply_channel, answer, key)) {
-        char error[MTD_ERROR_MAX];
-        snprintf(error, sizeof error, "reply_channel '%.80s': must be 1 to %d printable bytes",
-                 reply_channel, MESHTOPO_MESH_T_REPLY_CHANNEL_MAX);
-        mtd_error_log_note(r->errors, error);
-        mtd_log(MTD_LOG_WARN, "bad_request", "request_id=%" PRId64 " error=%s (not answered)",
-                request_id, error);
+    if (!mtd_reply_channel_check(r, reply_channel, request_id) ||
+        !answer_channel(reply_channel, answer, key))
         return false;
-    }
     mtd_request_state state = MTD_REQUEST_NEW;
     mtd_reply *stored = NULL;
     if (mtd_reqcache_begin(r->cache, key, request_id, &state, &stored) != MT_OK)

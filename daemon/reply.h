@@ -23,9 +23,11 @@
 
 typedef struct mtd_replies mtd_replies;
 
-/* Publishes on lcm (not owned) and notes errors in `errors` (not owned).
- * MT_OK or MT_ERR_NOMEM. */
-mt_status mtd_replies_create(lcm_t *lcm, mtd_error_log *errors, mtd_replies **out_replies);
+/* Publishes on lcm (not owned) and notes errors in `errors` (not owned);
+ * refuses reply channels that name a daemon channel of `prefix`
+ * (mt_msgs_reply_channel_allowed). MT_OK or MT_ERR_NOMEM. */
+mt_status mtd_replies_create(lcm_t *lcm, const char *prefix, mtd_error_log *errors,
+                             mtd_replies **out_replies);
 
 /* Frees the request cache (replies still held stay valid). NULL-safe. */
 void mtd_replies_destroy(mtd_replies *replies);
@@ -37,12 +39,16 @@ void mtd_replies_destroy(mtd_replies *replies);
  * to answer on (mt_msgs_reply_channel_ok). */
 bool mtd_reply_peek_header(const void *data, size_t size, int64_t *out_request_id, char *channel);
 
+/* Whether a request's reply channel may be answered on
+ * (mt_msgs_reply_channel_allowed for the daemon's prefix); when not, the
+ * request is noted in the error log, logged and must not be answered. */
+bool mtd_reply_channel_check(mtd_replies *replies, const char *reply_channel, int64_t request_id);
+
 /* Starts a request whose answer is of type `answer` (ack_t for submissions,
- * reply_t for queries): checks its reply channel (a bad one is noted and not
- * answered) and the request cache. Returns true when the request is new (now
- * marked pending) and must be run; a finished one has had its answer
- * published again, a running one is left to finish (both counted as
- * duplicates). */
+ * reply_t for queries): checks its reply channel (a bad one, or one naming a
+ * daemon channel, is noted, logged and not answered) and the request cache. Returns true when the
+ * request is new (now marked pending) and must be run; a finished one has had its answer published
+ * again, a running one is left to finish (both counted as duplicates). */
 bool mtd_reply_begin(mtd_replies *replies, const char *reply_channel, int64_t request_id,
                      const mt_msgs_type *answer);
 

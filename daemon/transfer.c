@@ -421,7 +421,8 @@ void mtd_transfers_chunk(mtd_transfers *ts, const void *data, size_t size)
         char error[MTD_ERROR_MAX];
         int64_t request_id = 0;
         snprintf(error, sizeof error, "undecodable mesh_chunk_t: %s", why);
-        if (mtd_reply_peek_header(data, size, &request_id, channel))
+        if (mtd_reply_peek_header(data, size, &request_id, channel) &&
+            mtd_reply_channel_check(ts->deps.replies, channel, request_id))
             send_status(ts, channel, request_id, MESHTOPO_STATUS_CODE_T_UNDECODABLE, error, NULL, 0,
                         false);
         else
@@ -429,12 +430,7 @@ void mtd_transfers_chunk(mtd_transfers *ts, const void *data, size_t size)
                     error);
         return;
     }
-    if (!mt_msgs_reply_channel_ok(c.reply_channel)) {
-        mtd_log(MTD_LOG_WARN, "bad_request",
-                "request_id=%" PRId64
-                " error=mesh_chunk_t with an unusable reply_channel "
-                "(not answered)",
-                c.request_id);
+    if (!mtd_reply_channel_check(ts->deps.replies, c.reply_channel, c.request_id)) {
         meshtopo_mesh_chunk_t_decode_cleanup(&c);
         return;
     }

@@ -75,6 +75,17 @@ bool mt_msgs_reply_channel_ok(const char *reply_channel)
     return true;
 }
 
+bool mt_msgs_reply_channel_allowed(const char *prefix, const char *reply_channel)
+{
+    if (!prefix || !mt_msgs_reply_channel_ok(reply_channel)) return false;
+    for (int c = 0; c < MT_MSGS_CHANNEL_COUNT; c++) {
+        char name[MT_MSGS_CHANNEL_NAME_MAX + 1];
+        if (mt_msgs_channel_name(prefix, (mt_msgs_channel)c, name) != MT_OK) continue;
+        if (strncmp(reply_channel, name, strlen(name)) == 0) return false;
+    }
+    return true;
+}
+
 mt_status mt_msgs_reply_channel_name(const char *reply_channel, const mt_msgs_type *type, char *out)
 {
     const char *suffix = mt_msgs_reply_suffix(type);

@@ -1,10 +1,12 @@
-/* Tests of msgs/'s protocol rules (meshtopo/protocol.h): the mesh-id rule,
- * the status code table, and the .lcm limits against the datagram size they
+/* Tests of msgs/'s protocol rules (meshtopo/protocol.h, channels.h): the
+ * mesh-id rule, the status code table, which reply channels a daemon answers
+ * on, and the .lcm limits against the datagram size they
  * exist for. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "harness.h"
+#include "meshtopo/channels.h"
 #include "meshtopo/msgs.h"
 #include "meshtopo/protocol.h"
 
@@ -120,7 +122,31 @@ static void limits_fit_one_datagram(void)
     free(channel);
 }
 
+/* A reply channel may not be or start with a daemon channel of its prefix. */
+static void reply_channel_allowed(void)
+{
+    const char *refused[] = {"MESHTOPO_SUBMIT",     "MESHTOPO_SUBMIT_CHUNK",
+                             "MESHTOPO_QUERY",      "MESHTOPO_QUERY_PULL",
+                             "MESHTOPO_TOPOLOGY",   "MESHTOPO_STATUS",
+                             "MESHTOPO_STATUS_ACK", "MESHTOPO_QUERYX",
+                             "MESHTOPO_SUBMIT_",    "",
+                             "with space"};
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++)
+        if (mt_msgs_reply_channel_allowed("MESHTOPO_", refused[i]))
+            mt_test_fail(__FILE__, __LINE__, "'%s' allowed", refused[i]);
+    const char *allowed[] = {"MESHTOPO_REPLY_host_42_0000beef", "MESHTOPO_STATU", "MESHTOPO_",
+                             "ROBOT7_QUERY", "reply"};
+    for (size_t i = 0; i < sizeof allowed / sizeof allowed[0]; i++)
+        if (!mt_msgs_reply_channel_allowed("MESHTOPO_", allowed[i]))
+            mt_test_fail(__FILE__, __LINE__, "'%s' refused", allowed[i]);
+    /* Another prefix has its own daemon channels. */
+    CHECK(!mt_msgs_reply_channel_allowed("ROBOT7_", "ROBOT7_QUERY"));
+    CHECK(mt_msgs_reply_channel_allowed("ROBOT7_", "MESHTOPO_QUERY"));
+    CHECK(!mt_msgs_reply_channel_allowed(NULL, "reply"));
+}
+
 static const mt_test_case cases[] = {
+    {"reply_channel_allowed", reply_channel_allowed},
     {"mesh_id_rule", mesh_id_rule},
     {"status_codes", status_codes},
     {"limits_fit_one_datagram", limits_fit_one_datagram},

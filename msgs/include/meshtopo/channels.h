@@ -51,6 +51,14 @@ const char *mt_msgs_reply_suffix(const mt_msgs_type *type);
  * that it and its longest suffix fit LCM's limit. */
 bool mt_msgs_reply_channel_ok(const char *reply_channel);
 
+/* Whether the daemons of `prefix` may answer on reply_channel:
+ * mt_msgs_reply_channel_ok, and the name neither is nor starts with one of
+ * their own channel names (PREFIX "SUBMIT" ... PREFIX "STATUS"), so that no
+ * answer lands on a daemon channel or on a name a subscriber to its pattern
+ * (PREFIX "STATUS.*", say) would take for one. The client library's reply
+ * channels (PREFIX "REPLY_" ...) always pass. */
+bool mt_msgs_reply_channel_allowed(const char *prefix, const char *reply_channel);
+
 /* Writes reply_channel + the suffix of `type` to
  * out[MT_MSGS_CHANNEL_NAME_MAX + 1]. MT_OK, or MT_ERR_INVALID_ARG when the
  * reply channel breaks mt_msgs_reply_channel_ok or the type is not an

@@ -858,6 +858,39 @@ static void test_bad_channels(void)
     CHECK_EQ(counts.errors, errors_before + 1);
     lcm_unsubscribe(fx.lcm, sub_too_long);
     lcm_unsubscribe(fx.lcm, sub_longest);
+
+    /* A reply channel naming a daemon channel: refused, noted, never
+     * published on (nor beside it). */
+    int on_daemon_channels = 0;
+    lcm_subscription_t *sub_daemon =
+        lcm_subscribe(fx.lcm, "MESHTOPO_(SUBMIT|QUERY|TOPOLOGY|STATUS).*_(ACK|REPLY|PART|TRANSFER)",
+                      count_message, &on_daemon_channels);
+    const char *daemon_channels[] = {"MESHTOPO_QUERY", "MESHTOPO_SUBMIT", "MESHTOPO_STATUS",
+                                     "MESHTOPO_TOPOLOGY_X"};
+    for (size_t i = 0; i < 4; i++) {
+        q.reply_channel = (char *)daemon_channels[i];
+        q.request_id = 5110 + (int64_t)i;
+        publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    }
+    mt_face_list cube;
+    CHECK_OK(mt_gen_platonic(MT_CUBE, &cube));
+    meshtopo_mesh_t m = mesh_msg(&fx, "cube", &cube);
+    m.reply_channel = "MESHTOPO_SUBMIT";
+    publish(&fx, "MESHTOPO_SUBMIT", &mt_msgs_type_mesh, &m);
+    mt_face_list_free(&cube);
+    c.reply_channel = "MESHTOPO_STATUS";
+    c.request_id = 5120;
+    publish(&fx, "MESHTOPO_SUBMIT_CHUNK", &mt_msgs_type_mesh_chunk, &c);
+    for (int i = 0; i < 100; i++) lcm_handle_timeout(fx.lcm, 2);
+    CHECK_EQ(on_daemon_channels, 0);
+    mtd_daemon_get_counts(fx.daemon, &counts);
+    CHECK_EQ(counts.errors, errors_before + 1 + 6);
+    mtd_daemon_heartbeat(fx.daemon);
+    fx.have_status = false;
+    for (int i = 0; i < 100 && !fx.have_status; i++) lcm_handle_timeout(fx.lcm, 20);
+    CHECK(fx.have_status && strstr(fx.last_status.last_error, "names a daemon channel"));
+    CHECK_EQ(fx.last_status.transfers_active, 0);
+    lcm_unsubscribe(fx.lcm, sub_daemon);
     check_still_serving(&fx, "cube");
     fixture_free(&fx);
 }
