@@ -49,6 +49,8 @@ typedef enum mode {
     MODE_NOISE,      /* garbage, a reply for another id and an ack first, then the answer */
     MODE_ERROR,      /* UNKNOWN_MESH with an error text */
     MODE_CORRUPT,    /* a reply whose value_offsets decrease */
+    MODE_BUSY_TWICE, /* the first two attempts of each request id answered BUSY */
+    MODE_BUSY,       /* every attempt answered BUSY */
 } mode;
 
 #define MAX_IDS 4096
@@ -271,6 +273,40 @@ static void answer_submit(fixture *f, const meshtopo_mesh_t *m, const uint8_t *d
     free(buf);
 }
 
+/* A BUSY ack_t or reply_t, as a daemon whose limits are reached sends. */
+static void answer_busy(fixture *f, const char *reply_channel, int64_t request_id,
+                        const char *mesh_id, const mt_msgs_type *type)
+{
+    char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    answer_channel(reply_channel, type, channel);
+    const char *why = "build queue full (8 waiting): retry later";
+    if (type == &mt_msgs_type_ack) {
+        meshtopo_ack_t ack;
+        memset(&ack, 0, sizeof ack);
+        ack.request_id = request_id;
+        ack.status = MESHTOPO_STATUS_CODE_T_BUSY;
+        ack.error = (char *)why;
+        ack.mesh_id = (char *)mesh_id;
+        CHECK_EQ(meshtopo_ack_t_publish(f->lcm, channel, &ack), 0);
+        return;
+    }
+    int32_t zero = 0;
+    meshtopo_reply_t r;
+    memset(&r, 0, sizeof r);
+    r.request_id = request_id;
+    r.status = MESHTOPO_STATUS_CODE_T_BUSY;
+    r.error = (char *)why;
+    r.mesh_id = (char *)mesh_id;
+    r.num_item_offsets = r.num_value_offsets = 1;
+    r.item_offsets = r.value_offsets = r.value2_offsets = &zero;
+    publish_reply(f, reply_channel, &r);
+}
+
+static int answers_busy(const fixture *f, int seen)
+{
+    return f->mode == MODE_BUSY || (f->mode == MODE_BUSY_TWICE && seen <= 2);
+}
+
 static void respond(fixture *f, const uint8_t *data, size_t size)
 {
     const mt_msgs_type *type = mt_msgs_type_of(data, size);
@@ -282,7 +318,10 @@ static void respond(fixture *f, const uint8_t *data, size_t size)
             return;
         }
         int seen = record_id(f, m.request_id);
-        if (f->mode == MODE_ANSWER || (f->mode == MODE_DROP_FIRST && seen > 1))
+        if (answers_busy(f, seen))
+            answer_busy(f, m.reply_channel, m.request_id, m.mesh_id, &mt_msgs_type_ack);
+        else if (f->mode == MODE_ANSWER || f->mode == MODE_BUSY_TWICE ||
+                 (f->mode == MODE_DROP_FIRST && seen > 1))
             answer_submit(f, &m, data, size);
         meshtopo_mesh_t_decode_cleanup(&m);
         return;
@@ -297,6 +336,13 @@ static void respond(fixture *f, const uint8_t *data, size_t size)
     switch (f->mode) {
         case MODE_ANSWER:
             answer_query(f, &q, 0, q.request_id);
+            break;
+        case MODE_BUSY_TWICE:
+        case MODE_BUSY:
+            if (answers_busy(f, seen))
+                answer_busy(f, q.reply_channel, q.request_id, q.mesh_id, &mt_msgs_type_reply);
+            else
+                answer_query(f, &q, 0, q.request_id);
             break;
         case MODE_DROP_FIRST:
             if (seen > 1) answer_query(f, &q, 0, q.request_id);
@@ -512,6 +558,59 @@ static void timeout_after_retries(void)
     mt_client_get_stats(f->client, &st);
     CHECK_EQ(st.attempts, 3);
     CHECK_EQ(st.timeouts, 1);
+    fixture_stop(f);
+}
+
+/* BUSY is retried after pauses that grow (100 ms, then about 200 ms), under
+ * the same request id, within the retry budget; then the answer counts. */
+static void busy_retried_with_backoff(void)
+{
+    fixture *f = fixture_start(MODE_BUSY_TWICE, 2000, 3);
+    uint32_t ids[] = {4};
+    meshtopo_reply_t reply;
+    mt_diag diag;
+    int64_t start = now_ms();
+    CHECK_OK(mt_client_query(f->client, "m", 0, MESHTOPO_QUERY_T_VALENCE, ids, 1, &reply, &diag));
+    int64_t took = now_ms() - start;
+    CHECK(valence_reply_ok(&reply, ids, 1));
+    mt_client_reply_free(&reply);
+    CHECK(took >= (MT_CLIENT_BUSY_PAUSE_MS + 2 * MT_CLIENT_BUSY_PAUSE_MS) * 3 / 4);
+    CHECK(took < 2000); /* the pauses, not the 2 s timeout */
+    CHECK_EQ(seen_num_ids(f), 1);
+    CHECK_EQ(seen_count(f, 0), 3);
+    double positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    uint32_t sizes[] = {3}, indices[] = {0, 1, 2};
+    mt_face_list triangle = {3, 1, 3, positions, sizes, indices};
+    mt_client_ack ack;
+    CHECK_OK(mt_client_submit(f->client, "triangle", &triangle, 0, &ack, &diag));
+    CHECK_EQ(ack.msg.status, 0);
+    mt_client_ack_free(&ack);
+    CHECK_EQ(seen_count(f, 1), 3);
+    mt_client_stats st;
+    mt_client_get_stats(f->client, &st);
+    CHECK_EQ(st.busy_retries, 4);
+    CHECK_EQ(st.timeouts, 0);
+    fixture_stop(f);
+}
+
+/* BUSY on every attempt: the call fails with the daemon's answer once the
+ * retries are spent, not at the first BUSY and not as a timeout. */
+static void busy_until_retries_spent(void)
+{
+    fixture *f = fixture_start(MODE_BUSY, 2000, 2);
+    uint32_t ids[] = {4};
+    meshtopo_reply_t reply;
+    mt_diag diag;
+    CHECK_STATUS(
+        mt_client_query(f->client, "m", 0, MESHTOPO_QUERY_T_VALENCE, ids, 1, &reply, &diag),
+        MT_ERR_IO);
+    CHECK(strstr(diag.message, "BUSY: build queue full") != NULL);
+    CHECK_EQ(reply.status, MESHTOPO_STATUS_CODE_T_BUSY);
+    mt_client_reply_free(&reply);
+    CHECK_EQ(seen_count(f, 0), 3);
+    mt_client_stats st;
+    mt_client_get_stats(f->client, &st);
+    CHECK_EQ(st.busy_retries, 2);
     fixture_stop(f);
 }
 
@@ -1207,6 +1306,8 @@ static const mt_test_case cases[] = {
     {"memq_is_per_instance", memq_is_per_instance},
     {"query_answered", query_answered},
     {"retry_reuses_request_id", retry_reuses_request_id},
+    {"busy_retried_with_backoff", busy_retried_with_backoff},
+    {"busy_until_retries_spent", busy_until_retries_spent},
     {"timeout_after_retries", timeout_after_retries},
     {"garbage_and_foreign_replies_ignored", garbage_and_foreign_replies_ignored},
     {"many_threads_one_client", many_threads_one_client},

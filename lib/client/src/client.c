@@ -341,6 +341,49 @@ static mt__pending *table_find(mt_client *client, int64_t request_id)
     return NULL;
 }
 
+/* The pause before sending p again after its n-th BUSY answer (mutex held):
+ * MT_CLIENT_BUSY_PAUSE_MS doubled n - 1 times, at most
+ * MT_CLIENT_BUSY_PAUSE_MAX_MS, times a factor in [0.75, 1.25) so that the
+ * clients a busy daemon turned away do not all come back at once. */
+static int64_t busy_pause_us(mt_client *client, int n)
+{
+    int64_t ms = MT_CLIENT_BUSY_PAUSE_MS;
+    for (int i = 1; i < n && ms < MT_CLIENT_BUSY_PAUSE_MAX_MS; i++) ms *= 2;
+    if (ms > MT_CLIENT_BUSY_PAUSE_MAX_MS) ms = MT_CLIENT_BUSY_PAUSE_MAX_MS;
+    /* xorshift64: a spread, not a secret */
+    uint64_t x = client->jitter_state;
+    x ^= x << 13;
+    x ^= x >> 7;
+    x ^= x << 17;
+    client->jitter_state = x;
+    int64_t us = ms * 1000;
+    return us * 3 / 4 + (int64_t)(x % (uint64_t)(us / 2));
+}
+
+/* A BUSY answer to p while it has attempts left (mutex held): p stays in the
+ * table and is sent again after a pause, by run_deadlines (or, for a chunked
+ * submission, by its sender once transfer->resume_us has passed). Returns
+ * whether p is kept; false when it is out of attempts. */
+static int retry_busy_locked(mt_client *client, mt__pending *p, int *wake)
+{
+    if (p->attempts_left <= 0) return 0;
+    int64_t resume = mt__client_now_us() + busy_pause_us(client, ++p->busy_answers);
+    client->stats.busy_retries++;
+    if (p->transfer && !p->transfer->complete) { /* refused on admission: its sender polls */
+        p->transfer->resume_us = resume;
+        p->attempts_left--;
+        p->deadline_us = resume + (int64_t)client->timeout_ms * 1000;
+        pthread_cond_broadcast(&p->cond);
+    } else {
+        p->deadline_us = resume;
+    }
+    if (p->deadline_us < client->next_deadline_us) {
+        client->next_deadline_us = p->deadline_us;
+        *wake = 1;
+    }
+    return 1;
+}
+
 /* A mesh_transfer_t: progress of a chunked submission (recorded for its
  * sender, which is woken; the submission's attempts start afresh since the
  * daemon is alive), or its refusal (which completes it). */
@@ -354,6 +397,12 @@ static void on_transfer_status(mt_client *client, meshtopo_mesh_transfer_t *msg)
         return;
     }
     client->stats.replies++;
+    int wake = 0;
+    if (msg->status == MESHTOPO_STATUS_CODE_T_BUSY && retry_busy_locked(client, p, &wake)) {
+        pthread_mutex_unlock(&client->mutex);
+        if (wake) wake_thread(client);
+        return;
+    }
     if (msg->status != MESHTOPO_STATUS_CODE_T_OK) {
         table_take(client, p->request_id);
         drop_parts(client, p);
@@ -433,6 +482,14 @@ static void handle_answer(mt_client *client, const void *data, size_t size)
     }
     client->stats.replies++;
     drop_parts(client, p);
+    int wake = 0;
+    if (code == MESHTOPO_STATUS_CODE_T_BUSY && retry_busy_locked(client, p, &wake)) {
+        table_insert(client, p);
+        pthread_mutex_unlock(&client->mutex);
+        type->decode_cleanup(&answer);
+        if (wake) wake_thread(client);
+        return;
+    }
     if (type == &mt_msgs_type_reply && mt_client_reply_check(&answer.reply, &p->diag) != MT_OK) {
         /* Offsets that do not describe the arrays: never handed out. */
         p->status = MT_ERR_CORRUPT;
@@ -726,6 +783,7 @@ mt_status mt_client_create(const mt_client_options *opts, mt_client **out, mt_di
     /* Ids start at a random point so a restarted node reusing a channel name
      * does not repeat recent ones; they stay positive. */
     client->next_request_id = (int64_t)(random_u64() >> 2) + 1;
+    client->jitter_state = random_u64() | 1u;
     snprintf(client->source, sizeof client->source, "%s", source);
     /* valid_prefix keeps every name within LCM's limit. */
     mt_msgs_channel_name(prefix, MT_MSGS_CHANNEL_SUBMIT, client->submit_channel);

@@ -30,6 +30,7 @@ typedef struct mt__transfer {
     int complete; /* every byte is in: only the ack is awaited */
     uint64_t received, listed_until;
     size_t num_missing;
+    int64_t resume_us; /* BUSY: send nothing before this (monotonic) */
     int64_t missing_offsets[MESHTOPO_MESH_TRANSFER_T_MISSING_MAX];
     int64_t missing_lengths[MESHTOPO_MESH_TRANSFER_T_MISSING_MAX];
 } mt__transfer;
@@ -61,6 +62,7 @@ typedef struct mt__pending {
     mt__msgbuf *buf;
     int64_t deadline_us; /* monotonic clock */
     int attempts_left;   /* after the one in flight */
+    int busy_answers;    /* BUSY answers so far, each retried after a longer pause */
 
     /* Completion. */
     int done;
@@ -125,6 +127,7 @@ struct mt_client {
     size_t num_pending;
     int64_t next_deadline_us;
     int64_t next_request_id;
+    uint64_t jitter_state; /* spreads the pauses after BUSY */
     mt_client_stats stats;
 };
 

@@ -8,7 +8,6 @@
  * empty chunk asking for the status), so a lost datagram costs about as much
  * as the network is slow, not a fixed delay; the pending request's usual timeout and
  * retries bound how long the daemon may stay silent. Ends with the ack. */
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -182,12 +181,17 @@ mt_status mt__client_submit_chunked(mt_client *client, const meshtopo_mesh_t *m,
                 pthread_cond_wait(&p->cond, &client->mutex);
                 continue;
             }
-            struct timespec until;
-            clock_gettime(CLOCK_REALTIME, &until);
-            add_us(&until, poll_wait_us(&s));
-            int rc = 0;
-            while (!p->done && transfer->seq == seen && rc != ETIMEDOUT)
-                rc = pthread_cond_timedwait(&p->cond, &client->mutex, &until);
+            /* No status for a while: poll, but not before a BUSY pause ends. */
+            int64_t poll_at = monotonic_us() + poll_wait_us(&s);
+            for (;;) {
+                int64_t at = poll_at > transfer->resume_us ? poll_at : transfer->resume_us;
+                int64_t wait = at - monotonic_us();
+                if (p->done || transfer->seq != seen || wait <= 0) break;
+                struct timespec until;
+                clock_gettime(CLOCK_REALTIME, &until);
+                add_us(&until, wait);
+                pthread_cond_timedwait(&p->cond, &client->mutex, &until);
+            }
             if (!p->done && transfer->seq == seen) {
                 pthread_mutex_unlock(&client->mutex);
                 publish_chunk(&s, 0, 1, 1);

@@ -29,6 +29,8 @@ typedef struct mt_client mt_client;
 #define MT_CLIENT_DEFAULT_PREFIX "MESHTOPO_"
 #define MT_CLIENT_DEFAULT_TIMEOUT_MS 1000
 #define MT_CLIENT_DEFAULT_RETRIES 3
+#define MT_CLIENT_BUSY_PAUSE_MS 100
+#define MT_CLIENT_BUSY_PAUSE_MAX_MS 3200
 /* Longest channel prefix accepted (the client's reply channel, PREFIX "REPLY_"
  * and a unique tail, must fit MESHTOPO_MESH_T_REPLY_CHANNEL_MAX). */
 #define MT_CLIENT_MAX_PREFIX 24
@@ -70,7 +72,11 @@ typedef struct mt_client_options {
     const char *channel_prefix;
     /* Time to wait for a reply to one attempt; 0 = MT_CLIENT_DEFAULT_TIMEOUT_MS. */
     int timeout_ms;
-    /* Attempts after the first; 0 = MT_CLIENT_DEFAULT_RETRIES, negative = none. */
+    /* Attempts after the first; 0 = MT_CLIENT_DEFAULT_RETRIES, negative = none.
+     * A BUSY answer uses one: the request is sent again after a pause that
+     * doubles each time (MT_CLIENT_BUSY_PAUSE_MS, at most
+     * MT_CLIENT_BUSY_PAUSE_MAX_MS, spread by +-25 %); BUSY after the last
+     * attempt fails the call with the daemon's answer ("BUSY: ..."). */
     int retries;
     /* Name of the node, sent as mesh_t.source; NULL = "meshtopo-client". */
     const char *source;
@@ -104,6 +110,7 @@ typedef struct mt_client_stats {
     uint64_t reply_parts;     /* reply_part_t pieces kept (duplicates not counted) */
     uint64_t bad_parts;       /* pieces refused: layout broken, another answer, bad hash */
     uint64_t reply_pulls;     /* reply_pull_t sent (next windows and lost parts) */
+    uint64_t busy_retries;    /* requests sent again after a pause because the daemon said BUSY */
 } mt_client_stats;
 
 /* Creates a client: its own lcm_t (or opts->lcm), a private reply channel
