@@ -544,6 +544,15 @@ static mt_status backing_list(void *ctx, const mtd_store_listing *held,
     return MT_OK;
 }
 
+uint64_t mtd_archiver_bytes(mtd_archiver *a)
+{
+    if (!a->archive) return 0;
+    pthread_mutex_lock(&a->lock);
+    uint64_t bytes = a->bytes;
+    pthread_mutex_unlock(&a->lock);
+    return bytes;
+}
+
 void mtd_archiver_stats(mtd_archiver *a, meshtopo_status_t *st)
 {
     st->memory_budget = (int64_t)a->budget;

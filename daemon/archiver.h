@@ -57,4 +57,7 @@ int32_t mtd_archiver_store(mtd_archiver *archiver, const meshtopo_mesh_t *m,
 /* Fills the heartbeat's archive_* fields and memory_budget. */
 void mtd_archiver_stats(mtd_archiver *archiver, meshtopo_status_t *st);
 
+/* Bytes of the archive's files (0 without an archive). */
+uint64_t mtd_archiver_bytes(mtd_archiver *archiver);
+
 #endif

@@ -10,6 +10,11 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+/* --max-archive-bytes until the archive directory is known. */
+#define DERIVED_FROM_ARCHIVE UINT64_MAX
 
 typedef enum setting_kind {
     KIND_TEXT,
@@ -50,14 +55,24 @@ static const setting settings[] = {
     {"max-indices", "MESHTOPOD_MAX_INDICES", KIND_BYTES, FIELD(max_indices), 1, 0x7fffffff,
      "largest face-index count accepted (suffixes k, M, G allowed)"},
     {"max-store-bytes", "MESHTOPOD_MAX_STORE_BYTES", KIND_BYTES, FIELD(max_store_bytes), 0,
-     UINT64_MAX, "memory for built meshes, 0 = no limit (suffixes k, M, G)"},
+     UINT64_MAX - 1,
+     "memory for built meshes, 0 = no limit (k, M, G; default: half the memory of the "
+     "machine or its cgroup)"},
+    {"max-archive-bytes", "MESHTOPOD_MAX_ARCHIVE_BYTES", KIND_BYTES, FIELD(max_archive_bytes), 0,
+     UINT64_MAX - 1,
+     "archive files, 0 = no limit (k, M, G; default: half the free space of the archive's "
+     "file system at start)"},
+    {"max-claim-ratio", "MESHTOPOD_MAX_CLAIM_RATIO", KIND_U32, FIELD(max_claim_ratio), 0,
+     UINT32_MAX,
+     "a mesh may claim at most this many times the bytes it carries in memory, 0 = no limit"},
     {"max-versions", "MESHTOPOD_MAX_VERSIONS", KIND_U32, FIELD(max_versions), 0, UINT32_MAX,
      "versions kept per mesh id, 0 = all"},
     {"heartbeat-ms", "MESHTOPOD_HEARTBEAT_MS", KIND_U32, FIELD(heartbeat_ms), 10, 3600000,
      "period of the status message"},
     {"max-transfer-bytes", "MESHTOPOD_MAX_TRANSFER_BYTES", KIND_BYTES, FIELD(max_transfer_bytes), 1,
      UINT64_MAX,
-     "memory held by unfinished chunked submissions; more is refused (suffixes k, M, G)"},
+     "memory held by unfinished chunked submissions; more is refused (k, M, G; default: a "
+     "quarter of --max-store-bytes' default, at most 1 GiB)"},
     {"transfer-timeout-ms", "MESHTOPOD_TRANSFER_TIMEOUT_MS", KIND_U32, FIELD(transfer_timeout_ms),
      10, 3600000, "a chunked submission without a chunk for this long is dropped"},
     {"log-level", "MESHTOPOD_LOG_LEVEL", KIND_LEVEL, FIELD(log_level), 0, 0,
@@ -77,6 +92,47 @@ static const setting settings[] = {
 
 #define NUM_SETTINGS (sizeof settings / sizeof settings[0])
 
+/* The memory this process may use: the machine's, or its cgroup's
+ * memory.max (cgroup v2) when that is lower. 0 when unknown. */
+static uint64_t usable_memory(void)
+{
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    uint64_t bytes = pages > 0 && page > 0 ? (uint64_t)pages * (uint64_t)page : 0;
+    FILE *f = fopen("/sys/fs/cgroup/memory.max", "r");
+    if (f) {
+        unsigned long long limit = 0;
+        if (fscanf(f, "%llu", &limit) == 1 && limit > 0 && (bytes == 0 || limit < bytes))
+            bytes = limit;
+        fclose(f);
+    }
+    return bytes;
+}
+
+/* Half the space unprivileged users may still fill on the file system of
+ * dir, or of its nearest existing parent (the daemon creates dir). 0 when
+ * unknown. */
+static uint64_t half_free_space(const char *dir)
+{
+    char path[MTD_CONFIG_TEXT_MAX];
+    snprintf(path, sizeof path, "%s", dir);
+    struct statvfs fs;
+    while (statvfs(path, &fs) != 0) {
+        char *slash = strrchr(path, '/');
+        if (!slash) {
+            if (strcmp(path, ".") == 0) return 0;
+            strcpy(path, ".");
+            continue;
+        }
+        if (slash == path) {
+            if (path[1] == '\0') return 0;
+            path[1] = '\0';
+        } else {
+            *slash = '\0';
+        }
+    }
+    return (uint64_t)fs.f_bavail * (uint64_t)fs.f_frsize / 2;
+}
+
 static void set_defaults(mtd_config *c)
 {
     memset(c, 0, sizeof *c);
@@ -88,7 +144,12 @@ static void set_defaults(mtd_config *c)
     c->max_indices = 128u << 20;
     c->max_versions = 8;
     c->heartbeat_ms = 1000;
-    c->max_transfer_bytes = 1ull << 30;
+    c->max_store_bytes = usable_memory() / 2;
+    c->max_transfer_bytes = c->max_store_bytes / 4;
+    if (c->max_transfer_bytes == 0 || c->max_transfer_bytes > 1ull << 30)
+        c->max_transfer_bytes = 1ull << 30;
+    c->max_archive_bytes = DERIVED_FROM_ARCHIVE;
+    c->max_claim_ratio = 16;
     c->transfer_timeout_ms = 10000;
     c->log_level = MTD_LOG_INFO;
     c->archive_mode = MTD_ARCHIVE_SYNC;
@@ -258,6 +319,8 @@ mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_ac
         mt_status st = apply(s, value, origin, out, diag);
         if (st != MT_OK) return st;
     }
+    if (out->max_archive_bytes == DERIVED_FROM_ARCHIVE)
+        out->max_archive_bytes = out->archive_dir[0] ? half_free_space(out->archive_dir) : 0;
     return MT_OK;
 }
 
@@ -295,8 +358,11 @@ void mtd_config_usage(FILE *to)
                 snprintf(shown, sizeof shown, "%u", *(const uint32_t *)(const void *)field);
                 break;
             case KIND_BYTES:
-                snprintf(shown, sizeof shown, "%llu",
-                         (unsigned long long)*(const uint64_t *)(const void *)field);
+                if (*(const uint64_t *)(const void *)field == DERIVED_FROM_ARCHIVE)
+                    snprintf(shown, sizeof shown, "from the archive's free space");
+                else
+                    snprintf(shown, sizeof shown, "%llu",
+                             (unsigned long long)*(const uint64_t *)(const void *)field);
                 break;
         }
         fprintf(to, "  --%-16s %s\n  %-18s env %s, default %s\n", s->flag, s->help, "", s->env,
@@ -309,13 +375,15 @@ void mtd_config_log(const mtd_config *c)
 {
     mtd_log(MTD_LOG_INFO, "config",
             "lcm_url=%s prefix=%s name=%s workers=%u max_verts=%u max_faces=%u "
-            "max_indices=%llu max_store_bytes=%llu max_versions=%u heartbeat_ms=%u "
+            "max_indices=%llu max_store_bytes=%llu max_archive_bytes=%llu max_claim_ratio=%u "
+            "max_versions=%u heartbeat_ms=%u "
             "max_transfer_bytes=%llu "
             "transfer_timeout_ms=%u log_level=%s archive=%s archive_mode=%s archive_queue=%u "
             "preload=%u memory_budget=%llu",
             c->lcm_url[0] ? c->lcm_url : "(lcm default)", c->channel_prefix, c->name, c->workers,
             c->max_verts, c->max_faces, (unsigned long long)c->max_indices,
-            (unsigned long long)c->max_store_bytes, c->max_versions, c->heartbeat_ms,
+            (unsigned long long)c->max_store_bytes, (unsigned long long)c->max_archive_bytes,
+            c->max_claim_ratio, c->max_versions, c->heartbeat_ms,
             (unsigned long long)c->max_transfer_bytes, c->transfer_timeout_ms,
             mtd_log_level_name(c->log_level), c->archive_dir[0] ? c->archive_dir : "(none)",
             mtd_archive_mode_name(c->archive_mode), c->archive_queue, c->preload,

@@ -30,6 +30,8 @@ typedef struct mtd_config {
     uint32_t max_faces;
     uint64_t max_indices;
     uint64_t max_store_bytes;     /* memory for built meshes, 0 = no limit */
+    uint64_t max_archive_bytes;   /* archive files, 0 = no limit */
+    uint32_t max_claim_ratio;     /* a mesh's memory over the bytes it carries, 0 = no limit */
     uint32_t max_versions;        /* versions kept per mesh id, 0 = all */
     uint32_t heartbeat_ms;        /* period of the status message */
     uint64_t max_transfer_bytes;  /* memory held by unfinished chunked submissions */
@@ -50,7 +52,11 @@ typedef enum mtd_config_action {
 } mtd_config_action;
 
 /* Fills out with the defaults, then the MESHTOPOD_* environment variables,
- * then argv (argv[0] is the program name). On error returns
+ * then argv (argv[0] is the program name). Defaults that depend on the
+ * machine are read from it: --max-store-bytes half its memory (or of the
+ * cgroup's memory.max when lower), --max-transfer-bytes an eighth of that
+ * (at most 1 GiB), --max-archive-bytes half the free space of the archive's
+ * file system. On error returns
  * MT_ERR_INVALID_ARG with diag naming the flag or variable and the value. */
 mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_action *out_action,
                            mt_diag *diag);

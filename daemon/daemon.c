@@ -21,6 +21,8 @@
 
 /* Builds waiting for a worker before submissions are answered BUSY. */
 #define BUILD_QUEUE_CAPACITY 256
+/* Builds one reply channel may have admitted at once: a quarter of the queue. */
+#define BUILDS_PER_SENDER (BUILD_QUEUE_CAPACITY / 4)
 
 struct mtd_daemon {
     mtd_config config;
@@ -37,6 +39,7 @@ struct mtd_daemon {
     mtd_pool *pool;
     mtd_replies *replies;
     mtd_archiver *archiver;
+    mtd_admission *admission;
     mtd_submitter *submitter;
     mtd_transfers *transfers;
     mtd_queries *queries;
@@ -93,12 +96,20 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
         return fail_nomem(diag, "request cache");
     mt_status s = mtd_archiver_open(c, d->store, d->errors, &d->archiver, diag);
     if (s != MT_OK) return s;
+    mtd_admission_limits limits = {
+        .max_store_bytes = c->max_store_bytes,
+        .max_archive_bytes = c->archive_dir[0] ? c->max_archive_bytes : 0,
+        .max_claim_ratio = c->max_claim_ratio,
+        .builds_per_sender = BUILDS_PER_SENDER};
+    if (mtd_admission_create(&limits, &d->admission) != MT_OK) return fail_nomem(diag, "admission");
     mtd_submit_deps submit = {.config = c,
                               .lcm = d->lcm,
                               .topology_channel = d->channels[MT_MSGS_CHANNEL_TOPOLOGY],
                               .pool = d->pool,
                               .replies = d->replies,
                               .archiver = d->archiver,
+                              .store = d->store,
+                              .admission = d->admission,
                               .workspaces = d->workspaces,
                               .contents = d->contents};
     if (mtd_submitter_create(&submit, &d->submitter) != MT_OK) return fail_nomem(diag, "submitter");
@@ -188,6 +199,7 @@ void mtd_daemon_destroy(mtd_daemon *d)
     mtd_queries_destroy(d->queries);
     mtd_transfers_destroy(d->transfers);
     mtd_submitter_destroy(d->submitter);
+    mtd_admission_destroy(d->admission);
     mtd_archiver_destroy(d->archiver);
     mtd_replies_destroy(d->replies);
     mtd_store_destroy(d->store); /* its meshes go to the workspace pool: destroyed next */

@@ -32,6 +32,7 @@ typedef struct submit_job {
     void *content; /* NULL, or the buffer msg's arrays point into */
     size_t content_capacity;
     uint64_t content_hash;
+    mtd_cost cost; /* reserved in admission until the job ends */
 } submit_job;
 
 /* Frees msg: its strings, and its arrays or gives back the buffer they
@@ -48,8 +49,10 @@ static void free_msg(mtd_submitter *s, meshtopo_mesh_t *msg, void *content, size
     free(msg);
 }
 
+/* Ends a job: gives back its admission and frees it. */
 static void free_job(submit_job *job)
 {
+    mtd_admission_give_back(job->submitter->deps.admission, job->msg->reply_channel, &job->cost);
     free_msg(job->submitter, job->msg, job->content, job->content_capacity);
     free(job);
 }
@@ -263,8 +266,25 @@ static void submit(mtd_submitter *sub, meshtopo_mesh_t *msg, void *content, size
         free_msg(sub, msg, content, capacity);
         return;
     }
+    mtd_cost cost = mtd_cost_estimate((uint32_t)msg->num_verts, msg->num_position_values != 0,
+                                      (uint32_t)msg->num_faces, (uint64_t)msg->num_indices);
+    mtd_store_totals held;
+    mtd_store_get_totals(sub->deps.store, &held);
+    status = mtd_admission_take(sub->deps.admission, msg->reply_channel, &cost, held.memory_bytes,
+                                mtd_archiver_bytes(sub->deps.archiver), error, sizeof error);
+    if (status != MESHTOPO_STATUS_CODE_T_OK) {
+        /* TOO_LARGE stays true for this request; BUSY may pass on a retry. */
+        bool lasting = status == MESHTOPO_STATUS_CODE_T_TOO_LARGE;
+        if (!lasting)
+            mtd_reply_abandon(replies, msg->reply_channel, msg->request_id, &mt_msgs_type_ack);
+        mtd_reply_ack_error(replies, msg->reply_channel, msg->request_id, msg->mesh_id, lasting,
+                            status, error);
+        free_msg(sub, msg, content, capacity);
+        return;
+    }
     submit_job *job = malloc(sizeof *job);
     if (!job) {
+        mtd_admission_give_back(sub->deps.admission, msg->reply_channel, &cost);
         mtd_reply_abandon(replies, msg->reply_channel, msg->request_id, &mt_msgs_type_ack);
         mtd_reply_ack_error(replies, msg->reply_channel, msg->request_id, msg->mesh_id, false,
                             MESHTOPO_STATUS_CODE_T_INTERNAL, "out of memory");
@@ -276,6 +296,7 @@ static void submit(mtd_submitter *sub, meshtopo_mesh_t *msg, void *content, size
     job->content = content;
     job->content_capacity = capacity;
     job->content_hash = content_hash;
+    job->cost = cost;
     mtd_log(MTD_LOG_DEBUG, "submit",
             "mesh_id=%s request_id=%" PRId64 " verts=%" PRId32 " faces=%" PRId32, msg->mesh_id,
             msg->request_id, msg->num_verts, msg->num_faces);

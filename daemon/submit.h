@@ -1,5 +1,6 @@
 /* meshtopod's submissions: a decoded mesh_t (whole, or reassembled from
- * chunks by transfer.c) is checked field by field, built on the worker pool
+ * chunks by transfer.c) is checked field by field and admitted by its cost
+ * (admission.h), built on the worker pool
  * so the LCM thread keeps answering queries, stored (and archived) through
  * the archiver, and only then acknowledged (ack_t with the topology report)
  * and announced on PREFIX+"TOPOLOGY". Handles arrive on the LCM thread;
@@ -11,6 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "admission.h"
 #include "archiver.h"
 #include "config.h"
 #include "content_pool.h"
@@ -28,6 +30,8 @@ typedef struct mtd_submit_deps {
     mtd_pool *pool;
     mtd_replies *replies;
     mtd_archiver *archiver;
+    mtd_store *store;         /* what it holds, for admission */
+    mtd_admission *admission; /* checked before a build is queued */
     mtd_workspace_pool *workspaces;
     mtd_content_pool *contents;
 } mtd_submit_deps;

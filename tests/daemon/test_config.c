@@ -29,6 +29,23 @@ static void config_defaults(void)
     CHECK_EQ(c.workers, 2);
     CHECK_EQ(c.heartbeat_ms, 1000);
     CHECK_EQ(c.log_level, MTD_LOG_INFO);
+    /* Limits from the machine: half its memory for the store, a quarter of
+     * that (at most 1 GiB) for transfers; no archive, no archive limit. */
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    uint64_t machine = (uint64_t)pages * (uint64_t)page;
+    CHECK(c.max_store_bytes > 0 && c.max_store_bytes <= machine / 2);
+    CHECK(c.max_transfer_bytes > 0 && c.max_transfer_bytes <= c.max_store_bytes / 4 + 1 &&
+          c.max_transfer_bytes <= 1ull << 30);
+    CHECK_EQ(c.max_archive_bytes, 0);
+    CHECK_EQ(c.max_claim_ratio, 16);
+    /* With an archive: half the free space of its file system (the
+     * directory need not exist yet). */
+    const char *with_archive[] = {"meshtopod", "--archive", "/tmp/meshtopo-no-such-dir/a"};
+    CHECK_OK(parse(&c, &action, &diag, 3, with_archive));
+    CHECK(c.max_archive_bytes > 0);
+    const char *explicit_limit[] = {"meshtopod", "--archive", "/tmp", "--max-archive-bytes", "5M"};
+    CHECK_OK(parse(&c, &action, &diag, 5, explicit_limit));
+    CHECK_EQ(c.max_archive_bytes, 5u << 20);
 }
 
 static void config_flags_override_environment(void)

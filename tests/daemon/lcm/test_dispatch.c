@@ -76,16 +76,15 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *use
     fx->status_messages++;
 }
 
-static void fixture_init(fixture *fx)
+/* A daemon with meshtopod's flags argv[1 .. argc - 1]. */
+static void fixture_init_with(fixture *fx, int argc, char **argv)
 {
     memset(fx, 0, sizeof *fx);
     fx->next_request_id = 1;
-    char *argv[] = {"meshtopod", "--max-verts", "100000",      "--max-faces", "200000",
-                    "--workers", "2",           "--log-level", "error"};
     mtd_config config;
     mtd_config_action action;
     mt_diag diag;
-    CHECK_OK(mtd_config_parse(9, argv, &config, &action, &diag));
+    CHECK_OK(mtd_config_parse(argc, argv, &config, &action, &diag));
     mtd_log_set_level(config.log_level);
     fx->lcm = lcm_create("memq://");
     CHECK(fx->lcm != NULL);
@@ -93,6 +92,13 @@ static void fixture_init(fixture *fx)
     lcm_subscribe(fx->lcm, REPLY_CHANNEL "_(ACK|REPLY|PART)", on_reply, fx);
     lcm_subscribe(fx->lcm, "MESHTOPO_TOPOLOGY", on_topology, fx);
     lcm_subscribe(fx->lcm, "MESHTOPO_STATUS", on_status, fx);
+}
+
+static void fixture_init(fixture *fx)
+{
+    char *argv[] = {"meshtopod", "--max-verts", "100000",      "--max-faces", "200000",
+                    "--workers", "2",           "--log-level", "error"};
+    fixture_init_with(fx, 9, argv);
 }
 
 static void fixture_free(fixture *fx)
@@ -996,6 +1002,78 @@ static void test_bad_too_large(void)
     fixture_free(&fx);
 }
 
+/* Resident memory of this process (the daemon runs in it), from /proc. */
+static long rss_kb(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    long kb = -1;
+    while (f && fgets(line, sizeof line, f))
+        if (sscanf(line, "VmRSS: %ld kB", &kb) == 1) break;
+    if (f) fclose(f);
+    return kb;
+}
+
+/* Tiny mesh_t claiming the most vertices the default limits allow (no
+ * positions, six faces), across many ids: each refused by its claim before
+ * any build, with both figures named; nothing built, memory flat. */
+static void test_hostile_claims(void)
+{
+    fixture fx;
+    char *argv[] = {"meshtopod", "--log-level", "error"}; /* the default limits */
+    fixture_init_with(&fx, 3, argv);
+    long rss_before = rss_kb();
+    int32_t sizes[6] = {3, 3, 3, 3, 3, 3};
+    int32_t indices[18];
+    for (int i = 0; i < 18; i++) indices[i] = (16 << 20) - 1 - i;
+    mtd_counters before;
+    mtd_daemon_get_counts(fx.daemon, &before);
+    for (int k = 0; k < 40; k++) {
+        char id[32];
+        snprintf(id, sizeof id, "claim-%d", k);
+        meshtopo_mesh_t m;
+        memset(&m, 0, sizeof m);
+        m.request_id = fx.next_request_id++;
+        m.reply_channel = REPLY_CHANNEL;
+        m.mesh_id = id;
+        m.source = "hostile";
+        m.num_verts = 16 << 20;
+        m.num_faces = 6;
+        m.face_vertex_counts = sizes;
+        m.num_indices = 18;
+        m.face_vertex_indices = indices;
+        CHECK(meshtopo_mesh_t_encoded_size(&m) < 200);
+        check_submit_error(&fx, &m, MESHTOPO_STATUS_CODE_T_TOO_LARGE, "--max-claim-ratio",
+                           __LINE__);
+    }
+    mtd_counters after;
+    mtd_daemon_get_counts(fx.daemon, &after);
+    CHECK_EQ(after.builds, before.builds);
+    long rss_after = rss_kb();
+    CHECK(rss_before > 0 && rss_after - rss_before < 32 * 1024);
+    /* --max-claim-ratio 0: the user who really sends such meshes. */
+    fixture_free(&fx);
+    char *lenient[] = {"meshtopod", "--log-level", "error", "--max-claim-ratio", "0"};
+    fixture_init_with(&fx, 5, lenient);
+    meshtopo_mesh_t m;
+    memset(&m, 0, sizeof m);
+    m.request_id = fx.next_request_id++;
+    m.reply_channel = REPLY_CHANNEL;
+    m.mesh_id = "sparse";
+    m.source = "lenient";
+    m.num_verts = 1 << 20;
+    m.num_faces = 6;
+    m.face_vertex_counts = sizes;
+    m.num_indices = 18;
+    m.face_vertex_indices = indices;
+    for (int i = 0; i < 18; i++) indices[i] = (1 << 20) - 1 - i;
+    meshtopo_ack_t ack;
+    CHECK_EQ(submit(&fx, &m, &ack), 0);
+    CHECK_EQ(ack.status, MESHTOPO_STATUS_CODE_T_OK);
+    meshtopo_ack_t_decode_cleanup(&ack);
+    fixture_free(&fx);
+}
+
 static void test_bad_mesh_ids(void)
 {
     fixture fx;
@@ -1394,6 +1472,7 @@ static const mt_test_case cases[] = {
     {"bad_channels", test_bad_channels},
     {"bad_counts", test_bad_counts},
     {"bad_too_large", test_bad_too_large},
+    {"hostile_claims", test_hostile_claims},
     {"bad_mesh_ids", test_bad_mesh_ids},
     {"bad_queries", test_bad_queries},
     {"geometry_kinds", test_geometry_kinds},
