@@ -21,6 +21,12 @@ static size_t first_touching(const mtd_byte_ranges *r, uint64_t start)
     return lo;
 }
 
+bool mtd_byte_ranges_touches(const mtd_byte_ranges *r, uint64_t start, uint64_t end)
+{
+    size_t i = first_touching(r, start);
+    return i < r->count && r->items[i].start <= end;
+}
+
 mt_status mtd_byte_ranges_add(mtd_byte_ranges *r, uint64_t start, uint64_t end, uint64_t *out_added)
 {
     if (out_added) *out_added = 0;

@@ -6,6 +6,7 @@
 #ifndef MESHTOPOD_BYTE_RANGES_H
 #define MESHTOPOD_BYTE_RANGES_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -26,6 +27,10 @@ typedef struct mtd_byte_ranges {
  * set is then unchanged). */
 mt_status mtd_byte_ranges_add(mtd_byte_ranges *ranges, uint64_t start, uint64_t end,
                               uint64_t *out_added);
+
+/* Whether [start, end) overlaps or touches a range of the set, so that
+ * adding it would not make one more range. */
+bool mtd_byte_ranges_touches(const mtd_byte_ranges *ranges, uint64_t start, uint64_t end);
 
 /* The gaps of [0, total) not covered, in order: at most max_gaps of them into
  * out_offsets / out_lengths (may be NULL when max_gaps is 0). Returns how

@@ -1,15 +1,25 @@
 /* meshtopod's kept content buffer (content_pool.h): one buffer and its size
- * under a mutex. Any thread. */
+ * under a mutex. Buffers are anonymous mappings rather than malloc's: a
+ * mapping costs memory only for the pages written (a transfer touches what
+ * it was sent, not what it claims), and unmapping returns them to the system
+ * at once, where free() may keep them in the heap. Any thread. */
+#define _DEFAULT_SOURCE /* MAP_ANONYMOUS, MAP_NORESERVE */
 #include "content_pool.h"
 
 #include <pthread.h>
 #include <stdlib.h>
+#include <sys/mman.h>
 
 struct mtd_content_pool {
     pthread_mutex_t lock;
     void *kept;
     size_t capacity;
 };
+
+static void unmap(void *content, size_t capacity)
+{
+    if (content) munmap(content, capacity);
+}
 
 mt_status mtd_content_pool_create(mtd_content_pool **out_pool)
 {
@@ -22,7 +32,7 @@ mt_status mtd_content_pool_create(mtd_content_pool **out_pool)
 void mtd_content_pool_destroy(mtd_content_pool *pool)
 {
     if (!pool) return;
-    free(pool->kept);
+    unmap(pool->kept, pool->capacity);
     pthread_mutex_destroy(&pool->lock);
     free(pool);
 }
@@ -39,8 +49,12 @@ void *mtd_content_take(mtd_content_pool *pool, size_t size, size_t *out_capacity
     }
     pthread_mutex_unlock(&pool->lock);
     if (!content) {
-        content = malloc(size);
-        *out_capacity = size;
+        size_t capacity = size ? size : 1;
+        /* NORESERVE: a claimed size is address space, not a commitment. */
+        content = mmap(NULL, capacity, PROT_READ | PROT_WRITE,
+                       MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+        if (content == MAP_FAILED) return NULL;
+        *out_capacity = capacity;
     }
     return content;
 }
@@ -50,10 +64,16 @@ void mtd_content_release(mtd_content_pool *pool, void *content, size_t capacity)
     if (!content) return;
     pthread_mutex_lock(&pool->lock);
     void *older = pool->kept;
+    size_t older_capacity = pool->capacity;
     pool->kept = content;
     pool->capacity = capacity;
     pthread_mutex_unlock(&pool->lock);
-    free(older);
+    unmap(older, older_capacity);
+}
+
+void mtd_content_discard(void *content, size_t capacity)
+{
+    unmap(content, capacity);
 }
 
 const void *mtd_content_pool_kept(mtd_content_pool *pool, size_t *out_capacity)

@@ -19,12 +19,17 @@ mt_status mtd_content_pool_create(mtd_content_pool **out_pool);
 void mtd_content_pool_destroy(mtd_content_pool *pool);
 
 /* A buffer of at least `size` bytes: the kept one when it is large enough,
- * else a new one (NULL when out of memory). *out_capacity gets its size. */
+ * else a new mapping whose pages cost memory only once written (NULL when
+ * out of address space). *out_capacity gets its size. */
 void *mtd_content_take(mtd_content_pool *pool, size_t size, size_t *out_capacity);
 
 /* Gives back a buffer of `capacity` bytes: it is kept for the next take (the
  * one kept before is freed). NULL-safe. */
 void mtd_content_release(mtd_content_pool *pool, void *content, size_t capacity);
+
+/* Unmaps a buffer from mtd_content_take without keeping it: what an
+ * abandoned transfer held goes back to the system. NULL-safe. */
+void mtd_content_discard(void *content, size_t capacity);
 
 /* The kept buffer (NULL when none) and its capacity, for tests and stats. */
 const void *mtd_content_pool_kept(mtd_content_pool *pool, size_t *out_capacity);

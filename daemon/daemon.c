@@ -238,3 +238,8 @@ mtd_workspace_pool *mtd_daemon_workspace_pool(mtd_daemon *d)
 {
     return d->workspaces;
 }
+
+mtd_transfers *mtd_daemon_transfers(mtd_daemon *d)
+{
+    return d->transfers;
+}

@@ -54,5 +54,6 @@ void mtd_daemon_get_counts(mtd_daemon *daemon, mtd_counters *out_counts);
 mtd_store *mtd_daemon_store(mtd_daemon *daemon);
 mtd_content_pool *mtd_daemon_content_pool(mtd_daemon *daemon);
 mtd_workspace_pool *mtd_daemon_workspace_pool(mtd_daemon *daemon);
+mtd_transfers *mtd_daemon_transfers(mtd_daemon *daemon);
 
 #endif

@@ -2,8 +2,13 @@
  * mesh_t sent in single-datagram pieces, per (reply channel, request id),
  * into one buffer that a content decoder (meshtopo/mesh_content.h) hashes and
  * turns into the mesh's arrays while the chunks arrive, so the complete mesh
- * goes to the submitter at once. Admission is bounded (--max-transfer-bytes,
- * the mesh limits), stalled transfers expire (--transfer-timeout-ms), and
+ * goes to the submitter at once. The buffer is a mapping whose pages cost
+ * memory once written; a transfer is charged for the pages up to the
+ * highest byte it was sent, which the window (chunks start at most
+ * WINDOW_BYTES past the first missing byte) keeps close to what it really
+ * received, against --max-transfer-bytes and its reply channel's share of
+ * it. Stalled transfers expire (--transfer-timeout-ms) and give their pages
+ * back to the system; and
  * every chunk that contradicts its transfer is answered with BAD_REQUEST
  * without touching the transfer. The LCM thread runs all of it; one mutex
  * guards the table for the heartbeat's reads. */
@@ -24,6 +29,13 @@
 /* Bytes of mesh_t's four content counts, encoded with no arrays behind them. */
 #define EMPTY_CONTENT_SIZE 16
 
+/* Charges grow by whole steps of this (pages written, rounded up). */
+#define CHARGE_STEP (64u << 10)
+
+/* The protocol's numbers (msgs/mesh_chunk_t.lcm) as sizes. */
+static const uint64_t window_bytes = MESHTOPO_MESH_CHUNK_T_WINDOW_BYTES;
+static const size_t ranges_max = MESHTOPO_MESH_CHUNK_T_RANGES_MAX;
+
 typedef struct mtd_transfer mtd_transfer;
 
 struct mtd_transfer {
@@ -37,7 +49,7 @@ struct mtd_transfer {
     uint8_t *content; /* total bytes, being reassembled */
     size_t capacity;  /* of the content buffer (>= total) */
     mt_msgs_content_decoder *decoder;
-    size_t charged; /* counted in transfer_bytes */
+    size_t charged; /* counted in transfer_bytes: the pages up to the highest byte sent */
     mtd_byte_ranges got;
     int64_t first_us, last_us; /* monotonic */
 };
@@ -49,17 +61,22 @@ struct mtd_transfers {
     size_t active;
     uint64_t bytes; /* charged against max_transfer_bytes */
     atomic_bool stopping;
-    atomic_int_fast64_t chunks, completed, expired, refused;
+    atomic_int_fast64_t chunks, completed, expired, refused, dropped;
 };
 
-/* Frees t; its content buffer, if it still has one, is given back. */
+/* Frees t. Its content buffer, if it still has one, is kept for the next
+ * transfer when t was complete (the sender paid for every byte), else
+ * unmapped. */
 static void transfer_free(mtd_transfers *ts, mtd_transfer *t)
 {
     if (!t) return;
     free(t->mesh_id);
     free(t->source);
     mt_msgs_content_decoder_free(t->decoder);
-    mtd_content_release(ts->deps.contents, t->content, t->capacity);
+    if (t->content && t->got.covered == t->total)
+        mtd_content_release(ts->deps.contents, t->content, t->capacity);
+    else
+        mtd_content_discard(t->content, t->capacity);
     mtd_byte_ranges_free(&t->got);
     free(t);
 }
@@ -165,16 +182,8 @@ static mtd_transfer *admit(mtd_transfers *ts, const meshtopo_mesh_chunk_t *c)
                  total, total > cap ? "--max-transfer-bytes" : "the largest LCM message",
                  total > cap ? cap : (uint64_t)INT32_MAX - 4096);
     }
+    /* Nothing is charged yet: memory follows the bytes that arrive. */
     mtd_transfer *old = status == MESHTOPO_STATUS_CODE_T_OK ? find_resumable(ts, c) : NULL;
-    uint64_t freed = old ? old->charged : 0;
-    if (status == MESHTOPO_STATUS_CODE_T_OK && ts->bytes - freed + total > cap) {
-        status = MESHTOPO_STATUS_CODE_T_BUSY;
-        snprintf(error, sizeof error,
-                 "total_size: %" PRIu64
-                 " bytes do not fit: %zu unfinished transfer(s) hold "
-                 "%" PRIu64 " of --max-transfer-bytes %" PRIu64 "; retry later",
-                 total, ts->active, ts->bytes, cap);
-    }
     mtd_transfer *t = NULL;
     if (status == MESHTOPO_STATUS_CODE_T_OK) {
         t = calloc(1, sizeof *t);
@@ -214,13 +223,15 @@ static mtd_transfer *admit(mtd_transfers *ts, const meshtopo_mesh_chunk_t *c)
     t->total = total;
     t->hash = (uint64_t)c->content_hash;
     t->first_us = t->last_us = mtd_monotonic_us();
-    t->charged = total;
+    t->charged = 0;
     if (old) {
         old->content = NULL;
         old->decoder = NULL;
         t->got = old->got;
         memset(&old->got, 0, sizeof old->got);
+        size_t charged = old->charged;
         unlink_transfer(ts, old);
+        t->charged = charged;
         mtd_log(MTD_LOG_INFO, "transfer_resumed",
                 "mesh_id=%s request_id=%" PRId64 " from request_id=%" PRId64
                 " channel=%s bytes_held=%" PRIu64,
@@ -341,6 +352,68 @@ static uint64_t held_from_start(const mtd_transfer *t)
     return t->got.count > 0 && t->got.items[0].start == 0 ? t->got.items[0].end : 0;
 }
 
+/* Bytes charged to the transfers of `channel`, and whether other reply
+ * channels have transfers (the lock held). */
+static uint64_t sender_bytes(const mtd_transfers *ts, const char *channel, bool *out_others)
+{
+    uint64_t bytes = 0;
+    *out_others = false;
+    for (const mtd_transfer *t = ts->head; t; t = t->next) {
+        if (strcmp(t->channel, channel) == 0)
+            bytes += t->charged;
+        else
+            *out_others = true;
+    }
+    return bytes;
+}
+
+/* Whether chunk c of t is kept (the lock held): it starts within the window
+ * after the first missing byte, it does not split the received bytes into
+ * more than ranges_max pieces, and the pages it adds fit the memory limit
+ * and the sender's share (charged now). A chunk not kept is answered (BUSY
+ * for memory; the missing list when asked) and dropped. */
+static bool keep_chunk(mtd_transfers *ts, mtd_transfer *t, const meshtopo_mesh_chunk_t *c)
+{
+    const uint64_t start = (uint64_t)c->offset, end = start + (uint64_t)c->length;
+    if (start >= held_from_start(t) + window_bytes ||
+        (t->got.count >= ranges_max && !mtd_byte_ranges_touches(&t->got, start, end))) {
+        atomic_fetch_add(&ts->dropped, 1);
+        if (c->want_status)
+            send_status(ts, t->channel, t->request_id, MESHTOPO_STATUS_CODE_T_OK, "", t, t->total,
+                        false);
+        return false;
+    }
+    uint64_t high = (end + CHARGE_STEP - 1) / CHARGE_STEP * CHARGE_STEP;
+    if (high > t->total) high = t->total;
+    if (high <= t->charged) return true;
+    const uint64_t growth = high - t->charged, cap = ts->deps.config->max_transfer_bytes;
+    bool others = false;
+    const uint64_t mine = sender_bytes(ts, t->channel, &others);
+    const uint64_t share = others ? cap / 4 : cap;
+    if (ts->bytes + growth <= cap && mine + growth <= share) {
+        t->charged = (size_t)high;
+        ts->bytes += growth;
+        return true;
+    }
+    char error[MTD_ERROR_MAX];
+    if (ts->bytes + growth > cap)
+        snprintf(error, sizeof error,
+                 "%zu unfinished transfer(s) hold %" PRIu64 " of --max-transfer-bytes %" PRIu64
+                 " bytes: chunk at %" PRIu64 " dropped, retry later",
+                 ts->active, ts->bytes, cap, start);
+    else
+        snprintf(error, sizeof error,
+                 "reply channel '%s' holds %" PRIu64
+                 " bytes of transfers, its share of "
+                 "--max-transfer-bytes %" PRIu64 " while others send: chunk at %" PRIu64
+                 " dropped, retry later",
+                 t->channel, mine, cap, start);
+    atomic_fetch_add(&ts->refused, 1);
+    send_status(ts, t->channel, t->request_id, MESHTOPO_STATUS_CODE_T_BUSY, error, t, t->total,
+                false);
+    return false;
+}
+
 /* Handles one decoded chunk (the lock held). Returns a transfer that
  * became complete (out of the table) for the caller to finish. */
 static mtd_transfer *take_chunk(mtd_transfers *ts, const meshtopo_mesh_chunk_t *c)
@@ -384,6 +457,7 @@ static mtd_transfer *take_chunk(mtd_transfers *ts, const meshtopo_mesh_chunk_t *
         return NULL;
     }
     t->last_us = mtd_monotonic_us();
+    if (c->length > 0 && !keep_chunk(ts, t, c)) return NULL;
     if (c->length > 0) {
         const uint64_t start = (uint64_t)c->offset, end = start + (uint64_t)c->length;
         /* Bytes below `decoded` were turned into values in place already:
@@ -511,4 +585,5 @@ void mtd_transfers_get_stats(mtd_transfers *ts, mtd_transfer_stats *out_stats)
     out_stats->completed = atomic_load(&ts->completed);
     out_stats->expired = atomic_load(&ts->expired);
     out_stats->refused = atomic_load(&ts->refused);
+    out_stats->dropped = atomic_load(&ts->dropped);
 }

@@ -1,7 +1,8 @@
 /* meshtopod's chunked submissions (msgs/mesh_chunk_t.lcm): the unfinished
  * transfers, opaque behind mtd_transfers, reassembled per (reply channel,
  * request id) and handed to the submitter once complete. It owns their
- * admission (--max-transfer-bytes, the mesh limits), their expiry
+ * admission (the mesh limits), the memory they hold (pages of what they were
+ * sent, within --max-transfer-bytes and a share per reply channel), their expiry
  * (--transfer-timeout-ms) and their counters. Runs on the LCM thread (chunks,
  * expiry); the heartbeat reads its stats. */
 #ifndef MESHTOPOD_TRANSFER_H
@@ -52,7 +53,8 @@ typedef struct mtd_transfer_stats {
     int64_t chunks;    /* chunks received */
     int64_t completed; /* transfers complete (each one submission) */
     int64_t expired;
-    int64_t refused;
+    int64_t refused; /* transfers refused, and chunks refused BUSY */
+    int64_t dropped; /* chunks beyond the window or the ranges a transfer may hold */
 } mtd_transfer_stats;
 
 void mtd_transfers_get_stats(mtd_transfers *transfers, mtd_transfer_stats *out_stats);

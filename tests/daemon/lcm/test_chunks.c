@@ -519,6 +519,124 @@ static void test_abandoned(void)
     fixture_free(&fx);
 }
 
+/* Resident memory of this process (the daemon runs in it), from /proc. */
+static long rss_kb(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    long kb = -1;
+    while (f && fgets(line, sizeof line, f))
+        if (sscanf(line, "VmRSS: %ld kB", &kb) == 1) break;
+    if (f) fclose(f);
+    return kb;
+}
+
+/* A poll claiming 1 GiB and one-byte chunks spread across it: nothing is
+ * charged for the claim, chunks beyond the window are dropped, memory stays
+ * flat, and an honest sender beside it is neither refused nor slowed;
+ * once the claimer stops, its transfer expires and everything is given
+ * back. */
+static void test_claims_cost_only_what_is_sent(void)
+{
+    fixture fx;
+    fixture_init(&fx, "1G", "300");
+    long rss_before = rss_kb();
+    uint8_t byte = 7;
+    meshtopo_mesh_chunk_t c;
+    memset(&c, 0, sizeof c);
+    c.request_id = 90;
+    c.reply_channel = REPLY2;
+    c.mesh_id = "claim";
+    c.source = "hostile";
+    c.total_size = (int64_t)1 << 30;
+    c.content_hash = 12345;
+    c.want_status = true;
+    publish_chunk(&fx, &c);
+    meshtopo_mesh_transfer_t t;
+    if (wait_for(&fx, &mt_msgs_type_mesh_transfer, 90, &t, __LINE__) == 0) {
+        CHECK_EQ(t.status, 0);
+        meshtopo_mesh_transfer_t_decode_cleanup(&t);
+    }
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.transfers_active, 1);
+    CHECK_EQ(fx.status.transfer_bytes, 0);
+    /* One byte every MiB: only those within the window are kept. */
+    c.want_status = false;
+    c.length = 1;
+    c.data = &byte;
+    for (int k = 0; k < 1024; k++) {
+        c.offset = ((int64_t)k << 20) + 1;
+        publish_chunk(&fx, &c);
+        if (k % 64 == 0) drain(&fx);
+    }
+    drain(&fx);
+    mtd_transfer_stats stats;
+    mtd_transfers_get_stats(mtd_daemon_transfers(fx.daemon), &stats);
+    CHECK_EQ(stats.dropped, 1024 - MESHTOPO_MESH_CHUNK_T_WINDOW_BYTES / (1 << 20));
+    CHECK(stats.bytes <= MESHTOPO_MESH_CHUNK_T_WINDOW_BYTES + (64 << 10));
+    CHECK(rss_kb() - rss_before < 16 * 1024);
+    /* The honest sender is served at once. */
+    sent_mesh s;
+    sent_mesh_make(&s, "honest", 60, 60);
+    for (size_t k = 0; k < num_chunks(&s); k++) send_chunk(&fx, &s, REPLY, 91, k, false);
+    CHECK_EQ(expect_ack(&fx, &s, 91, __LINE__), 1);
+    /* The claimer goes quiet: its transfer expires, memory comes back. */
+    sleep_ms(400);
+    heartbeat(&fx);
+    CHECK_EQ(fx.status.transfers_active, 0);
+    CHECK_EQ(fx.status.transfer_bytes, 0);
+    CHECK_EQ(fx.status.transfers_expired, 1);
+    CHECK(rss_kb() - rss_before < 16 * 1024);
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+}
+
+/* Scattered one-byte chunks within the window: at most RANGES_MAX separate
+ * ranges are kept, the rest dropped; a reply channel holding transfers
+ * beside another one's gets BUSY past its share, and the other goes on. */
+static void test_ranges_and_shares(void)
+{
+    fixture fx;
+    fixture_init(&fx, "4M", "10000");
+    uint8_t byte = 1;
+    meshtopo_mesh_chunk_t c;
+    memset(&c, 0, sizeof c);
+    c.request_id = 95;
+    c.reply_channel = REPLY2;
+    c.mesh_id = "scatter";
+    c.source = "hostile";
+    c.total_size = 3 << 20;
+    c.content_hash = 1;
+    c.length = 1;
+    c.data = &byte;
+    for (int k = 0; k < MESHTOPO_MESH_CHUNK_T_RANGES_MAX + 100; k++) {
+        c.offset = 2 + 2 * (int64_t)k; /* never touching: one range each */
+        publish_chunk(&fx, &c);
+        if (k % 256 == 0) drain(&fx);
+    }
+    drain(&fx);
+    mtd_transfer_stats stats;
+    mtd_transfers_get_stats(mtd_daemon_transfers(fx.daemon), &stats);
+    CHECK_EQ(stats.dropped, 100);
+    /* A second transfer of the same channel reaching 3 MiB: past a quarter
+     * of 4M while REPLY has a transfer too. */
+    sent_mesh s;
+    sent_mesh_make(&s, "honest", 40, 40);
+    send_chunk(&fx, &s, REPLY, 96, 0, false);
+    c.request_id = 97;
+    c.want_status = true;
+    c.offset = (3 << 20) - 1;
+    c.length = 1;
+    c.mesh_id = "second";
+    c.total_size = 3 << 20;
+    publish_chunk(&fx, &c);
+    expect_transfer_error(&fx, 97, MESHTOPO_STATUS_CODE_T_BUSY, "its share", __LINE__);
+    for (size_t k = 1; k < num_chunks(&s); k++) send_chunk(&fx, &s, REPLY, 96, k, false);
+    CHECK_EQ(expect_ack(&fx, &s, 96, __LINE__), 1);
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+}
+
 /* A sender restarts: under a new request id and reply channel, the same
  * content resumes where the old transfer stopped; and a restart under the
  * same id (all chunks again) after the ack builds nothing twice. */
@@ -824,6 +942,8 @@ static const mt_test_case cases[] = {
     {"abandoned", test_abandoned},
     {"restart", test_restart},
     {"over_limit", test_over_limit},
+    {"claims_cost_only_what_is_sent", test_claims_cost_only_what_is_sent},
+    {"ranges_and_shares", test_ranges_and_shares},
     {"client_chunks", test_client_chunks},
     {"odd_pieces", test_odd_pieces},
     {"builds_keep_a_workspace", test_builds_keep_a_workspace},
