@@ -44,6 +44,7 @@ struct mtd_daemon {
     mtd_transfers *transfers;
     mtd_queries *queries;
     mtd_handlers *handlers;
+    mtd_peers *peers;
 };
 
 /* Names every channel; MT_ERR_INVALID_ARG when the prefix makes one too long. */
@@ -127,6 +128,9 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
                                  .queries = d->queries};
     if (mtd_handlers_subscribe(&handlers, &d->handlers) != MT_OK)
         return fail_nomem(diag, "LCM subscriptions");
+    if (mtd_peers_create(d->lcm, d->channels[MT_MSGS_CHANNEL_STATUS], d->instance, d->start_utime,
+                         d->errors, &d->peers) != MT_OK)
+        return fail_nomem(diag, "watch for other daemons");
     return MT_OK;
 }
 
@@ -185,6 +189,8 @@ void mtd_daemon_stop(mtd_daemon *d)
     if (!d || d->stopped) return;
     d->stopped = true;
     if (d->handlers) mtd_handlers_unsubscribe(d->handlers);
+    mtd_peers_destroy(d->peers);
+    d->peers = NULL;
     if (d->transfers) mtd_transfers_stop(d->transfers);
     if (d->pool) mtd_pool_shutdown(d->pool, MTD_SHUTDOWN_CANCEL);
     mtd_archiver_stop(d->archiver);
@@ -207,6 +213,11 @@ void mtd_daemon_destroy(mtd_daemon *d)
     mtd_content_pool_destroy(d->contents);
     mtd_error_log_destroy(d->errors);
     free(d);
+}
+
+bool mtd_daemon_other_seen(mtd_daemon *d, char *who, size_t who_size)
+{
+    return d->peers && mtd_peers_older_seen(d->peers, who, who_size);
 }
 
 const char *mtd_daemon_instance(const mtd_daemon *d)

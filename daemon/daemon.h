@@ -15,6 +15,7 @@
 #include "heartbeat.h"
 #include "mesh_store.h"
 #include "meshtopo/channels.h"
+#include "peers.h"
 #include "workspace_pool.h"
 
 typedef struct mtd_daemon mtd_daemon;
@@ -40,6 +41,10 @@ void mtd_daemon_stop(mtd_daemon *daemon);
 
 /* mtd_daemon_stop, then frees everything (not the LCM handle). NULL-safe. */
 void mtd_daemon_destroy(mtd_daemon *daemon);
+
+/* Whether a live daemon that started earlier beats on the same prefix
+ * (noted in the error log and logged when seen); `who` names it. */
+bool mtd_daemon_other_seen(mtd_daemon *daemon, char *who, size_t who_size);
 
 /* "host:pid:start-utime", as in the heartbeat. */
 const char *mtd_daemon_instance(const mtd_daemon *daemon);

@@ -10,6 +10,7 @@
 #include <lcm/lcm.h>
 #include <poll.h>
 #include <signal.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -46,10 +47,38 @@ static int install_signals(void)
     return 0;
 }
 
-/* Runs until a signal arrives; returns the signal number (0 on an LCM error). */
-static int run_loop(mtd_daemon *d, lcm_t *lcm, uint32_t heartbeat_ms)
+/* Listens on the status channel for two of our heartbeat periods before
+ * serving: a daemon already on the prefix beats within that time. Returns
+ * false (after logging it) when one does. */
+static bool prefix_is_free(lcm_t *lcm, const mtd_config *config)
 {
-    int64_t period_us = (int64_t)heartbeat_ms * 1000;
+    char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
+    if (mt_msgs_channel_name(config->channel_prefix, MT_MSGS_CHANNEL_STATUS, channel) != MT_OK)
+        return true; /* the daemon refuses the prefix itself */
+    mtd_peers *probe = NULL;
+    if (mtd_peers_create(lcm, channel, "", INT64_MAX, NULL, &probe) != MT_OK) return true;
+    int64_t wait_us = 2 * (int64_t)config->heartbeat_ms * 1000;
+    if (wait_us > 3000000) wait_us = 3000000;
+    const int64_t until = mtd_now_utime() + wait_us;
+    char who[256];
+    bool taken = false;
+    for (int64_t now = mtd_now_utime(); now < until && !taken; now = mtd_now_utime()) {
+        lcm_handle_timeout(lcm, (int)((until - now + 999) / 1000));
+        taken = mtd_peers_older_seen(probe, who, sizeof who);
+    }
+    mtd_peers_destroy(probe);
+    if (taken)
+        mtd_log(MTD_LOG_ERROR, "second_daemon",
+                "another meshtopod serves prefix %s: %s; not starting (one daemon per prefix: "
+                "give this one another --prefix, or stop the other)",
+                config->channel_prefix, who);
+    return !taken;
+}
+
+/* Runs until a signal arrives; returns the signal number (0 on an LCM error). */
+static int run_loop(mtd_daemon *d, lcm_t *lcm, const mtd_config *config)
+{
+    int64_t period_us = (int64_t)config->heartbeat_ms * 1000;
     int64_t next_beat = mtd_now_utime();
     struct pollfd fds[2] = {{.fd = lcm_get_fileno(lcm), .events = POLLIN},
                             {.fd = signal_pipe[0], .events = POLLIN}};
@@ -104,6 +133,10 @@ int main(int argc, char **argv)
                 config.lcm_url[0] ? config.lcm_url : "(LCM default)");
         return 1;
     }
+    if (!prefix_is_free(lcm, &config)) {
+        lcm_destroy(lcm);
+        return 1;
+    }
     mtd_daemon *d = NULL;
     if (mtd_daemon_create(&config, lcm, &d, &diag) != MT_OK) {
         mtd_log(MTD_LOG_ERROR, "start", "error=%s", diag.message);
@@ -114,7 +147,7 @@ int main(int argc, char **argv)
     mtd_log(MTD_LOG_INFO, "start", "version=%s submit=%s query=%s instance=%s", MESHTOPO_VERSION,
             mtd_daemon_channel(d, MT_MSGS_CHANNEL_SUBMIT),
             mtd_daemon_channel(d, MT_MSGS_CHANNEL_QUERY), mtd_daemon_instance(d));
-    int signo = run_loop(d, lcm, config.heartbeat_ms);
+    int signo = run_loop(d, lcm, &config);
     mtd_log(MTD_LOG_INFO, "stopping", "signal=%s",
             signo == SIGINT    ? "SIGINT"
             : signo == SIGTERM ? "SIGTERM"

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <xxhash.h>
 
 #include "daemon.h"
@@ -1074,6 +1075,51 @@ static void test_hostile_claims(void)
     fixture_free(&fx);
 }
 
+/* Two daemons started together on one prefix (both past their start-up
+ * listening): each notes the other in its error log (the heartbeat's
+ * last_error) and goes on serving, since a heartbeat can be forged; the one
+ * that started later knows the other is older. */
+static void test_second_daemon_noted(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    mtd_config config;
+    mtd_config_action action;
+    mt_diag diag;
+    char *argv[] = {"meshtopod", "--name", "younger", "--log-level", "error"};
+    CHECK_OK(mtd_config_parse(5, argv, &config, &action, &diag));
+    struct timespec pause = {0, 2000000L};
+    nanosleep(&pause, NULL); /* a later start time */
+    mtd_daemon *younger = NULL;
+    CHECK_OK(mtd_daemon_create(&config, fx.lcm, &younger, &diag));
+    char who[256] = "";
+    CHECK(!mtd_daemon_other_seen(younger, who, sizeof who));
+    mtd_counters before;
+    mtd_daemon_get_counts(fx.daemon, &before);
+    mtd_daemon_heartbeat(fx.daemon);
+    mtd_daemon_heartbeat(younger);
+    for (int i = 0; i < 50; i++) lcm_handle_timeout(fx.lcm, 5);
+    CHECK(mtd_daemon_other_seen(younger, who, sizeof who));
+    CHECK(strstr(who, mtd_daemon_instance(fx.daemon)) != NULL);
+    CHECK(strstr(who, "'meshtopod'") != NULL);
+    CHECK(!mtd_daemon_other_seen(fx.daemon, who, sizeof who));
+    mtd_counters after;
+    mtd_daemon_get_counts(fx.daemon, &after);
+    CHECK_EQ(after.errors, before.errors + 1); /* the younger one, noted once */
+    mtd_daemon_heartbeat(younger);
+    for (int i = 0; i < 20; i++) lcm_handle_timeout(fx.lcm, 5);
+    mtd_daemon_get_counts(fx.daemon, &after);
+    CHECK_EQ(after.errors, before.errors + 1);
+    mtd_daemon_heartbeat(fx.daemon);
+    fx.have_status = false;
+    for (int i = 0; i < 50 && !fx.have_status; i++) lcm_handle_timeout(fx.lcm, 5);
+    CHECK(fx.have_status && strstr(fx.last_status.last_error, "another meshtopod") &&
+          strstr(fx.last_status.last_error, mtd_daemon_instance(younger)));
+    mtd_daemon_destroy(younger);
+    check_still_serving(&fx, "cube");
+    fixture_free(&fx);
+}
+
 static void test_bad_mesh_ids(void)
 {
     fixture fx;
@@ -1473,6 +1519,7 @@ static const mt_test_case cases[] = {
     {"bad_counts", test_bad_counts},
     {"bad_too_large", test_bad_too_large},
     {"hostile_claims", test_hostile_claims},
+    {"second_daemon_noted", test_second_daemon_noted},
     {"bad_mesh_ids", test_bad_mesh_ids},
     {"bad_queries", test_bad_queries},
     {"geometry_kinds", test_geometry_kinds},
