@@ -3,6 +3,10 @@
  * that use them have stopped. Runs on the thread that runs LCM. */
 #include "daemon.h"
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -181,6 +185,11 @@ void mtd_daemon_heartbeat(mtd_daemon *d)
 void mtd_daemon_tick(mtd_daemon *d)
 {
     mtd_transfers_expire(d->transfers);
+#ifdef __GLIBC__
+    /* Memory freed after a burst (answers of a query flood, decoded
+     * messages) stays in malloc's arenas otherwise: give it back. */
+    malloc_trim(0);
+#endif
     mtd_daemon_heartbeat(d);
 }
 
