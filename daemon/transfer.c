@@ -34,7 +34,7 @@
 
 /* The protocol's numbers (msgs/mesh_chunk_t.lcm) as sizes. */
 static const uint64_t window_bytes = MESHTOPO_MESH_CHUNK_T_WINDOW_BYTES;
-static const size_t ranges_max = MESHTOPO_MESH_CHUNK_T_RANGES_MAX;
+static const size_t ranges_max = MESHTOPO_MESH_CHUNK_T_RECEIVED_RANGES_MAX;
 
 typedef struct mtd_transfer mtd_transfer;
 

@@ -609,7 +609,7 @@ static void test_ranges_and_shares(void)
     c.content_hash = 1;
     c.length = 1;
     c.data = &byte;
-    for (int k = 0; k < MESHTOPO_MESH_CHUNK_T_RANGES_MAX + 100; k++) {
+    for (int k = 0; k < MESHTOPO_MESH_CHUNK_T_RECEIVED_RANGES_MAX + 100; k++) {
         c.offset = 2 + 2 * (int64_t)k; /* never touching: one range each */
         publish_chunk(&fx, &c);
         if (k % 256 == 0) drain(&fx);
