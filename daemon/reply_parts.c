@@ -1,5 +1,5 @@
-/* meshtopod's large answers (reply_parts.h): an encoded reply_t over one
- * datagram goes out as reply_part_t pieces, the first window at once and the
+/* meshtopod's large answers (reply_parts.h): an encoded reply_t or ack_t
+ * over one datagram goes out as reply_part_t pieces, the first window at once and the
  * rest when the receiver pulls them. The bytes come from the request cache,
  * so a pull (the next window, or parts lost on the way) never runs the query
  * again; a pull for an answer the cache no longer holds is left unanswered
@@ -63,7 +63,8 @@ void mtd_parts_publish(lcm_t *lcm, const char *reply_channel, int64_t request_id
                        size_t size)
 {
     const mt_msgs_type *type = mt_msgs_type_of(data, size);
-    bool in_parts = size > MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX && type == &mt_msgs_type_reply;
+    bool in_parts = size > MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX &&
+                    (type == &mt_msgs_type_reply || type == &mt_msgs_type_ack);
     char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
     if (mt_msgs_reply_channel_name(reply_channel, in_parts ? &mt_msgs_type_reply_part : type,
                                    channel) != MT_OK) {
@@ -84,6 +85,33 @@ void mtd_parts_publish(lcm_t *lcm, const char *reply_channel, int64_t request_id
     publish_parts(lcm, channel, request_id, data, size, hash, NULL, num_parts, first_parts);
 }
 
+/* The remembered answer a pull names: the reply_t or ack_t of its request
+ * under its reply channel whose size and hash are the pull's, large enough
+ * to have gone in parts. NULL when the cache holds none (release the one
+ * returned with mtd_reply_release). */
+static mtd_reply *pulled_answer(mtd_reqcache *cache, const meshtopo_reply_pull_t *pull)
+{
+    const mt_msgs_type *answers[] = {&mt_msgs_type_reply, &mt_msgs_type_ack};
+    for (size_t i = 0; i < sizeof answers / sizeof answers[0]; i++) {
+        char key[MT_MSGS_CHANNEL_NAME_MAX + 1];
+        mtd_request_state state = MTD_REQUEST_NEW;
+        mtd_reply *stored = NULL;
+        if (mt_msgs_reply_channel_name(pull->reply_channel, answers[i], key) != MT_OK ||
+            mtd_reqcache_peek(cache, key, pull->request_id, &state, &stored) != MT_OK)
+            continue;
+        if (state == MTD_REQUEST_DONE) {
+            const uint8_t *bytes = mtd_reply_data(stored);
+            size_t total = mtd_reply_size(stored);
+            if (pull->total_size == (int64_t)total &&
+                total > MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX &&
+                (uint64_t)pull->answer_hash == mt_msgs_answer_hash(bytes, total))
+                return stored;
+        }
+        mtd_reply_release(stored);
+    }
+    return NULL;
+}
+
 void mtd_parts_serve_pull(lcm_t *lcm, mtd_reqcache *cache, const void *data, size_t size)
 {
     meshtopo_reply_pull_t pull;
@@ -93,51 +121,36 @@ void mtd_parts_serve_pull(lcm_t *lcm, mtd_reqcache *cache, const void *data, siz
                 why);
         return;
     }
-    mtd_request_state state = MTD_REQUEST_NEW;
+    char parts[MT_MSGS_CHANNEL_NAME_MAX + 1];
     mtd_reply *stored = NULL;
-    /* The answer is cached under its reply_t channel; its parts go out on
-     * the reply_part_t one. */
-    char key[MT_MSGS_CHANNEL_NAME_MAX + 1], parts[MT_MSGS_CHANNEL_NAME_MAX + 1];
     if (pull.num_ranges > MESHTOPO_REPLY_PULL_T_RANGES_MAX) {
         mtd_log(MTD_LOG_WARN, "reply_pull",
                 "request_id=%" PRId64 " %d ranges (at most %d): ignored", pull.request_id,
                 (int)pull.num_ranges, MESHTOPO_REPLY_PULL_T_RANGES_MAX);
-    } else if (mt_msgs_reply_channel_name(pull.reply_channel, &mt_msgs_type_reply, key) == MT_OK &&
-               mt_msgs_reply_channel_name(pull.reply_channel, &mt_msgs_type_reply_part, parts) ==
-                   MT_OK &&
-               mtd_reqcache_peek(cache, key, pull.request_id, &state, &stored) == MT_OK &&
-               state == MTD_REQUEST_DONE) {
+    } else if (mt_msgs_reply_channel_name(pull.reply_channel, &mt_msgs_type_reply_part, parts) !=
+                   MT_OK ||
+               !(stored = pulled_answer(cache, &pull))) {
+        mtd_log(MTD_LOG_DEBUG, "reply_pull",
+                "request_id=%" PRId64 " channel=%s: no answer of %" PRId64
+                " bytes held, not answered",
+                pull.request_id, pull.reply_channel, pull.total_size);
+    } else {
         const uint8_t *bytes = mtd_reply_data(stored);
         size_t total = mtd_reply_size(stored);
-        uint64_t hash = mt_msgs_answer_hash(bytes, total);
-        if (pull.total_size != (int64_t)total || (uint64_t)pull.answer_hash != hash ||
-            total <= MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX) {
-            mtd_log(MTD_LOG_DEBUG, "reply_pull",
-                    "request_id=%" PRId64 " pulls %" PRId64
-                    " bytes, the cache holds %zu "
-                    "(another answer): not answered",
-                    pull.request_id, pull.total_size, total);
-        } else {
-            size_t num_parts = (total + part_size - 1) / part_size;
-            uint8_t *wanted = calloc(num_parts, 1);
-            for (int32_t i = 0; wanted && i < pull.num_ranges; i++) {
-                int64_t start = pull.offsets[i], length = pull.lengths[i];
-                if (start < 0 || length <= 0 || (uint64_t)start >= total) continue;
-                uint64_t end = (uint64_t)length > total - (uint64_t)start
-                                   ? total
-                                   : (uint64_t)start + (uint64_t)length;
-                for (uint64_t k = (uint64_t)start / part_size; k * part_size < end; k++)
-                    wanted[k] = 1;
-            }
-            if (wanted)
-                publish_parts(lcm, parts, pull.request_id, bytes, total, hash, wanted, num_parts,
-                              parts_per_pull);
-            free(wanted);
+        size_t num_parts = (total + part_size - 1) / part_size;
+        uint8_t *wanted = calloc(num_parts, 1);
+        for (int32_t i = 0; wanted && i < pull.num_ranges; i++) {
+            int64_t start = pull.offsets[i], length = pull.lengths[i];
+            if (start < 0 || length <= 0 || (uint64_t)start >= total) continue;
+            uint64_t end = (uint64_t)length > total - (uint64_t)start
+                               ? total
+                               : (uint64_t)start + (uint64_t)length;
+            for (uint64_t k = (uint64_t)start / part_size; k * part_size < end; k++) wanted[k] = 1;
         }
-    } else {
-        mtd_log(MTD_LOG_DEBUG, "reply_pull",
-                "request_id=%" PRId64 " channel=%s: no answer held, not answered", pull.request_id,
-                pull.reply_channel);
+        if (wanted)
+            publish_parts(lcm, parts, pull.request_id, bytes, total,
+                          mt_msgs_answer_hash(bytes, total), wanted, num_parts, parts_per_pull);
+        free(wanted);
     }
     mtd_reply_release(stored);
     meshtopo_reply_pull_t_decode_cleanup(&pull);

@@ -146,6 +146,43 @@ static void send_ack_with_report(mtd_submitter *s, const meshtopo_mesh_t *m, int
                    status, error);
 }
 
+/* Publishes the report of a stored version on PREFIX "TOPOLOGY" as one
+ * datagram: every subscriber gets it, so it cannot travel in pulled parts.
+ * When the full report (`full`, what the ack carried) is larger, its lists
+ * are cut (a quarter at a time) until it fits; the counts stay whole and the
+ * BOUNDARY_LOOPS and DEFECTS queries give the full lists. */
+static void broadcast_topology(mtd_submitter *s, const mt_mesh *mesh, const mtd_mesh_info *info,
+                               int64_t duration, const meshtopo_topology_t *full)
+{
+    meshtopo_topology_t cut;
+    const meshtopo_topology_t *t = full;
+    int size = meshtopo_topology_t_encoded_size(t);
+    for (size_t list_max = MTD_TOPOLOGY_LIST_MAX / 4;
+         size > MESHTOPO_MESH_CHUNK_T_SINGLE_MESSAGE_MAX; list_max /= 4) {
+        if (t == &cut) mtd_topology_free(&cut);
+        if (mtd_topology_fill(mesh, info, duration, list_max, &cut) != 0) {
+            mtd_log(MTD_LOG_ERROR, "publish", "channel=%s out of memory for the report",
+                    s->deps.topology_channel);
+            return;
+        }
+        t = &cut;
+        size = meshtopo_topology_t_encoded_size(t);
+        if (list_max == 0) break;
+    }
+    void *buf = size > 0 ? malloc((size_t)size) : NULL;
+    if (buf && meshtopo_topology_t_encode(buf, 0, size, t) == size &&
+        lcm_publish(s->deps.lcm, s->deps.topology_channel, buf, (unsigned)size) == 0) {
+        if (t == &cut)
+            mtd_log(MTD_LOG_DEBUG, "topology_cut",
+                    "mesh_id=%s bytes=%d lists cut to fit one datagram", info->id, size);
+    } else {
+        mtd_log(MTD_LOG_ERROR, "publish", "channel=%s type=topology_t bytes=%d",
+                s->deps.topology_channel, size);
+    }
+    free(buf);
+    if (t == &cut) mtd_topology_free(&cut);
+}
+
 static void build_job(void *arg, bool cancelled)
 {
     submit_job *job = arg;
@@ -231,11 +268,7 @@ static void build_job(void *arg, bool cancelled)
                           &topology) == 0) {
         send_ack_with_report(sub, m, MESHTOPO_STATUS_CODE_T_OK, "", (int32_t)version,
                              job->content_hash, &topology);
-        int size = meshtopo_topology_t_encoded_size(&topology);
-        void *buf = size > 0 ? malloc((size_t)size) : NULL;
-        if (buf && meshtopo_topology_t_encode(buf, 0, size, &topology) == size)
-            lcm_publish(sub->deps.lcm, sub->deps.topology_channel, buf, (unsigned)size);
-        free(buf);
+        broadcast_topology(sub, held, mtd_entry_info(entry), duration, &topology);
         mtd_topology_free(&topology);
     } else {
         /* The mesh is held; the client learns its version without the report. */

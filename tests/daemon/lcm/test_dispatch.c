@@ -193,14 +193,15 @@ static void pull_parts(fixture *fx, int64_t request_id, const parts_buf *pb)
 
 /* Handles LCM until a message of `type` with request_id arrives (decoded into
  * out; release with type->decode_cleanup) or 20 s pass. Returns 0 when found.
- * A reply_t sent in parts is reassembled (pulling the parts after the first). */
+ * A reply_t or ack_t sent in parts is reassembled (pulling the parts after
+ * the first). */
 static int wait_for(fixture *fx, const mt_msgs_type *type, int64_t request_id, void *out)
 {
     parts_buf pb;
     memset(&pb, 0, sizeof pb);
     bool idle = false;
     for (int round = 0; round < 4000; round++) {
-        if (type == &mt_msgs_type_reply) {
+        if (type == &mt_msgs_type_reply || type == &mt_msgs_type_ack) {
             take_parts(fx, request_id, &pb);
             if (pb.data && idle) pull_parts(fx, request_id, &pb);
         }
