@@ -5,7 +5,8 @@
  * msgs/reply_t.lcm says what each kind puts where. Every id is checked before
  * anything is answered: one id out of range gives OUT_OF_RANGE and no items.
  * Runs on the LCM thread; it only reads immutable store entries, so a build
- * never holds it up. A version that must first be loaded from the store's
+ * never holds it up, and a sender over its share of that thread's time is
+ * answered BUSY (fair_share.h). A version that must first be loaded from the store's
  * backing is fetched, and the query answered, on a worker. */
 #include "query.h"
 
@@ -17,6 +18,7 @@
 #include <string.h>
 
 #include "clock.h"
+#include "fair_share.h"
 #include "log.h"
 #include "meshtopo/geometry.h"
 #include "meshtopo/query.h"
@@ -27,6 +29,7 @@ struct mtd_queries {
     mtd_store *store;
     mtd_pool *pool;
     mtd_replies *replies;
+    mtd_fair_share *share; /* the LCM thread's time, per reply channel */
 };
 
 /* A growable array of int32_t (int8_t ones are stored widened, then narrowed). */
@@ -793,7 +796,17 @@ void mtd_query_handle(mtd_queries *qs, const meshtopo_query_t *q)
     mtd_log(MTD_LOG_DEBUG, "query",
             "mesh_id=%.64s version=%" PRId32 " kind=%" PRId32 " ids=%" PRId32, q->mesh_id,
             q->version, q->kind, q->num_ids);
+    int64_t start = mtd_monotonic_us();
+    char why[MTD_ERROR_MAX];
+    if (!mtd_fair_share_allowed(qs->share, q->reply_channel, start, why, sizeof why)) {
+        mtd_reply_abandon(qs->replies, q->reply_channel, q->request_id, &mt_msgs_type_reply);
+        mtd_reply_query_error(qs->replies, q->reply_channel, q->request_id, q->mesh_id, q->kind,
+                              false, MESHTOPO_STATUS_CODE_T_BUSY, why);
+        return;
+    }
     answer_query(qs, q, false);
+    int64_t end = mtd_monotonic_us();
+    mtd_fair_share_charge(qs->share, q->reply_channel, end, end - start);
 }
 
 mt_status mtd_queries_create(mtd_store *store, mtd_pool *pool, mtd_replies *replies,
@@ -805,10 +818,17 @@ mt_status mtd_queries_create(mtd_store *store, mtd_pool *pool, mtd_replies *repl
     qs->store = store;
     qs->pool = pool;
     qs->replies = replies;
+    if (mtd_fair_share_create(&qs->share) != MT_OK) {
+        free(qs);
+        *out_queries = NULL;
+        return MT_ERR_NOMEM;
+    }
     return MT_OK;
 }
 
 void mtd_queries_destroy(mtd_queries *qs)
 {
+    if (!qs) return;
+    mtd_fair_share_destroy(qs->share);
     free(qs);
 }

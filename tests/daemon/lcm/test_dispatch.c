@@ -13,6 +13,7 @@
 #include <time.h>
 #include <xxhash.h>
 
+#include "clock.h"
 #include "daemon.h"
 #include "harness.h"
 #include "meshtopo/core.h"
@@ -1121,6 +1122,73 @@ static void test_second_daemon_noted(void)
     fixture_free(&fx);
 }
 
+/* Counts the flooder's answers: BUSY replies whole, served ones in parts. */
+typedef struct flood_count {
+    int busy, other_replies, parts;
+} flood_count;
+
+static void on_flood_answer(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    flood_count *n = user;
+    if (strstr(channel, "_PART")) {
+        n->parts++;
+        return;
+    }
+    meshtopo_reply_t r;
+    if (mt_msgs_decode(&mt_msgs_type_reply, rbuf->data, rbuf->data_size, &r, NULL, 0) != 0) return;
+    if (r.status == MESHTOPO_STATUS_CODE_T_BUSY && strstr(r.error, "'FLOOD' used"))
+        n->busy++;
+    else
+        n->other_replies++;
+    meshtopo_reply_t_decode_cleanup(&r);
+}
+
+/* One sender floods one-rings of every vertex without waiting for answers;
+ * another asks small queries in between: the flooder is answered BUSY once
+ * over its share of the LCM thread, the other is always served. */
+static void test_query_flood_shared(void)
+{
+    fixture fx;
+    fixture_init(&fx);
+    mt_face_list grid;
+    CHECK_OK(mt_gen_grid(120, 120, true, &grid));
+    CHECK_EQ(submit_ok(&fx, "grid", &grid), 1);
+    int32_t n = (int32_t)grid.num_verts;
+    int32_t *all = malloc((size_t)n * sizeof *all);
+    for (int32_t i = 0; i < n; i++) all[i] = i;
+    flood_count count = {0, 0, 0};
+    lcm_subscription_t *sub = lcm_subscribe(fx.lcm, "FLOOD_(REPLY|PART)", on_flood_answer, &count);
+    meshtopo_query_t q;
+    memset(&q, 0, sizeof q);
+    q.reply_channel = "FLOOD";
+    q.mesh_id = "grid";
+    q.kind = MESHTOPO_QUERY_T_VERTEX_RING;
+    q.num_ids = n;
+    q.ids = all;
+    int served = 0;
+    int64_t deadline = mtd_monotonic_us() + 15 * 1000000LL;
+    for (int round = 0; round < 400 && count.busy == 0 && mtd_monotonic_us() < deadline; round++) {
+        for (int k = 0; k < 10; k++) {
+            q.request_id = 100000 + round * 10 + k;
+            publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+        }
+        int32_t vertex = round % n;
+        meshtopo_reply_t r;
+        if (query(&fx, "grid", 0, MESHTOPO_QUERY_T_VALENCE, &vertex, 1, &r) == 0) {
+            CHECK_EQ(r.status, MESHTOPO_STATUS_CODE_T_OK);
+            served += r.status == MESHTOPO_STATUS_CODE_T_OK;
+            meshtopo_reply_t_decode_cleanup(&r);
+        }
+    }
+    CHECK(count.busy > 0);
+    CHECK(count.parts > 0); /* served while under its share */
+    CHECK(served > 0);
+    lcm_unsubscribe(fx.lcm, sub);
+    free(all);
+    mt_face_list_free(&grid);
+    fixture_free(&fx);
+}
+
 static void test_bad_mesh_ids(void)
 {
     fixture fx;
@@ -1521,6 +1589,7 @@ static const mt_test_case cases[] = {
     {"bad_too_large", test_bad_too_large},
     {"hostile_claims", test_hostile_claims},
     {"second_daemon_noted", test_second_daemon_noted},
+    {"query_flood_shared", test_query_flood_shared},
     {"bad_mesh_ids", test_bad_mesh_ids},
     {"bad_queries", test_bad_queries},
     {"geometry_kinds", test_geometry_kinds},
