@@ -185,6 +185,7 @@ void mtd_daemon_heartbeat(mtd_daemon *d)
 void mtd_daemon_tick(mtd_daemon *d)
 {
     mtd_transfers_expire(d->transfers);
+    mtd_replies_expire(d->replies);
 #ifdef __GLIBC__
     /* Memory freed after a burst (answers of a query flood, decoded
      * messages) stays in malloc's arenas otherwise: give it back. */

@@ -27,8 +27,9 @@ typedef struct mtd_daemon mtd_daemon;
 mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **out_daemon,
                             mt_diag *diag);
 
-/* The periodic work, every heartbeat_ms: drops stalled transfers, gives
- * freed heap memory back to the system, then publishes the heartbeat. */
+/* The periodic work, every heartbeat_ms: drops stalled transfers and old
+ * remembered answers, gives freed heap memory back to the system, then
+ * publishes the heartbeat. */
 void mtd_daemon_tick(mtd_daemon *daemon);
 
 /* Publishes one heartbeat now (the last one after mtd_daemon_stop). */

@@ -231,6 +231,11 @@ void mtd_reply_serve_pull(mtd_replies *r, const void *data, size_t size)
     mtd_parts_serve_pull(r->lcm, r->cache, data, size);
 }
 
+void mtd_replies_expire(mtd_replies *r)
+{
+    mtd_reqcache_expire(r->cache, mtd_monotonic_us(), MTD_REPLY_KEEP_US);
+}
+
 int64_t mtd_replies_duplicates(mtd_replies *r)
 {
     return atomic_load(&r->duplicates);

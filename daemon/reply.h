@@ -89,6 +89,14 @@ void mtd_reply_undecodable(mtd_replies *replies, const mt_msgs_type *type, const
  * request cache. */
 void mtd_reply_serve_pull(mtd_replies *replies, const void *data, size_t size);
 
+/* How long an answer stays remembered for retries: longer than any client
+ * keeps retrying (the client library's attempts and BUSY pauses end within
+ * a few seconds). */
+#define MTD_REPLY_KEEP_US (20 * 1000000LL)
+
+/* Forgets answers older than MTD_REPLY_KEEP_US (the periodic tick). */
+void mtd_replies_expire(mtd_replies *replies);
+
 /* Requests answered again from the cache, or found still running. */
 int64_t mtd_replies_duplicates(mtd_replies *replies);
 

@@ -10,6 +10,8 @@
  * module calls it from the LCM thread and from build workers). */
 #include "request_cache.h"
 
+#include "clock.h"
+
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdbool.h>
@@ -28,8 +30,9 @@ typedef struct centry {
     struct centry *newer;
     uint64_t hash;
     int64_t request_id;
-    mtd_reply *reply; /* NULL while pending */
-    size_t bytes;     /* counted against max_bytes */
+    int64_t arrived_us; /* monotonic */
+    mtd_reply *reply;   /* NULL while pending */
+    size_t bytes;       /* counted against max_bytes */
     size_t channel_len;
     char channel[];
 } centry;
@@ -114,6 +117,7 @@ static centry *entry_new(uint64_t hash, const char *channel, size_t len, int64_t
     memset(e, 0, sizeof *e);
     e->hash = hash;
     e->request_id = request_id;
+    e->arrived_us = mtd_monotonic_us();
     e->channel_len = len;
     memcpy(e->channel, channel, len);
     e->channel[len] = '\0';
@@ -376,4 +380,25 @@ void mtd_reqcache_get_stats(mtd_reqcache *cache, mtd_reqcache_stats *out_stats)
     pthread_mutex_lock(&cache->lock);
     *out_stats = cache->stats;
     pthread_mutex_unlock(&cache->lock);
+}
+
+size_t mtd_reqcache_expire(mtd_reqcache *cache, int64_t now_us, int64_t max_age_us)
+{
+    centry *freed = NULL;
+    size_t n = 0;
+    pthread_mutex_lock(&cache->lock);
+    for (centry *e = cache->oldest; e && now_us - e->arrived_us > max_age_us;) {
+        centry *next = e->newer;
+        if (e->reply) {
+            entry_unlink(cache, e);
+            e->older = freed;
+            freed = e;
+            n++;
+        }
+        e = next;
+    }
+    cache->stats.evictions += n;
+    pthread_mutex_unlock(&cache->lock);
+    free_chain(freed);
+    return n;
 }

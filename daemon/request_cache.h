@@ -88,6 +88,12 @@ mt_status mtd_reqcache_finish(mtd_reqcache *cache, const char *reply_channel, in
  * pending is left alone. */
 void mtd_reqcache_abandon(mtd_reqcache *cache, const char *reply_channel, int64_t request_id);
 
+/* Forgets the answered requests that arrived more than max_age_us before
+ * now_us (monotonic; pending ones stay), so what a burst left behind does
+ * not stay in memory once retries are no longer to be expected. Returns how
+ * many were dropped (counted as evictions). */
+size_t mtd_reqcache_expire(mtd_reqcache *cache, int64_t now_us, int64_t max_age_us);
+
 typedef struct mtd_reqcache_stats {
     size_t entries; /* requests remembered, pending ones included */
     size_t pending; /* of which pending */

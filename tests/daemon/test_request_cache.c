@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clock.h"
 #include "daemon_test_util.h"
 #include "harness.h"
 #include "request_cache.h"
@@ -164,6 +165,30 @@ static void test_reqcache_pending_not_evicted(void)
     CHECK_EQ(st.entries, 2);
     CHECK_EQ(st.evictions, 1);
     CHECK_EQ(BEGIN(cache, "R", 2, NULL), MTD_REQUEST_NEW);
+    mtd_reqcache_destroy(cache);
+}
+
+/* Answers older than the age given are forgotten, oldest first; pending
+ * requests and younger answers stay. */
+static void test_reqcache_expire(void)
+{
+    mtd_reqcache *cache = cache_new(0, 0);
+    if (!cache) return;
+    CHECK_EQ(BEGIN(cache, "R", 1, NULL), MTD_REQUEST_NEW);
+    finish(cache, "R", 1, "one");
+    CHECK_EQ(BEGIN(cache, "R", 2, NULL), MTD_REQUEST_NEW); /* left pending */
+    CHECK_EQ(BEGIN(cache, "R", 3, NULL), MTD_REQUEST_NEW);
+    finish(cache, "R", 3, "three");
+    int64_t now = mtd_monotonic_us();
+    CHECK_EQ(mtd_reqcache_expire(cache, now, 60 * 1000000LL), 0); /* all young */
+    CHECK_EQ(BEGIN(cache, "R", 1, "one"), MTD_REQUEST_DONE);
+    CHECK_EQ(mtd_reqcache_expire(cache, now + 61 * 1000000LL, 60 * 1000000LL), 2);
+    CHECK_EQ(BEGIN(cache, "R", 1, NULL), MTD_REQUEST_NEW);
+    CHECK_EQ(BEGIN(cache, "R", 2, NULL), MTD_REQUEST_PENDING);
+    CHECK_EQ(BEGIN(cache, "R", 3, NULL), MTD_REQUEST_NEW);
+    mtd_reqcache_stats st;
+    mtd_reqcache_get_stats(cache, &st);
+    CHECK_EQ(st.evictions, 2);
     mtd_reqcache_destroy(cache);
 }
 
@@ -333,6 +358,7 @@ static const mt_test_case cases[] = {
     {"reqcache_hit", test_reqcache_hit},
     {"reqcache_pending", test_reqcache_pending},
     {"reqcache_evict_count", test_reqcache_evict_count},
+    {"reqcache_expire", test_reqcache_expire},
     {"reqcache_pending_not_evicted", test_reqcache_pending_not_evicted},
     {"reqcache_evict_bytes", test_reqcache_evict_bytes},
     {"reqcache_too_large", test_reqcache_too_large},
