@@ -134,6 +134,9 @@ int mt__bench_command(int argc, char **argv);
 double mt__bench_median_of(double *values, uint32_t n);
 double mt__bench_quantile(double *values, uint32_t n, double q); /* nearest rank, q in [0, 1] */
 
+/* bench_stats.c: splitmix64, a fixed, seedable sequence (vertex ids, bytes). */
+uint64_t mt__bench_rand_u64(uint64_t *state);
+
 /* bench_clock.c; mt__bench_elapsed_us: microseconds from a to b
  * (CLOCK_MONOTONIC readings). */
 double mt__bench_now_ms(void);

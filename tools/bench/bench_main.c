@@ -3,7 +3,8 @@
  *   meshtopo-bench rtt [options]       query round trips to meshtopod (rtt.c)
  *   meshtopo-bench transfer [options]  large submissions vs a raw LCM push (bench_transfer.c)
  *   meshtopo-bench archive [options]   archive write and reload vs bare HDF5
- *                                      (bench_archive.c) */
+ *                                      (bench_archive.c)
+ *   meshtopo-bench soak [options]      meshtopod under normal and hostile traffic (soak.c) */
 #include <stdio.h>
 #include <string.h>
 
@@ -11,6 +12,7 @@
 #include "bench_archive.h"
 #include "bench_transfer.h"
 #include "rtt.h"
+#include "soak.h"
 
 int main(int argc, char **argv)
 {
@@ -19,6 +21,7 @@ int main(int argc, char **argv)
         return mt__bench_transfer_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "archive") == 0)
         return mt__bench_archive_command(argc - 1, argv + 1);
+    if (argc > 1 && strcmp(argv[1], "soak") == 0) return mt__bench_soak_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "build") == 0) return mt__bench_command(argc - 1, argv + 1);
     return mt__bench_command(argc, argv);
 }

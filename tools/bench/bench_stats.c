@@ -1,6 +1,6 @@
 /* Order statistics every benchmark program reports: the median of its
- * repetitions and, for round trips, nearest-rank quantiles. Both sort the
- * values in place. */
+ * repetitions and, for round trips, nearest-rank quantiles (both sort the
+ * values in place); and the benchmarks' one random sequence. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -27,4 +27,12 @@ double mt__bench_quantile(double *values, uint32_t n, double q)
     if (rank < 1) rank = 1;
     if (rank > n) rank = n;
     return values[rank - 1];
+}
+
+uint64_t mt__bench_rand_u64(uint64_t *state)
+{
+    uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
 }

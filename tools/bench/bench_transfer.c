@@ -399,7 +399,7 @@ int mt__bench_transfer_command(int argc, char **argv)
     figures f;
     memset(&f, 0, sizeof f);
     mt__rtt_daemon daemon;
-    bool ok = mt__rtt_daemon_start(daemon_path, &daemon, err, sizeof err) &&
+    bool ok = mt__rtt_daemon_start(daemon_path, NULL, &daemon, err, sizeof err) &&
               measure(&o, &list, bytes, size, &f, err, sizeof err);
     if (!ok) fprintf(stderr, "meshtopo-bench transfer: %s\n", err);
     char stop_err[512] = "";

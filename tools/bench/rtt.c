@@ -376,7 +376,7 @@ int mt__bench_rtt_command(int argc, char **argv)
     memset(&tp, 0, sizeof tp);
     fprintf(stderr, "meshtopo-bench rtt: starting %s in a private network namespace\n",
             daemon_path);
-    bool ok = mt__rtt_daemon_start(daemon_path, &daemon, err, sizeof err) &&
+    bool ok = mt__rtt_daemon_start(daemon_path, NULL, &daemon, err, sizeof err) &&
               mt__rtt_echo_start(&echo, err, sizeof err) &&
               measure_latency(&o, local, &list, &lat, err, sizeof err);
     /* Every LCM socket on the group receives every message: the echo goes

@@ -66,8 +66,10 @@ typedef struct mt__rtt_daemon {
  * on PATH. buf holds the path found. */
 const char *mt__rtt_daemon_find(const char *given, char *buf, size_t size);
 
-/* Starts meshtopod on MT__RTT_LCM_URL and waits for its first heartbeat. */
-bool mt__rtt_daemon_start(const char *path, mt__rtt_daemon *out, char *err, size_t err_size);
+/* Starts meshtopod on MT__RTT_LCM_URL (archiving into archive_dir unless it
+ * is NULL) and waits for its first heartbeat. */
+bool mt__rtt_daemon_start(const char *path, const char *archive_dir, mt__rtt_daemon *out, char *err,
+                          size_t err_size);
 
 /* SIGTERM to the daemon's PID, SIGKILL after 10 s; true on a clean exit. */
 bool mt__rtt_daemon_stop(mt__rtt_daemon *daemon, char *err, size_t err_size);

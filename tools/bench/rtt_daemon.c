@@ -1,4 +1,4 @@
-/* The meshtopod of a `meshtopo-bench rtt` or `transfer` run: started as a
+/* The meshtopod of a `meshtopo-bench rtt`, `transfer` or `soak` run: started as a
  * child process on the run's LCM URL, awaited by its first heartbeat
  * (mt__rtt_daemon_wait, rtt_client.c), and stopped by its PID (SIGTERM, then
  * SIGKILL after 10 s). */
@@ -17,7 +17,8 @@
 #define HEARTBEAT_WAIT_MS 10000
 #define STOP_WAIT_MS 10000
 
-bool mt__rtt_daemon_start(const char *path, mt__rtt_daemon *out, char *err, size_t err_size)
+bool mt__rtt_daemon_start(const char *path, const char *archive_dir, mt__rtt_daemon *out, char *err,
+                          size_t err_size)
 {
     memset(out, 0, sizeof *out);
     const char *tmp = getenv("TMPDIR");
@@ -39,8 +40,12 @@ bool mt__rtt_daemon_start(const char *path, mt__rtt_daemon *out, char *err, size
         dup2(log_fd, STDERR_FILENO);
         int null_fd = open("/dev/null", O_WRONLY);
         if (null_fd >= 0) dup2(null_fd, STDOUT_FILENO);
-        execl(path, path, "--lcm-url", MT__RTT_LCM_URL, "--heartbeat-ms", "100", "--log-level",
-              "warn", (char *)NULL);
+        if (archive_dir)
+            execl(path, path, "--lcm-url", MT__RTT_LCM_URL, "--heartbeat-ms", "100", "--log-level",
+                  "warn", "--archive", archive_dir, (char *)NULL);
+        else
+            execl(path, path, "--lcm-url", MT__RTT_LCM_URL, "--heartbeat-ms", "100", "--log-level",
+                  "warn", (char *)NULL);
         fprintf(stderr, "meshtopo-bench rtt: cannot start %s: %s\n", path, strerror(errno));
         _exit(127);
     }

@@ -19,15 +19,6 @@
 
 #define RING_CAPACITY 64
 
-/* splitmix64: a fixed, seedable sequence of vertex ids. */
-static uint64_t next_random(uint64_t *state)
-{
-    uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
 static bool range_equals(const int32_t *wire, const uint32_t *local, size_t count)
 {
     for (size_t i = 0; i < count; i++)
@@ -79,7 +70,7 @@ bool mt__rtt_query_latency(mt_client *client, const mt_mesh *local, uint32_t cou
     uint64_t rng = seed;
     uint32_t num_verts = mt_mesh_num_verts(local);
     for (uint32_t i = 0; i < count; i++) {
-        uint32_t vert = (uint32_t)(next_random(&rng) % num_verts);
+        uint32_t vert = (uint32_t)(mt__bench_rand_u64(&rng) % num_verts);
         meshtopo_reply_t reply;
         mt_diag diag;
         mt_diag_clear(&diag);
@@ -142,7 +133,7 @@ static void send_query(load_state *s)
     uint32_t ids[4096];
     uint32_t n = s->batch;
     uint32_t num_verts = mt_mesh_num_verts(s->local);
-    for (uint32_t i = 0; i < n; i++) ids[i] = (uint32_t)(next_random(&s->rng) % num_verts);
+    for (uint32_t i = 0; i < n; i++) ids[i] = (uint32_t)(mt__bench_rand_u64(&s->rng) % num_verts);
     mt_diag diag;
     mt_diag_clear(&diag);
     s->in_flight++;
@@ -188,7 +179,8 @@ static bool check_batch(load_state *s)
 {
     uint32_t ids[4096];
     uint32_t num_verts = mt_mesh_num_verts(s->local);
-    for (uint32_t i = 0; i < s->batch; i++) ids[i] = (uint32_t)(next_random(&s->rng) % num_verts);
+    for (uint32_t i = 0; i < s->batch; i++)
+        ids[i] = (uint32_t)(mt__bench_rand_u64(&s->rng) % num_verts);
     meshtopo_reply_t reply;
     mt_diag diag;
     mt_diag_clear(&diag);

@@ -56,8 +56,8 @@ static int bench_run(int argc, char **argv)
 
 const mt_cli_command mt_cli_cmd_bench = {
     .name = "bench",
-    .summary = "benchmarks: core build vs OpenMesh/CGAL, query round trips",
-    .synopsis = "[build|rtt] [options]",
+    .summary = "benchmarks: core build vs OpenMesh/CGAL, query round trips, soak",
+    .synopsis = "[build|rtt|transfer|archive|soak] [options]",
     .description =
         "  meshtopo bench [build] [options]  build a 1M-triangle grid from a face list and\n"
         "                                    sweep its one-rings, against OpenMesh and CGAL\n"
@@ -67,6 +67,10 @@ const mt_cli_command mt_cli_cmd_bench = {
         "                                    and query throughput, in a private network\n"
         "                                    namespace made for the run (needs root or\n"
         "                                    user namespaces; meshtopo bench rtt --help)\n"
+        "  meshtopo bench soak [--seconds S] meshtopod under normal and hostile traffic for\n"
+        "                                    S seconds in a private network namespace: lost\n"
+        "                                    acks, latency against a baseline, memory\n"
+        "                                    (meshtopo bench soak --help)\n"
         "The exit status is meshtopo-bench's: 0 when every measurement ran and all\n"
         "answers agree; missed targets are printed but do not fail.\n",
     .run_raw = bench_run,
