@@ -51,6 +51,8 @@ typedef enum mode {
     MODE_CORRUPT,    /* a reply whose value_offsets decrease */
     MODE_BUSY_TWICE, /* the first two attempts of each request id answered BUSY */
     MODE_BUSY,       /* every attempt answered BUSY */
+    MODE_TWICE,      /* every query answered twice with the same bytes (a copy) */
+    MODE_TWO_DAEMONS /* every query answered twice, the second sent at another moment */
 } mode;
 
 #define MAX_IDS 4096
@@ -75,7 +77,8 @@ typedef struct fixture {
     int64_t ids[MAX_IDS];
     int counts[MAX_IDS];
     int num_ids;
-    int requests; /* messages received */
+    int requests;         /* messages received */
+    int64_t answer_utime; /* reply_t.utime of the answers */
 } fixture;
 
 static int64_t now_ms(void)
@@ -205,6 +208,7 @@ static void answer_query(fixture *f, const meshtopo_query_t *q, int32_t status, 
     meshtopo_reply_t r;
     memset(&r, 0, sizeof r);
     r.request_id = request_id;
+    r.utime = f->answer_utime;
     r.status = status;
     r.error = status == 0 ? "" : "no mesh with this id";
     r.mesh_id = q->mesh_id;
@@ -335,6 +339,13 @@ static void respond(fixture *f, const uint8_t *data, size_t size)
     int seen = record_id(f, q.request_id);
     switch (f->mode) {
         case MODE_ANSWER:
+            answer_query(f, &q, 0, q.request_id);
+            break;
+        case MODE_TWICE:
+        case MODE_TWO_DAEMONS:
+            f->answer_utime = 1700000000000001;
+            answer_query(f, &q, 0, q.request_id);
+            if (f->mode == MODE_TWO_DAEMONS) f->answer_utime += 250;
             answer_query(f, &q, 0, q.request_id);
             break;
         case MODE_BUSY_TWICE:
@@ -612,6 +623,33 @@ static void busy_until_retries_spent(void)
     mt_client_get_stats(f->client, &st);
     CHECK_EQ(st.busy_retries, 2);
     fixture_stop(f);
+}
+
+/* Two different answers to one call (two daemons on the prefix) are
+ * counted; a copy of the answer (the daemon sending it again) is not. */
+static void conflicting_answers_counted(void)
+{
+    const mode modes[2] = {MODE_TWICE, MODE_TWO_DAEMONS};
+    for (int m = 0; m < 2; m++) {
+        fixture *f = fixture_start(modes[m], 2000, 0);
+        uint32_t ids[] = {2};
+        meshtopo_reply_t reply;
+        mt_diag diag;
+        for (int i = 0; i < 3; i++) {
+            CHECK_OK(mt_client_query(f->client, "m", 0, MESHTOPO_QUERY_T_VALENCE, ids, 1, &reply,
+                                     &diag));
+            mt_client_reply_free(&reply);
+        }
+        mt_client_stats st;
+        for (int wait = 0; wait < 100; wait++) {
+            mt_client_get_stats(f->client, &st);
+            if (st.unknown_replies == 3) break;
+            sleep_ms(10);
+        }
+        CHECK_EQ(st.unknown_replies, 3);
+        CHECK_EQ(st.conflicting_answers, modes[m] == MODE_TWO_DAEMONS ? 3 : 0);
+        fixture_stop(f);
+    }
 }
 
 static void garbage_and_foreign_replies_ignored(void)
@@ -1308,6 +1346,7 @@ static const mt_test_case cases[] = {
     {"retry_reuses_request_id", retry_reuses_request_id},
     {"busy_retried_with_backoff", busy_retried_with_backoff},
     {"busy_until_retries_spent", busy_until_retries_spent},
+    {"conflicting_answers_counted", conflicting_answers_counted},
     {"timeout_after_retries", timeout_after_retries},
     {"garbage_and_foreign_replies_ignored", garbage_and_foreign_replies_ignored},
     {"many_threads_one_client", many_threads_one_client},

@@ -79,7 +79,7 @@ static int run_list(const mt_cli_args *args)
         print_text(&reply);
     code = mt_cli_finish_output("list", code, MT_CLI_EXIT_USAGE);
     mt_client_reply_free(&reply);
-    mt_client_destroy(client);
+    mt_cli_client_destroy("list", &remote, client);
     return code;
 }
 

@@ -520,7 +520,7 @@ static int run_query(const mt_cli_args *args)
     mt_cli_report_free(&report);
     code = mt_cli_finish_output("query", code, MT_CLI_EXIT_USAGE);
     mt_client_reply_free(&reply);
-    mt_client_destroy(client);
+    mt_cli_client_destroy("query", &remote, client);
     mt_id_list_free(&ids);
     return code;
 }

@@ -143,7 +143,7 @@ static int run_send(const mt_cli_args *args)
     if (st != MT_OK) code = mt_cli_call_failed("send", id, &remote, st, answered, &diag);
     code = mt_cli_finish_output("send", code, MT_CLI_EXIT_USAGE);
     mt_client_ack_free(&ack);
-    mt_client_destroy(client);
+    mt_cli_client_destroy("send", &remote, client);
     mt_face_list_free(&list);
     return code;
 }

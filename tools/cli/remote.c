@@ -82,6 +82,20 @@ int mt_cli_client_create_progress(const char *command, const mt_cli_remote *remo
     return MT_CLI_EXIT_NO_ANSWER;
 }
 
+void mt_cli_client_destroy(const char *command, const mt_cli_remote *remote, mt_client *client)
+{
+    if (!client) return;
+    mt_client_stats stats;
+    mt_client_get_stats(client, &stats);
+    if (stats.conflicting_answers > 0)
+        mt_cli_error(command,
+                     "warning: %llu request(s) got two different answers: two meshtopod answer "
+                     "prefix %s (meshtopo watch shows their heartbeats; give each its own "
+                     "--prefix)",
+                     (unsigned long long)stats.conflicting_answers, remote->prefix);
+    mt_client_destroy(client);
+}
+
 int mt_cli_call_failed(const char *command, const char *mesh_id, const mt_cli_remote *remote,
                        mt_status status, bool answered, const mt_diag *diag)
 {

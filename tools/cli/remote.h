@@ -52,6 +52,10 @@ int mt_cli_client_create_progress(const char *command, const mt_cli_remote *remo
                                   mt_client_progress_fn progress, void *progress_user,
                                   mt_client **out);
 
+/* Destroys a client after saying, when it saw two different answers to one
+ * request, that two meshtopod answer the prefix. */
+void mt_cli_client_destroy(const char *command, const mt_cli_remote *remote, mt_client *client);
+
 /* The exit code of a failed client call, after printing one line naming the
  * mesh (unless mesh_id is NULL): MT_CLI_EXIT_REFUSED when the daemon answered with an error
  * (`answered`), MT_CLI_EXIT_NO_ANSWER after a timeout, MT_CLI_EXIT_USAGE for

@@ -433,6 +433,28 @@ static void on_transfer_status(mt_client *client, meshtopo_mesh_transfer_t *msg)
 
 static void on_part(mt_client *client, const void *data, size_t size);
 
+/* Notes the answer a call completed with (mutex held). */
+static void remember_answer(mt_client *client, int64_t request_id, const mt_msgs_type *type,
+                            int64_t utime)
+{
+    client->recent[client->recent_next] = (mt__recent_answer){request_id, type, utime};
+    client->recent_next = (client->recent_next + 1) % MT__RECENT_ANSWERS;
+}
+
+/* Whether an answer for no waiting request answers a recent call
+ * differently from the answer it completed with (mutex held): sent at
+ * another moment, so not a copy the daemon sent again but another daemon's
+ * answer. */
+static bool is_other_answer(const mt_client *client, int64_t request_id, const mt_msgs_type *type,
+                            int64_t utime)
+{
+    for (size_t i = 0; i < MT__RECENT_ANSWERS; i++) {
+        const mt__recent_answer *r = &client->recent[i];
+        if (r->type == type && r->request_id == request_id) return r->utime != utime;
+    }
+    return false;
+}
+
 /* An answer received whole or reassembled: decode, match by request id,
  * complete. */
 static void handle_answer(mt_client *client, const void *data, size_t size)
@@ -474,8 +496,10 @@ static void handle_answer(mt_client *client, const void *data, size_t size)
         table_insert(client, p);
         p = NULL;
     }
+    int64_t utime = type == &mt_msgs_type_reply ? answer.reply.utime : answer.ack.utime;
     if (!p) {
         client->stats.unknown_replies++;
+        if (is_other_answer(client, request_id, type, utime)) client->stats.conflicting_answers++;
         pthread_mutex_unlock(&client->mutex);
         type->decode_cleanup(&answer);
         return;
@@ -504,6 +528,7 @@ static void handle_answer(mt_client *client, const void *data, size_t size)
             mt__client_fail(&p->diag, p->status, "%s: %s", mt_msgs_code_name(code),
                             text && text[0] ? text : "(no error text)");
     }
+    remember_answer(client, request_id, type, utime);
     p = complete_locked(p);
     pthread_mutex_unlock(&client->mutex);
     if (p) call_back(p);

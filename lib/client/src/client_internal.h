@@ -83,6 +83,15 @@ typedef struct mt__pending {
 } mt__pending;
 
 #define MT__BUCKETS 256
+/* Answers remembered after their call completed, to tell a copy of one
+ * (the daemon sending it again) from another answer (a second daemon). */
+#define MT__RECENT_ANSWERS 64
+
+typedef struct mt__recent_answer {
+    int64_t request_id;
+    const mt_msgs_type *type;
+    int64_t utime; /* the answer's: a copy has the same */
+} mt__recent_answer;
 
 /* A function the client's thread runs between two lcm_handle calls
  * (mt__client_run_on_thread). */
@@ -128,6 +137,8 @@ struct mt_client {
     int64_t next_deadline_us;
     int64_t next_request_id;
     uint64_t jitter_state; /* spreads the pauses after BUSY */
+    mt__recent_answer recent[MT__RECENT_ANSWERS];
+    size_t recent_next;
     mt_client_stats stats;
 };
 

@@ -111,6 +111,9 @@ typedef struct mt_client_stats {
     uint64_t bad_parts;       /* pieces refused: layout broken, another answer, bad hash */
     uint64_t reply_pulls;     /* reply_pull_t sent (next windows and lost parts) */
     uint64_t busy_retries;    /* requests sent again after a pause because the daemon said BUSY */
+    uint64_t conflicting_answers; /* a second, different answer to a completed call: two
+                                     daemons answer this prefix (meshtopod refuses to start
+                                     beside another; this catches two started at once) */
 } mt_client_stats;
 
 /* Creates a client: its own lcm_t (or opts->lcm), a private reply channel
