@@ -65,3 +65,14 @@ int mt_test_main(int argc, char **argv, const mt_test_table *const *tables, size
     printf("%zu passed, %zu failed\n", passed, failed);
     return failed ? 1 : 0;
 }
+
+long mt_test_rss_kb(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    long kb = -1;
+    while (f && fgets(line, sizeof line, f))
+        if (sscanf(line, "VmRSS: %ld kB", &kb) == 1) break;
+    if (f) fclose(f);
+    return kb;
+}

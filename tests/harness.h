@@ -42,6 +42,10 @@ int mt_test_failures(void);
  * relative to the source tree). */
 const char *mt_test_corpus_dir(void);
 
+/* Resident memory of this process in kB, from /proc/self/status; -1 when
+ * it cannot be read. */
+long mt_test_rss_kb(void);
+
 #define CHECK(cond)                                                               \
     do {                                                                          \
         if (!(cond)) mt_test_fail(__FILE__, __LINE__, "CHECK(%s) failed", #cond); \

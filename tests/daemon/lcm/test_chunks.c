@@ -519,18 +519,6 @@ static void test_abandoned(void)
     fixture_free(&fx);
 }
 
-/* Resident memory of this process (the daemon runs in it), from /proc. */
-static long rss_kb(void)
-{
-    FILE *f = fopen("/proc/self/status", "r");
-    char line[256];
-    long kb = -1;
-    while (f && fgets(line, sizeof line, f))
-        if (sscanf(line, "VmRSS: %ld kB", &kb) == 1) break;
-    if (f) fclose(f);
-    return kb;
-}
-
 /* A poll claiming 1 GiB and one-byte chunks spread across it: nothing is
  * charged for the claim, chunks beyond the window are dropped, memory stays
  * flat, and an honest sender beside it is neither refused nor slowed;
@@ -540,7 +528,7 @@ static void test_claims_cost_only_what_is_sent(void)
 {
     fixture fx;
     fixture_init(&fx, "1G", "300");
-    long rss_before = rss_kb();
+    long rss_before = mt_test_rss_kb();
     uint8_t byte = 7;
     meshtopo_mesh_chunk_t c;
     memset(&c, 0, sizeof c);
@@ -574,7 +562,7 @@ static void test_claims_cost_only_what_is_sent(void)
     mtd_transfers_get_stats(mtd_daemon_transfers(fx.daemon), &stats);
     CHECK_EQ(stats.dropped, 1024 - MESHTOPO_MESH_CHUNK_T_WINDOW_BYTES / (1 << 20));
     CHECK(stats.bytes <= MESHTOPO_MESH_CHUNK_T_WINDOW_BYTES + (64 << 10));
-    CHECK(rss_kb() - rss_before < 16 * 1024);
+    CHECK(mt_test_rss_kb() - rss_before < 16 * 1024);
     /* The honest sender is served at once. */
     sent_mesh s;
     sent_mesh_make(&s, "honest", 60, 60);
@@ -586,7 +574,7 @@ static void test_claims_cost_only_what_is_sent(void)
     CHECK_EQ(fx.status.transfers_active, 0);
     CHECK_EQ(fx.status.transfer_bytes, 0);
     CHECK_EQ(fx.status.transfers_expired, 1);
-    CHECK(rss_kb() - rss_before < 16 * 1024);
+    CHECK(mt_test_rss_kb() - rss_before < 16 * 1024);
     sent_mesh_free(&s);
     fixture_free(&fx);
 }

@@ -1005,16 +1005,26 @@ static void test_bad_too_large(void)
     fixture_free(&fx);
 }
 
-/* Resident memory of this process (the daemon runs in it), from /proc. */
-static long rss_kb(void)
+/* A mesh_t of six triangles on the last 18 of num_verts vertices, without
+ * positions: about a hundred bytes whatever num_verts claims. `sizes` and
+ * `indices` (6 and 18 entries) are filled here and must outlive it. */
+static meshtopo_mesh_t sparse_msg(fixture *fx, const char *id, int32_t num_verts, int32_t *sizes,
+                                  int32_t *indices)
 {
-    FILE *f = fopen("/proc/self/status", "r");
-    char line[256];
-    long kb = -1;
-    while (f && fgets(line, sizeof line, f))
-        if (sscanf(line, "VmRSS: %ld kB", &kb) == 1) break;
-    if (f) fclose(f);
-    return kb;
+    for (int i = 0; i < 6; i++) sizes[i] = 3;
+    for (int i = 0; i < 18; i++) indices[i] = num_verts - 1 - i;
+    meshtopo_mesh_t m;
+    memset(&m, 0, sizeof m);
+    m.request_id = fx->next_request_id++;
+    m.reply_channel = REPLY_CHANNEL;
+    m.mesh_id = (char *)id;
+    m.source = "sparse";
+    m.num_verts = num_verts;
+    m.num_faces = 6;
+    m.face_vertex_counts = sizes;
+    m.num_indices = 18;
+    m.face_vertex_indices = indices;
+    return m;
 }
 
 /* Tiny mesh_t claiming the most vertices the default limits allow (no
@@ -1025,26 +1035,14 @@ static void test_hostile_claims(void)
     fixture fx;
     char *argv[] = {"meshtopod", "--log-level", "error"}; /* the default limits */
     fixture_init_with(&fx, 3, argv);
-    long rss_before = rss_kb();
-    int32_t sizes[6] = {3, 3, 3, 3, 3, 3};
-    int32_t indices[18];
-    for (int i = 0; i < 18; i++) indices[i] = (16 << 20) - 1 - i;
+    long rss_before = mt_test_rss_kb();
+    int32_t sizes[6], indices[18];
     mtd_counters before;
     mtd_daemon_get_counts(fx.daemon, &before);
     for (int k = 0; k < 40; k++) {
         char id[32];
         snprintf(id, sizeof id, "claim-%d", k);
-        meshtopo_mesh_t m;
-        memset(&m, 0, sizeof m);
-        m.request_id = fx.next_request_id++;
-        m.reply_channel = REPLY_CHANNEL;
-        m.mesh_id = id;
-        m.source = "hostile";
-        m.num_verts = 16 << 20;
-        m.num_faces = 6;
-        m.face_vertex_counts = sizes;
-        m.num_indices = 18;
-        m.face_vertex_indices = indices;
+        meshtopo_mesh_t m = sparse_msg(&fx, id, 16 << 20, sizes, indices);
         CHECK(meshtopo_mesh_t_encoded_size(&m) < 200);
         check_submit_error(&fx, &m, MESHTOPO_STATUS_CODE_T_TOO_LARGE, "--max-claim-ratio",
                            __LINE__);
@@ -1052,24 +1050,13 @@ static void test_hostile_claims(void)
     mtd_counters after;
     mtd_daemon_get_counts(fx.daemon, &after);
     CHECK_EQ(after.builds, before.builds);
-    long rss_after = rss_kb();
+    long rss_after = mt_test_rss_kb();
     CHECK(rss_before > 0 && rss_after - rss_before < 32 * 1024);
     /* --max-claim-ratio 0: the user who really sends such meshes. */
     fixture_free(&fx);
     char *lenient[] = {"meshtopod", "--log-level", "error", "--max-claim-ratio", "0"};
     fixture_init_with(&fx, 5, lenient);
-    meshtopo_mesh_t m;
-    memset(&m, 0, sizeof m);
-    m.request_id = fx.next_request_id++;
-    m.reply_channel = REPLY_CHANNEL;
-    m.mesh_id = "sparse";
-    m.source = "lenient";
-    m.num_verts = 1 << 20;
-    m.num_faces = 6;
-    m.face_vertex_counts = sizes;
-    m.num_indices = 18;
-    m.face_vertex_indices = indices;
-    for (int i = 0; i < 18; i++) indices[i] = (1 << 20) - 1 - i;
+    meshtopo_mesh_t m = sparse_msg(&fx, "sparse", 1 << 20, sizes, indices);
     meshtopo_ack_t ack;
     CHECK_EQ(submit(&fx, &m, &ack), 0);
     CHECK_EQ(ack.status, MESHTOPO_STATUS_CODE_T_OK);
