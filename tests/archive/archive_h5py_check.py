@@ -96,7 +96,7 @@ def main():
             # The half-edge arrays (format 2) read without meshtopo: the ring of
             # each kept face, from face_halfedge along next, passes through the
             # face's vertices in order (tail of h = head of its twin h ^ 1).
-            expect(int(m.attrs["format_version"]) == 3, "format_version 3")
+            expect(int(m.attrs["format_version"]) == 4, "format_version 4")
             h = m["halfedge"]
             for key in ("head", "next", "face", "face_halfedge", "vertex_halfedge",
                         "copy_original", "copies_sorted", "bundle_offsets", "bundle_edges",
@@ -105,6 +105,9 @@ def main():
             head, nxt, hface = h["head"][()], h["next"][()], h["face"][()]
             fhe, orig = h["face_halfedge"][()], h["copy_original"][()]
             expect(len(head) == int(h.attrs["num_half_edges"]), "halfedge/head length")
+            # Format 4: the digest a reload checks the arrays against, documented.
+            expect("digest" in h.attrs and h.attrs["digest"].dtype == np.uint64 and
+                   "digest" in str(h.attrs["description"]), "halfedge digest (uint64, described)")
 
             def caller(v):
                 return int(v) if v < len(verts) else int(orig[v - len(verts)])

@@ -42,4 +42,20 @@ bool at_write_bytes(const char *path, const void *data, size_t size);
 /* Copies a file; false on failure. */
 bool at_copy_file(const char *from, const char *to, long truncate_to);
 
+/* Whether two files hold the same bytes (false when either cannot be read). */
+bool at_same_bytes(const char *a, const char *b);
+
+/* Damage done to an archive file with the HDF5 C API (false on failure):
+ * one uint32 or int32 entry of a 1-D dataset overwritten, an integer
+ * attribute of object `obj` replaced (stored as int64 or uint64), a link
+ * (dataset, group) or an attribute deleted. */
+bool at_poke_u32(const char *path, const char *dataset, uint64_t index, uint32_t value);
+bool at_set_attr_i64(const char *path, const char *obj, const char *name, int64_t value);
+bool at_set_attr_u64(const char *path, const char *obj, const char *name, uint64_t value);
+bool at_delete(const char *path, const char *link);
+bool at_delete_attr(const char *path, const char *obj, const char *name);
+
+/* Reads one uint32 entry of a 1-D dataset (0 on failure). */
+uint32_t at_peek_u32(const char *path, const char *dataset, uint64_t index);
+
 #endif

@@ -4,6 +4,7 @@
  * open, an existing version never overwritten). */
 #include <dirent.h>
 #include <signal.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -417,6 +418,22 @@ static void test_killed_while_writing(void)
         uint32_t v, acknowledged = 0;
         while (read(fds[0], &v, sizeof v) == (ssize_t)sizeof v) acknowledged = v;
         close(fds[0]);
+        /* A leftover is named ".mt-tmp-<pid>-<16 random hex digits>.part":
+         * nothing about it can be guessed but the pid. */
+        DIR *before = opendir(dir);
+        struct dirent *left;
+        while (before && (left = readdir(before)) != NULL) {
+            if (strncmp(left->d_name, ".mt-tmp-", 8) != 0) continue;
+            char expected[64];
+            snprintf(expected, sizeof expected, ".mt-tmp-%ld-", (long)pid);
+            size_t n = strlen(expected), len = strlen(left->d_name);
+            bool named = strncmp(left->d_name, expected, n) == 0 && len == n + 16 + 5 &&
+                         strspn(left->d_name + n, "0123456789abcdef") == 16 &&
+                         strcmp(left->d_name + n + 16, ".part") == 0;
+            CHECK(named);
+            if (!named) printf("leftover named %s\n", left->d_name);
+        }
+        if (before) closedir(before);
         mt_archive *archive = NULL;
         CHECK_OK(mt_archive_open(dir, NULL, &archive, NULL));
         if (!archive) break;

@@ -1,7 +1,10 @@
 /* The archive directory: opening it (and removing leftovers of interrupted
  * writes whose writer is gone), listing its files, finding a mesh's
- * versions by file name, and removing versions durably. Only names this
- * library makes are touched: "*.vtkhdf" files and ".mt-tmp-*" leftovers. */
+ * versions by file name, removing versions durably and setting damaged
+ * files aside. Only names this library makes are touched: "*.vtkhdf" files
+ * and ".mt-tmp-*" leftovers, and of the latter only regular files of ours:
+ * whatever else is planted under such a name is never followed, opened or
+ * removed. */
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -24,16 +27,36 @@ static bool leftover_is_stale(const char *name)
     return kill((pid_t)pid, 0) != 0 && errno == ESRCH;
 }
 
+mt_status mt__archive_fsync_dir(const mt_archive *archive, mt_diag *diag)
+{
+    int fd = open(archive->dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0 || fsync(fd) != 0) {
+        int err = errno;
+        if (fd >= 0) close(fd);
+        return mt__archive_fail_os(diag, MT_ERR_IO, err, archive->dir,
+                                   "%s: fsync of the directory failed", archive->dir);
+    }
+    close(fd);
+    return MT_OK;
+}
+
 static mt_status remove_leftovers(mt_archive *archive, mt_diag *diag)
 {
     DIR *d = opendir(archive->dir);
     if (!d)
-        return mt__archive_fail(diag, MT_ERR_IO, "%s: cannot read the directory: %s", archive->dir,
-                                strerror(errno));
+        return mt__archive_fail_os(diag, MT_ERR_IO, errno, NULL, "%s: cannot read the directory",
+                                   archive->dir);
     size_t removed = 0;
     struct dirent *ent;
     while ((ent = readdir(d)) != NULL) {
         if (strncmp(ent->d_name, MT__ARCHIVE_TMP_PREFIX, strlen(MT__ARCHIVE_TMP_PREFIX)) != 0)
+            continue;
+        /* Only a regular file of ours is a leftover of ours: a symbolic link
+         * (unlinking would remove only the link, but it is not ours to
+         * tidy), a directory or another user's file is left alone. */
+        struct stat sb;
+        if (fstatat(dirfd(d), ent->d_name, &sb, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(sb.st_mode) ||
+            sb.st_uid != geteuid())
             continue;
         if (!leftover_is_stale(ent->d_name)) continue;
         if (unlinkat(dirfd(d), ent->d_name, 0) == 0) removed++;
@@ -61,10 +84,11 @@ mt_status mt_archive_open(const char *dir, const mt_archive_options *options,
     static const mt_archive_options defaults;
     if (!options) options = &defaults;
     struct stat sb;
-    if (stat(dir, &sb) != 0 && errno == ENOENT && options->create && !options->read_only)
-        mkdir(dir, 0777);
-    if (stat(dir, &sb) != 0)
-        return mt__archive_fail(diag, MT_ERR_IO, "%s: %s", dir, strerror(errno));
+    if (stat(dir, &sb) != 0 && errno == ENOENT && options->create && !options->read_only &&
+        mkdir(dir, 0777) != 0 && errno != EEXIST)
+        return mt__archive_fail_os(diag, MT_ERR_IO, errno, NULL, "%s: cannot create the directory",
+                                   dir);
+    if (stat(dir, &sb) != 0) return mt__archive_fail_os(diag, MT_ERR_IO, errno, NULL, "%s", dir);
     if (!S_ISDIR(sb.st_mode)) return mt__archive_fail(diag, MT_ERR_IO, "%s: not a directory", dir);
     mt_archive *a = calloc(1, sizeof *a);
     if (!a || !(a->dir = mt__archive_strdup(dir))) {
@@ -76,13 +100,20 @@ mt_status mt_archive_open(const char *dir, const mt_archive_options *options,
     a->read_only = options->read_only;
     mt_status st = a->read_only ? MT_OK : remove_leftovers(a, diag);
     if (st == MT_OK && access(a->dir, a->read_only ? R_OK | X_OK : R_OK | W_OK | X_OK) != 0)
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: %s", a->dir, strerror(errno));
+        st = mt__archive_fail_os(diag, MT_ERR_IO, errno, NULL, "%s", a->dir);
     if (st != MT_OK) {
         mt_archive_close(a);
         return st;
     }
     *out_archive = a;
     return MT_OK;
+}
+
+void mt_archive_set_content_hash(mt_archive *archive, mt_archive_hash_fn hash, void *ctx)
+{
+    if (!archive) return;
+    archive->content_hash = hash;
+    archive->content_hash_ctx = ctx;
 }
 
 void mt_archive_close(mt_archive *archive)
@@ -141,8 +172,8 @@ mt_status mt_archive_list(const mt_archive *archive, mt_archive_listing *out, mt
     if (!archive) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_list: NULL");
     DIR *d = opendir(archive->dir);
     if (!d)
-        return mt__archive_fail(diag, MT_ERR_IO, "%s: cannot read the directory: %s", archive->dir,
-                                strerror(errno));
+        return mt__archive_fail_os(diag, MT_ERR_IO, errno, NULL, "%s: cannot read the directory",
+                                   archive->dir);
     mt_archive_listing l = {NULL, 0};
     size_t capacity = 0;
     mt_status st = MT_OK;
@@ -167,6 +198,9 @@ mt_status mt_archive_list(const mt_archive *archive, mt_archive_listing *out, mt
         }
         l.count++;
         mt_diag_clear(&e->diag);
+        /* Every entry is checked before it is opened (mt__archive_open_fd):
+         * a symbolic link, FIFO or directory with an archive name is
+         * listed with its status and fault, never followed or read. */
         e->status = mt__archive_read_entry(archive, e->file_name, e, &e->diag);
     }
     closedir(d);
@@ -277,17 +311,46 @@ mt_status mt_archive_remove(mt_archive *archive, const char *mesh_id, uint32_t v
     char *path = mt__archive_path(archive, name);
     if (!path) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
     if (unlink(path) != 0) {
-        st = mt__archive_fail(diag, errno == ENOENT ? MT_ERR_NOT_FOUND : MT_ERR_IO,
-                              "%s: cannot remove version %u of mesh '%s': %s", path, version,
-                              mesh_id, strerror(errno));
+        int err = errno;
+        st = mt__archive_fail_os(diag, err == ENOENT ? MT_ERR_NOT_FOUND : MT_ERR_IO, err, NULL,
+                                 "%s: cannot remove version %u of mesh '%s'", path, version,
+                                 mesh_id);
         free(path);
         return st;
     }
     free(path);
-    int fd = open(archive->dir, O_RDONLY | O_DIRECTORY);
-    if (fd < 0 || fsync(fd) != 0)
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: fsync of the directory failed: %s",
-                              archive->dir, strerror(errno));
-    if (fd >= 0) close(fd);
+    return mt__archive_fsync_dir(archive, diag);
+}
+
+mt_status mt_archive_set_aside(mt_archive *archive, const char *file_name, char *out_name,
+                               size_t size, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    if (out_name && size > 0) out_name[0] = '\0';
+    if (!archive || !file_name)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_set_aside: NULL argument");
+    if (archive->read_only)
+        return mt__archive_fail(diag, MT_ERR_UNSUPPORTED, "%s: archive opened read-only",
+                                archive->dir);
+    if (strchr(file_name, '/') || !is_archive_name(file_name) ||
+        strlen(file_name) > MT_ARCHIVE_FILE_NAME_MAX)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "'%s' is not an archive file name",
+                                file_name);
+    char hex[17], aside[sizeof MT__ARCHIVE_ASIDE_PREFIX + MT_ARCHIVE_FILE_NAME_MAX + 18];
+    mt__archive_random_hex(hex);
+    snprintf(aside, sizeof aside, MT__ARCHIVE_ASIDE_PREFIX "%s.%s", file_name, hex);
+    char *from = mt__archive_path(archive, file_name), *to = mt__archive_path(archive, aside);
+    mt_status st = from && to ? MT_OK : mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
+    /* rename acts on the entry itself (a symbolic link is renamed, not
+     * followed); the random suffix keeps it from replacing anything. */
+    if (st == MT_OK && rename(from, to) != 0) {
+        int err = errno;
+        st = mt__archive_fail_os(diag, err == ENOENT ? MT_ERR_NOT_FOUND : MT_ERR_IO, err, NULL,
+                                 "%s: cannot set it aside as %s", from, aside);
+    }
+    free(from);
+    free(to);
+    if (st == MT_OK) st = mt__archive_fsync_dir(archive, diag);
+    if (st == MT_OK && out_name && size > 0) snprintf(out_name, size, "%s", aside);
     return st;
 }

@@ -1,7 +1,11 @@
 /* The HDF5 calls of meshtopo::archive, each wrapped so a failure becomes a
- * status and a message naming the file and the object, never a print or an
- * abort. Reads check rank, shape, type class, element size and the storage
- * actually present before allocating: a file may claim any size. */
+ * status and a message naming the file and the object (and the system's
+ * reason, found on HDF5's error stack, when the system failed it: a full
+ * disk, a permission), never a print or an abort. Reads check rank, shape,
+ * type class, element size and the storage actually present before
+ * allocating: a file may claim any size. */
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,13 +19,47 @@ void mt__h5_quiet(void)
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
 }
 
+/* Finds the first "errno = N" in the descriptions of the error stack: the
+ * sec2 driver (H5FDsec2.c) records every failed open, read, write and
+ * truncate as "..., errno = N, error message = '...', ...". */
+static herr_t find_errno(unsigned n, const H5E_error2_t *e, void *data)
+{
+    int *found = data;
+    const char *at = e && e->desc ? strstr(e->desc, "errno = ") : NULL;
+    if (at && *found == 0) {
+        int value = atoi(at + strlen("errno = "));
+        if (value > 0) *found = value;
+    }
+    return 0;
+}
+
+int mt__h5_os_errno(void)
+{
+    int found = 0;
+    /* H5Ewalk2 leaves the stack as it is (it does not clear it on entry). */
+    H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, find_errno, &found);
+    return found;
+}
+
+mt_status mt__h5_fail(mt_diag *diag, mt_status status, const char *path, const char *fmt, ...)
+{
+    int err = mt__h5_os_errno();
+    char what[sizeof diag->message];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    if (err) return mt__archive_fail_os(diag, status, err, path, "%s", what);
+    return mt__archive_fail(diag, status, "%s", what);
+}
+
 static mt_status write_attr(hid_t obj, const char *name, hid_t type, hid_t space, const void *value,
                             const char *file, mt_diag *diag)
 {
     mt_status st = MT_OK;
     hid_t attr = space < 0 ? -1 : H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
     if (attr < 0 || H5Awrite(attr, type, value) < 0)
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot write attribute %s", file, name);
+        st = mt__h5_fail(diag, MT_ERR_IO, file, "%s: cannot write attribute %s", file, name);
     if (attr >= 0) H5Aclose(attr);
     if (space >= 0) H5Sclose(space);
     return st;
@@ -95,7 +133,7 @@ mt_status mt__h5_write_dataset_layout(hid_t loc, const char *name, hid_t ftype, 
         space < 0 ? -1 : H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (dset < 0 ||
         (elements > 0 && H5Dwrite(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot write dataset %s", file, name);
+        st = mt__h5_fail(diag, MT_ERR_IO, file, "%s: cannot write dataset %s", file, name);
     if (dset >= 0) H5Dclose(dset);
     if (space >= 0) H5Sclose(space);
     if (dcpl >= 0 && dcpl != H5P_DEFAULT) H5Pclose(dcpl);
@@ -110,7 +148,7 @@ hid_t mt__h5_create_dataset(hid_t loc, const char *name, hid_t ftype, hsize_t ro
     hid_t space = dcpl < 0 ? -1 : H5Screate_simple(1, dims, NULL);
     hid_t dset =
         space < 0 ? -1 : H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-    if (dset < 0) mt__archive_fail(diag, MT_ERR_IO, "%s: cannot create dataset %s", file, name);
+    if (dset < 0) mt__h5_fail(diag, MT_ERR_IO, file, "%s: cannot create dataset %s", file, name);
     if (space >= 0) H5Sclose(space);
     if (dcpl >= 0 && dcpl != H5P_DEFAULT) H5Pclose(dcpl);
     return dset;
@@ -125,11 +163,13 @@ mt_status mt__h5_write_rows(hid_t dset, hid_t mtype, hsize_t first, hsize_t coun
     bool ok = fspace >= 0 && mspace >= 0 &&
               H5Sselect_hyperslab(fspace, H5S_SELECT_SET, &first, NULL, &count, NULL) >= 0 &&
               H5Dwrite(dset, mtype, mspace, fspace, H5P_DEFAULT, data) >= 0;
+    mt_status st = MT_OK;
+    if (!ok) /* before the closes below, which clear HDF5's error stack */
+        st = mt__h5_fail(diag, MT_ERR_IO, file, "%s: cannot write rows %llu.. of dataset %s", file,
+                         (unsigned long long)first, name);
     if (mspace >= 0) H5Sclose(mspace);
     if (fspace >= 0) H5Sclose(fspace);
-    return ok ? MT_OK
-              : mt__archive_fail(diag, MT_ERR_IO, "%s: cannot write rows %llu.. of dataset %s",
-                                 file, (unsigned long long)first, name);
+    return st;
 }
 
 mt_status mt__h5_write_dataset(hid_t loc, const char *name, hid_t ftype, hid_t mtype, int rank,
@@ -362,7 +402,7 @@ mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int
             st = mt__archive_fail(diag, MT_ERR_NOMEM, "%s: out of memory reading dataset %s", file,
                                   name);
         } else if (H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, *out_data) < 0) {
-            st = mt__archive_fail(diag, MT_ERR_IO, "%s: dataset %s cannot be read", file, name);
+            st = mt__h5_fail(diag, MT_ERR_IO, file, "%s: dataset %s cannot be read", file, name);
         }
     }
     if (st == MT_OK) {
@@ -372,6 +412,33 @@ mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int
         *out_data = NULL;
     }
     H5Dclose(dset);
+    return st;
+}
+
+mt_status mt__h5_read_blocks(hid_t loc, const char *name, const char *file, mt__h5_kind kind,
+                             size_t elem_size, hid_t mtype, void *buf, size_t block_rows,
+                             mt__h5_block_fn fn, void *ctx, uint64_t *out_rows, mt_diag *diag)
+{
+    hid_t dset;
+    uint64_t rows;
+    *out_rows = 0;
+    mt_status st = open_checked(loc, name, file, 1, 0, kind, elem_size, &dset, &rows, diag);
+    if (st != MT_OK) return st;
+    hid_t fspace = H5Dget_space(dset);
+    if (fspace < 0)
+        st = mt__h5_fail(diag, MT_ERR_IO, file, "%s: dataset %s: no dataspace", file, name);
+    for (uint64_t first = 0; st == MT_OK && first < rows; first += block_rows) {
+        hsize_t at = first, n = rows - first < block_rows ? rows - first : block_rows;
+        hid_t mspace = H5Screate_simple(1, &n, NULL);
+        if (mspace < 0 || H5Sselect_hyperslab(fspace, H5S_SELECT_SET, &at, NULL, &n, NULL) < 0 ||
+            H5Dread(dset, mtype, mspace, fspace, H5P_DEFAULT, buf) < 0)
+            st = mt__h5_fail(diag, MT_ERR_IO, file, "%s: dataset %s cannot be read", file, name);
+        if (mspace >= 0) H5Sclose(mspace);
+        if (st == MT_OK) fn(ctx, buf, (size_t)n);
+    }
+    if (fspace >= 0) H5Sclose(fspace);
+    H5Dclose(dset);
+    if (st == MT_OK) *out_rows = rows;
     return st;
 }
 
@@ -398,7 +465,7 @@ mt_status mt__h5_read_dataset_into(hid_t loc, const char *name, const char *file
                               "%s: dataset %s has %llu rows, the counts say %llu", file, name,
                               (unsigned long long)found, (unsigned long long)rows);
     else if (rows > 0 && H5Dread(dset, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0)
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: dataset %s cannot be read", file, name);
+        st = mt__h5_fail(diag, MT_ERR_IO, file, "%s: dataset %s cannot be read", file, name);
     H5Dclose(dset);
     return st;
 }

@@ -2,8 +2,10 @@
  * /meshtopo/halfedge holds every array of the built mesh (meshtopo/
  * mesh_parts.h) as a 1-D uint32 dataset named for what it holds, with the
  * counts as attributes, so that a reload restores the mesh instead of
- * rebuilding it. Reading checks every length; the values are left to
- * mt_mesh_restore, which validates them. */
+ * rebuilding it, and (format 4) their digest (archive_hash.c). Reading
+ * checks every length; the values are left to mt_mesh_restore, which
+ * validates them, and to the digest, which tells whether they are the ones
+ * archived. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -101,19 +103,29 @@ static const char description[] =
     "vertex copy_original[i], one per extra fan; copies_sorted orders them by original. "
     "bundle_offsets/bundle_edges: internal edges holding one caller edge (non-manifold or "
     "same-direction edges); bundled_sorted/bundled_bundle index them. vertex_component: "
-    "edge-connected component of each internal vertex (empty for one component).";
+    "edge-connected component of each internal vertex (empty for one component). "
+    "digest: XXH3-64 over 64-bit little-endian words: the mesh's content_hash, the counts "
+    "(num_verts, num_faces, num_verts_internal, num_half_edges, num_copies, num_bundles, "
+    "num_bundled, 1 if vertex_component is stored, 1 if positions are), the XXH3-64 of each "
+    "array above in this order, of /meshtopo/positions and of the report's values, so that a "
+    "reload can check them without a rebuild.";
 
-mt_status mt__halfedge_write(hid_t g, const mt_mesh *mesh, const mt__h5_layout *layout,
-                             const char *file, mt_diag *diag)
+mt_status mt__halfedge_write(hid_t g, const mt_mesh *mesh, uint64_t content_hash,
+                             const mt__h5_layout *layout, const char *file, mt_diag *diag)
 {
     mt_mesh_parts p;
     mt_mesh_get_parts(mesh, &p);
+    uint64_t digest = 0;
+    mt_status st = mt__halfedge_digest(&p, mt_mesh_report(mesh), content_hash, &digest, diag);
+    if (st != MT_OK) return st;
     hid_t hg = H5Gcreate2(g, "halfedge", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    if (hg < 0) return mt__archive_fail(diag, MT_ERR_IO, "%s: cannot create group halfedge", file);
-    mt_status st = mt__h5_write_attr_string(hg, "description", description, file, diag);
+    if (hg < 0) return mt__h5_fail(diag, MT_ERR_IO, file, "%s: cannot create group halfedge", file);
+    st = mt__h5_write_attr_string(hg, "description", description, file, diag);
     const uint32_t none = MT_NONE;
     if (st == MT_OK)
         st = mt__h5_write_attr_int(hg, "none_value", H5T_NATIVE_UINT32, &none, file, diag);
+    if (st == MT_OK)
+        st = mt__h5_write_attr_int(hg, "digest", H5T_NATIVE_UINT64, &digest, file, diag);
     for (size_t i = 0; st == MT_OK && i < NUM_COUNT_ATTRS; i++) {
         const uint32_t *value = (const uint32_t *)((const char *)&p + count_attrs[i].offset);
         int64_t v = *value;
@@ -180,10 +192,11 @@ static mt_status read_shape(hid_t g, hid_t hg, const char *file, mt_mesh_parts *
     return MT_OK;
 }
 
-mt_status mt__halfedge_restore(hid_t g, const char *file, const mt_report *report,
-                               mt_mesh **out_mesh, mt_diag *diag)
+mt_status mt__halfedge_read(hid_t g, const char *file, const double *positions,
+                            mt_mesh **out_pending, mt_mesh_parts *out_parts, mt_diag *diag)
 {
-    *out_mesh = NULL;
+    *out_pending = NULL;
+    memset(out_parts, 0, sizeof *out_parts);
     hid_t hg = mt__archive_group_open(g, "/meshtopo/halfedge", file, diag);
     if (hg < 0) return MT_ERR_PARSE;
     mt_mesh_parts p;
@@ -204,8 +217,13 @@ mt_status mt__halfedge_restore(hid_t g, const char *file, const mt_report *repor
         snprintf(path, sizeof path, "/meshtopo/halfedge/%s", arrays[i].name);
         st = mt__h5_read_dataset_into(hg, path, file, 1, 0, MT__H5_UINT, 4, H5T_NATIVE_UINT32, buf,
                                       array_length(&p, arrays[i].count), diag);
+        *array_field(&p, &arrays[i]) = buf;
     }
-    if (st == MT_OK && shape.has_positions)
+    /* The positions are the face list's (the same dataset): a copy of
+     * those already read costs less than reading them again. */
+    if (st == MT_OK && shape.has_positions && positions)
+        memcpy(b.positions, positions, 3 * sizeof(double) * (size_t)shape.num_verts);
+    else if (st == MT_OK && shape.has_positions)
         st = mt__h5_read_dataset_into(g, "/meshtopo/positions", file, 2, 3, MT__H5_FLOAT, 8,
                                       H5T_NATIVE_DOUBLE, b.positions, shape.num_verts, diag);
     H5Gclose(hg);
@@ -213,11 +231,37 @@ mt_status mt__halfedge_restore(hid_t g, const char *file, const mt_report *repor
         mt_mesh_destroy(pending);
         return st;
     }
+    p.positions = b.positions;
+    if (p.num_bundles == 0) p.bundle_offsets = NULL;
+    *out_pending = pending;
+    *out_parts = p;
+    return MT_OK;
+}
+
+mt_status mt__halfedge_restore(hid_t g, const char *file, const mt_report *report,
+                               const double *positions, mt_mesh **out_mesh, mt_diag *diag)
+{
+    *out_mesh = NULL;
+    mt_mesh *pending = NULL;
+    mt_mesh_parts parts;
+    mt_status st = mt__halfedge_read(g, file, positions, &pending, &parts, diag);
+    if (st != MT_OK) return st;
+    mt_diag why;
     st = mt_mesh_restore_finish(pending, report, out_mesh, &why);
     if (st != MT_OK)
         mt__archive_fail(diag, st, "%s: the arrays of meshtopo/halfedge %s: %s", file,
                          st == MT_ERR_CORRUPT ? "fail validation" : "cannot be restored",
                          why.message);
+    return st;
+}
+
+mt_status mt__halfedge_read_digest(hid_t g, const char *file, uint64_t *out, mt_diag *diag)
+{
+    *out = 0;
+    hid_t hg = mt__archive_group_open(g, "/meshtopo/halfedge", file, diag);
+    if (hg < 0) return MT_ERR_PARSE;
+    mt_status st = mt__h5_read_attr_u64(hg, "digest", file, out, diag);
+    H5Gclose(hg);
     return st;
 }
 

@@ -1,13 +1,16 @@
 /* Internal pieces of meshtopo::archive shared by its files: the archive
- * handle, diagnostics helpers, the names of temporary files, and the HDF5
- * helpers (archive_h5.c) that read attributes and datasets with their type
- * and shape checked. Nothing here is part of the public API. */
+ * handle, diagnostics helpers (errno text included), the names of temporary
+ * files, files opened so nothing planted redirects them (archive_fd.c), the
+ * HDF5 helpers (archive_h5.c) that read attributes and datasets with their
+ * type and shape checked, and the checks a load and a verification share
+ * (archive_check.c). Nothing here is part of the public API. */
 #ifndef MESHTOPO_ARCHIVE_INTERNAL_H
 #define MESHTOPO_ARCHIVE_INTERNAL_H
 
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <sys/stat.h>
 
 #include <hdf5.h>
 
@@ -20,11 +23,19 @@ struct mt_archive {
     char *dir;
     bool read_only;
     size_t leftovers_removed;
+    mt_archive_hash_fn content_hash; /* mt_archive_set_content_hash, may be NULL */
+    void *content_hash_ctx;
 };
 
-/* Prefix of temporary files: ".mt-tmp-<pid>-<counter>.part". A leading dot
- * keeps them out of listings; the pid tells whether the writer still runs. */
+/* Prefix of temporary files: ".mt-tmp-<pid>-<16 random hex digits>.part"
+ * (meshtopo before format 4 used "<pid>-<counter>"). A leading dot keeps
+ * them out of listings; the pid tells whether the writer still runs; the
+ * random part (getrandom) makes the name unguessable. */
 #define MT__ARCHIVE_TMP_PREFIX ".mt-tmp-"
+
+/* Prefix of files set aside (mt_archive_set_aside): hidden, never listed,
+ * never removed as leftovers. */
+#define MT__ARCHIVE_ASIDE_PREFIX ".mt-aside-"
 
 /* Largest array (elements) a file may claim before anything is allocated:
  * 2^31 - 1, the face list's and mesh_t's limit. */
@@ -37,6 +48,28 @@ mt_status mt__archive_fail(mt_diag *diag, mt_status status, const char *fmt, ...
 #endif
     ;
 
+/* The errno of the last operating-system failure reported through
+ * mt__archive_fail_os or found on HDF5's error stack by the HDF5 helpers,
+ * in this thread (0: none since it was last reset). The checks reset it and
+ * read it to tell a system failure (MT_ARCHIVE_FAULT_SYSTEM) from a damaged
+ * file. */
+extern _Thread_local int mt__archive_last_errno;
+
+/* mt__archive_fail with ": <strerror(err)>" and, for a full disk or a file
+ * size limit, the limit appended ("No space left on device (4096 bytes
+ * free on the file system of PATH)", "File too large (the file size limit,
+ * RLIMIT_FSIZE, is N bytes)"). `path` (may be NULL) is the file that
+ * failed, for the free-space figure. Sets mt__archive_last_errno. */
+mt_status mt__archive_fail_os(mt_diag *diag, mt_status status, int err, const char *path,
+                              const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+
+/* strerror(err) plus the limit behind ENOSPC, EDQUOT or EFBIG, into buf. */
+void mt__archive_errno_text(int err, const char *path, char *buf, size_t size);
+
 /* "dir/name" (malloc'ed), NULL when out of memory. */
 char *mt__archive_path(const mt_archive *archive, const char *name);
 
@@ -47,6 +80,10 @@ char *mt__archive_strdup(const char *text);
  * version (>= 1, no leading zeros). False for any other name. */
 bool mt__archive_name_parse(const char *name, size_t *out_stem_len, uint32_t *out_version);
 
+/* fsync of the archive directory, so that a new, renamed or removed name
+ * survives a power loss; MT_ERR_IO with the errno text. */
+mt_status mt__archive_fsync_dir(const mt_archive *archive, mt_diag *diag);
+
 /* Milliseconds on a monotonic clock. */
 double mt__archive_now_ms(void);
 
@@ -55,6 +92,20 @@ double mt__archive_now_ms(void);
 
 /* Turns off HDF5's automatic error printing (once per process). */
 void mt__h5_quiet(void);
+
+/* The errno an HDF5 file driver recorded on the current error stack ("...,
+ * errno = 28, error message = 'No space left on device'") after a failed
+ * HDF5 call, 0 when the failure was not the system's. Call it right after
+ * the failing call: the next HDF5 call clears the stack. */
+int mt__h5_os_errno(void);
+
+/* mt__archive_fail for a failed HDF5 call: appends the system's reason
+ * when HDF5's error stack holds one (mt__h5_os_errno). */
+mt_status mt__h5_fail(mt_diag *diag, mt_status status, const char *path, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
 
 mt_status mt__h5_write_attr_int(hid_t obj, const char *name, hid_t type, const void *value,
                                 const char *file, mt_diag *diag);
@@ -125,6 +176,17 @@ mt_status mt__h5_dataset_rows(hid_t loc, const char *name, const char *file, int
                               mt__h5_kind kind, size_t elem_size, uint64_t *out_rows,
                               mt_diag *diag);
 
+/* Called with each block of rows mt__h5_read_blocks reads. */
+typedef void (*mt__h5_block_fn)(void *ctx, void *rows, size_t n);
+
+/* Reads a 1-D dataset (checked as mt__h5_read_dataset checks it) a block of
+ * at most block_rows rows at a time into buf (block_rows elements of mtype)
+ * and hands each block to fn, so that a large dataset is streamed through a
+ * small buffer; *out_rows is its length. */
+mt_status mt__h5_read_blocks(hid_t loc, const char *name, const char *file, mt__h5_kind kind,
+                             size_t elem_size, hid_t mtype, void *buf, size_t block_rows,
+                             mt__h5_block_fn fn, void *ctx, uint64_t *out_rows, mt_diag *diag);
+
 /* Reads a whole dataset into buf, which holds `rows` rows: any other row
  * count is MT_ERR_PARSE ("has N rows, the counts say M"). */
 mt_status mt__h5_read_dataset_into(hid_t loc, const char *name, const char *file, int rank,
@@ -166,13 +228,49 @@ mt_status mt__report_read_scalars(hid_t group, const char *file, mt_report *out,
  * list's length against its count and every value's range. */
 mt_status mt__report_read(hid_t group, const char *file, mt_report *out, mt_diag *diag);
 
+/* XXH3-64 of every value the file stores of the report (the fields of
+ * mt__report_fields, then each list's length and rows), each as 64
+ * little-endian bits, so the hash of a report read back is the hash of the
+ * report written. MT_ERR_NOMEM only. */
+mt_status mt__report_hash(const mt_report *report, uint64_t *out, mt_diag *diag);
+
+/* ---- Files opened and created safely (archive_fd.c) ---- */
+
+/* "/proc/self/fd/N" for fd into buf (at least 32 bytes), when /proc is
+ * mounted and that name leads to fd's own file (same device and inode).
+ * Opening it opens that file, whatever the directory entry it came from has
+ * become since: HDF5, which opens files only by name, is handed this name. */
+bool mt__fd_proc_path(int fd, char *buf, size_t size);
+
+/* 16 hex digits of random bytes (getrandom; a clock and counter mix when
+ * the kernel has none to give) into out[17]. */
+void mt__archive_random_hex(char out[17]);
+
+/* Opens file_name of the archive for reading, refusing (MT_ERR_IO, message
+ * "refused: ...", fault MT_ARCHIVE_FAULT_UNSAFE) a symbolic link, anything
+ * not a regular file, and a file not owned by the effective user; never
+ * follows a link, never blocks on a FIFO, never opens a device. *out_fd is
+ * the open file (O_CLOEXEC) and *out_sb its fstat. MT_ERR_NOT_FOUND or
+ * MT_ERR_IO with the errno text (fault MT_ARCHIVE_FAULT_SYSTEM) when the
+ * system refuses. */
+mt_status mt__archive_open_fd(const mt_archive *archive, const char *file_name, int *out_fd,
+                              struct stat *out_sb, mt_archive_fault *out_fault, mt_diag *diag);
+
 /* ---- Reading (archive_read.c) ---- */
 
-/* Opens file_name of the archive read-only after checking it is a regular
- * file; *out_file is an HDF5 file id to close with H5Fclose.
- * *out_bytes (may be NULL) is its size. */
+/* Opens file_name of the archive read-only: mt__archive_open_fd's checks,
+ * then HDF5 opens that very file (through mt__fd_proc_path; without /proc
+ * by name, with the opened file's identity compared afterwards).
+ * *out_file is an HDF5 file id to close with H5Fclose. *out_bytes (may be
+ * NULL) is its size. *out_fault (may be NULL) says what a failure was:
+ * UNSAFE, SYSTEM, or CONTENT for a file HDF5 cannot read. */
 mt_status mt__archive_h5_open(const mt_archive *archive, const char *file_name, hid_t *out_file,
-                              uint64_t *out_bytes, mt_diag *diag);
+                              uint64_t *out_bytes, mt_archive_fault *out_fault, mt_diag *diag);
+
+/* The fault a failed read of a file's contents stands for: SYSTEM when
+ * mt__archive_last_errno is set or memory ran out, NEWER for a format
+ * version above this meshtopo's, CONTENT otherwise. */
+mt_archive_fault mt__archive_read_fault(mt_status status);
 
 /* Opens group `name` of loc; -1 (diag filled: MT_ERR_PARSE) when missing
  * or unreadable. */
@@ -190,18 +288,50 @@ mt_status mt__archive_read_faces(hid_t g, const char *file_name, mt_face_list *o
 /* ---- The half-edge arrays in a file (archive_halfedge.c), format 2 ---- */
 
 /* Writes group /meshtopo/halfedge (under g = /meshtopo) from the mesh's
- * arrays (mt_mesh_get_parts); positions are /meshtopo/positions already. */
-mt_status mt__halfedge_write(hid_t g, const mt_mesh *mesh, const mt__h5_layout *layout,
-                             const char *file, mt_diag *diag);
+ * arrays (mt_mesh_get_parts), with their digest (mt__halfedge_digest of
+ * the arrays, positions and report, seeded with content_hash) as attribute
+ * "digest"; positions are /meshtopo/positions already. */
+mt_status mt__halfedge_write(hid_t g, const mt_mesh *mesh, uint64_t content_hash,
+                             const mt__h5_layout *layout, const char *file, mt_diag *diag);
 
-/* Restores the mesh of /meshtopo/halfedge and /meshtopo/positions (g =
- * /meshtopo) with `report`: the counts come from the group's attributes
- * and /meshtopo's num_verts and num_faces, every dataset's length is
- * checked against them, the arrays are read straight into the pending
- * mesh (mt_mesh_restore_begin) and mt_mesh_restore_finish validates them.
- * Messages name the file and the dataset or the invariant broken. */
+/* Reads the arrays of /meshtopo/halfedge and /meshtopo/positions (g =
+ * /meshtopo) into a pending mesh (mt_mesh_restore_begin): the counts come
+ * from the group's attributes and /meshtopo's num_verts and num_faces and
+ * every dataset's length is checked against them. `positions` (may be
+ * NULL) are the face list's, already read: they are copied instead of read
+ * again. On MT_OK *out_pending is to be finished (mt_mesh_restore_finish)
+ * or destroyed, and *out_parts points at its arrays. Messages name the
+ * file and the dataset. */
+mt_status mt__halfedge_read(hid_t g, const char *file, const double *positions,
+                            mt_mesh **out_pending, mt_mesh_parts *out_parts, mt_diag *diag);
+
+/* mt__halfedge_read, then mt_mesh_restore_finish with `report` (which
+ * validates the arrays); messages name the file and the invariant broken. */
 mt_status mt__halfedge_restore(hid_t g, const char *file, const mt_report *report,
-                               mt_mesh **out_mesh, mt_diag *diag);
+                               const double *positions, mt_mesh **out_mesh, mt_diag *diag);
+
+/* The digest attribute of /meshtopo/halfedge (format 4): see
+ * mt__halfedge_digest. MT_ERR_PARSE when missing or not a uint64. */
+mt_status mt__halfedge_read_digest(hid_t g, const char *file, uint64_t *out, mt_diag *diag);
+
+/* ---- The hashes a load checks (archive_hash.c) ---- */
+
+/* mt_archive_content_hash of the face list stored in /meshtopo (group g),
+ * read a block at a time straight from face_vertex_counts and
+ * face_vertex_indices (no copy of the face list is made), with `positions`
+ * (3 * num_verts doubles, or NULL) standing for the positions dataset they
+ * were read from. MT_ERR_TOO_LARGE for counts past mesh_t's, as
+ * mt_archive_content_hash. */
+mt_status mt__content_hash_stored(hid_t g, const char *file, uint32_t num_verts,
+                                  const double *positions, uint64_t *out, mt_diag *diag);
+
+/* The digest a format 4 file stores with its half-edge arrays: XXH3-64
+ * over content_hash, the counts, the XXH3-64 of each array of p (in the
+ * order of /meshtopo/halfedge's description), of the positions and of the
+ * report's stored fields (mt__report_fields and the lists), every value as
+ * little-endian 64 bits. MT_ERR_NOMEM only. */
+mt_status mt__halfedge_digest(const mt_mesh_parts *p, const mt_report *report,
+                              uint64_t content_hash, uint64_t *out, mt_diag *diag);
 
 /* Whether two meshes' arrays are identical; otherwise writes the first
  * difference into buf ("he_next[17]: 4 != 5"). */
@@ -214,8 +344,33 @@ mt_status mt__archive_resolve(const mt_archive *archive, const char *mesh_id, ui
                               char *name, mt_diag *diag);
 
 /* Reads what mt_archive_list shows of one file into *e (file_name is set
- * by the caller). */
+ * by the caller; e->fault is set too). */
 mt_status mt__archive_read_entry(const mt_archive *archive, const char *file_name,
                                  mt_archive_entry *e, mt_diag *diag);
+
+/* ---- What a load and a verification check (archive_check.c) ---- */
+
+/* One file checked: its record, the mesh to serve and what was wrong. */
+typedef struct mt__check {
+    /* In. */
+    mt_archive_hash_fn hash; /* NULL: the content hash is not checked */
+    void *hash_ctx;
+    bool keep_faces; /* leave the face list in record.faces */
+    /* Out. */
+    mt_archive_record record;
+    mt_mesh *mesh;
+    mt_archive_fault fault;
+    bool restored;     /* mesh made from the stored arrays */
+    bool hash_checked; /* the face list's content hash was checked */
+    mt_diag fallback;  /* why the stored arrays or report were not used */
+    double read_ms, mesh_ms, check_ms;
+} mt__check;
+
+/* Checks the open file (file_name of the archive) the way
+ * mt_archive_load_mesh_file documents, filling c's outputs. On MT_OK
+ * c->mesh and c->record are the caller's (mt_mesh_destroy,
+ * mt_archive_record_free) and c->fault is NONE or DERIVED; on failure both
+ * are freed and c->fault says what failed. */
+mt_status mt__archive_check(hid_t file, const char *file_name, mt__check *c, mt_diag *diag);
 
 #endif

@@ -1,9 +1,11 @@
 /* Reloading an archived version as a queryable mesh (mt_archive_load_mesh):
- * a format 2 file's half-edge arrays are restored with mt_mesh_restore,
- * which validates them (they come from a file and are never trusted), so no
- * rebuild is needed. A version 1 file, or arrays that cannot be read or fail
- * validation, fall back to a rebuild from the stored face list compared
- * with the stored report; the reason is kept in the load info. */
+ * the file is opened safely (archive_read.c) and checked the way
+ * verification checks it (archive_check.c): the face list's content hash,
+ * a format 4 file's half-edge arrays restored with mt_mesh_restore (which
+ * validates them; they come from a file and are never trusted) and matched
+ * with their digest, so no rebuild is needed. Older files, or arrays that
+ * fail, are rebuilt from the stored face list; the reason and the fault are
+ * kept in the load info. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,72 +30,38 @@ mt_status mt_archive_load_mesh_file(const mt_archive *archive, const char *file_
                                 file_name ? file_name : "(null)");
     double t0 = mt__archive_now_ms();
     hid_t file;
-    mt_status st = mt__archive_h5_open(archive, file_name, &file, NULL, diag);
-    if (st != MT_OK) return st;
-    mt_archive_record r;
-    memset(&r, 0, sizeof r);
-    r.file_name = mt__archive_strdup(file_name);
-    if (!r.file_name) st = mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
-    hid_t g = st == MT_OK ? mt__archive_group_open(file, "meshtopo", file_name, diag) : -1;
-    if (st == MT_OK && g < 0) st = MT_ERR_PARSE;
-    if (st == MT_OK) st = mt__archive_read_provenance(g, file_name, &r, diag);
-    hid_t rg = st == MT_OK ? mt__archive_group_open(g, "report", file_name, diag) : -1;
-    if (st == MT_OK && rg < 0) st = MT_ERR_PARSE;
-    if (st == MT_OK) st = mt__report_read(rg, file_name, &r.report, diag);
-    if (rg >= 0) H5Gclose(rg);
-    info.read_ms = mt__archive_now_ms() - t0;
-
-    mt_mesh *mesh = NULL;
-    if (st == MT_OK && r.format_version >= 2) {
-        double t1 = mt__archive_now_ms();
-        mt_status rs = mt__halfedge_restore(g, file_name, &r.report, &mesh, &info.fallback);
-        info.mesh_ms += mt__archive_now_ms() - t1;
-        if (rs == MT_ERR_NOMEM) st = mt__archive_fail(diag, rs, "%s", info.fallback.message);
-        info.restored = rs == MT_OK;
-    }
-    if (st == MT_OK && (!mesh || with_faces)) {
-        double t1 = mt__archive_now_ms();
-        mt_diag why;
-        st = mt__archive_read_faces(g, file_name, &r.faces, &why);
-        if (st != MT_OK && !mesh && info.fallback.status != MT_OK)
-            mt__archive_fail(diag, st, "%s; the face list for a rebuild cannot be read either: %s",
-                             info.fallback.message, why.message);
-        else if (st != MT_OK && diag)
-            *diag = why;
-        if (st == MT_OK &&
-            (r.report.num_verts != r.faces.num_verts || r.report.num_faces != r.faces.num_faces))
-            st = mt__archive_fail(diag, MT_ERR_PARSE,
-                                  "%s: the report counts %u vertices and %u faces, the face list "
-                                  "%u and %u",
-                                  file_name, r.report.num_verts, r.report.num_faces,
-                                  r.faces.num_verts, r.faces.num_faces);
-        info.read_ms += mt__archive_now_ms() - t1;
-    }
-    if (g >= 0) H5Gclose(g);
-    if (H5Fclose(file) < 0 && st == MT_OK)
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: H5Fclose failed", file_name);
-    if (st == MT_OK && !mesh) {
-        double t2 = mt__archive_now_ms();
-        mt_diag why;
-        st = mt_archive_record_build(&r, &mesh, &why);
-        if (st != MT_OK && info.fallback.status != MT_OK)
-            mt__archive_fail(diag, st, "%s; the rebuild from the face list failed too: %s",
-                             info.fallback.message, why.message);
-        else if (st != MT_OK && diag)
-            *diag = why;
-        info.mesh_ms += mt__archive_now_ms() - t2;
-    }
+    mt_status st = mt__archive_h5_open(archive, file_name, &file, NULL, &info.fault, diag);
     if (st != MT_OK) {
-        mt_mesh_destroy(mesh);
-        mt_archive_record_free(&r);
         if (out_info) *out_info = info;
         return st;
     }
-    *out_mesh = mesh;
-    if (out_record)
-        *out_record = r;
-    else
-        mt_archive_record_free(&r);
+    double opened = mt__archive_now_ms() - t0;
+    mt__check c;
+    memset(&c, 0, sizeof c);
+    c.hash = archive->content_hash;
+    c.hash_ctx = archive->content_hash_ctx;
+    c.keep_faces = with_faces;
+    st = mt__archive_check(file, file_name, &c, diag);
+    if (H5Fclose(file) < 0 && st == MT_OK) {
+        st = mt__h5_fail(diag, MT_ERR_IO, NULL, "%s: H5Fclose failed", file_name);
+        c.fault = MT_ARCHIVE_FAULT_SYSTEM;
+        mt_mesh_destroy(c.mesh);
+        c.mesh = NULL;
+        mt_archive_record_free(&c.record);
+    }
+    info.restored = st == MT_OK && c.restored;
+    info.fault = c.fault;
+    info.hash_checked = c.hash_checked;
+    info.fallback = c.fallback;
+    info.read_ms = opened + c.read_ms;
+    info.mesh_ms = c.mesh_ms;
+    info.check_ms = c.check_ms;
     if (out_info) *out_info = info;
+    if (st != MT_OK) return st;
+    *out_mesh = c.mesh;
+    if (out_record)
+        *out_record = c.record;
+    else
+        mt_archive_record_free(&c.record);
     return MT_OK;
 }

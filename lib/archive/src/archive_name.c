@@ -1,11 +1,16 @@
 /* Archive file names: a mesh id is user input and never becomes a path as
  * it is. Every byte outside [A-Za-z0-9_-] is percent-encoded (so '.', '/',
  * '%', '~' and ' ' never appear raw) and long ids are shortened with a hash
- * so every name fits NAME_MAX. Also the small helpers every file uses. */
+ * so every name fits NAME_MAX. Also the small helpers every file uses:
+ * failure messages (with the system's reason and the limit it hit), paths,
+ * fault names. */
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/statvfs.h>
 #include <time.h>
 
 #include "archive_internal.h"
@@ -23,6 +28,62 @@ mt_status mt__archive_fail(mt_diag *diag, mt_status status, const char *fmt, ...
     vsnprintf(diag->message, sizeof diag->message, fmt, ap);
     va_end(ap);
     return status;
+}
+
+_Thread_local int mt__archive_last_errno;
+
+void mt__archive_errno_text(int err, const char *path, char *buf, size_t size)
+{
+    int n = snprintf(buf, size, "%s", strerror(err));
+    if (n < 0 || (size_t)n >= size) return;
+    struct statvfs vfs;
+    struct rlimit lim;
+    if ((err == ENOSPC || err == EDQUOT) && path && statvfs(path, &vfs) == 0)
+        snprintf(buf + n, size - (size_t)n, " (%llu bytes free on the file system of %s)",
+                 (unsigned long long)vfs.f_bavail * (unsigned long long)vfs.f_frsize, path);
+    else if (err == EFBIG && getrlimit(RLIMIT_FSIZE, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY)
+        snprintf(buf + n, size - (size_t)n, " (the file size limit, RLIMIT_FSIZE, is %llu bytes)",
+                 (unsigned long long)lim.rlim_cur);
+}
+
+mt_status mt__archive_fail_os(mt_diag *diag, mt_status status, int err, const char *path,
+                              const char *fmt, ...)
+{
+    mt__archive_last_errno = err;
+    if (!diag) return status;
+    char what[sizeof diag->message], why[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    mt__archive_errno_text(err, path, why, sizeof why);
+    /* The reason comes first when the message is long: it is what a
+     * message cut to fit must not lose. */
+    if (strlen(what) + strlen(why) + 2 >= sizeof diag->message)
+        return mt__archive_fail(diag, status, "%s: %.*s", why,
+                                (int)(sizeof diag->message - strlen(why) - 3), what);
+    return mt__archive_fail(diag, status, "%s: %s", what, why);
+}
+
+const char *mt_archive_fault_name(mt_archive_fault fault)
+{
+    switch (fault) {
+        case MT_ARCHIVE_FAULT_NONE:
+            return "none";
+        case MT_ARCHIVE_FAULT_DERIVED:
+            return "derived";
+        case MT_ARCHIVE_FAULT_VTK:
+            return "vtk";
+        case MT_ARCHIVE_FAULT_CONTENT:
+            return "content";
+        case MT_ARCHIVE_FAULT_NEWER:
+            return "newer";
+        case MT_ARCHIVE_FAULT_UNSAFE:
+            return "unsafe";
+        case MT_ARCHIVE_FAULT_SYSTEM:
+            return "system";
+    }
+    return "unknown";
 }
 
 char *mt__archive_strdup(const char *text)

@@ -1,43 +1,85 @@
 /* Reading archive files back. Every value comes from a file that may be
- * truncated, foreign or hostile: attributes are range-checked, datasets
- * shape- and type-checked (archive_h5.c) before any allocation, the arrays
- * decoded by archive_decode.c, and the file name must be the one the
- * stored mesh id and version give. Errors name the file and the object. */
+ * truncated, foreign or hostile: the file is opened without following links
+ * and must be a regular file of ours (archive_fd.c), attributes are
+ * range-checked, datasets shape- and type-checked (archive_h5.c) before any
+ * allocation, the arrays decoded by archive_decode.c, and the file name must
+ * be the one the stored mesh id and version give. Errors name the file and
+ * the object. */
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "archive_internal.h"
 
 /* Longest source name read back (the LCM string has no fixed limit). */
 #define SOURCE_MAX 65535
 
+mt_archive_fault mt__archive_read_fault(mt_status status)
+{
+    if (status == MT_ERR_NOMEM || status == MT_ERR_NOT_FOUND || mt__archive_last_errno != 0)
+        return MT_ARCHIVE_FAULT_SYSTEM;
+    return status == MT_ERR_UNSUPPORTED ? MT_ARCHIVE_FAULT_NEWER : MT_ARCHIVE_FAULT_CONTENT;
+}
+
+/* Whether the file HDF5 opened is `sb`'s (device and inode). */
+static bool same_file(hid_t file, const struct stat *sb)
+{
+    void *handle = NULL;
+    struct stat hs;
+    return H5Fget_vfd_handle(file, H5P_DEFAULT, &handle) >= 0 && handle &&
+           fstat(*(int *)handle, &hs) == 0 && hs.st_dev == sb->st_dev && hs.st_ino == sb->st_ino;
+}
+
 mt_status mt__archive_h5_open(const mt_archive *archive, const char *file_name, hid_t *out_file,
-                              uint64_t *out_bytes, mt_diag *diag)
+                              uint64_t *out_bytes, mt_archive_fault *out_fault, mt_diag *diag)
 {
     *out_file = -1;
+    mt_archive_fault ignored;
+    if (!out_fault) out_fault = &ignored;
     mt__h5_quiet();
-    char *path = mt__archive_path(archive, file_name);
-    if (!path) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
+    mt__archive_last_errno = 0;
+    int fd;
     struct stat sb;
-    mt_status st = MT_OK;
-    if (lstat(path, &sb) != 0)
-        st = mt__archive_fail(diag, errno == ENOENT ? MT_ERR_NOT_FOUND : MT_ERR_IO, "%s: %s", path,
-                              strerror(errno));
-    else if (!S_ISREG(sb.st_mode))
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: not a regular file", path);
-    if (st == MT_OK) {
-        if (out_bytes) *out_bytes = (uint64_t)sb.st_size;
-        hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-        if (fapl >= 0) H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
-        *out_file = fapl < 0 ? -1 : H5Fopen(path, H5F_ACC_RDONLY, fapl);
-        if (fapl >= 0) H5Pclose(fapl);
-        if (*out_file < 0)
-            st = mt__archive_fail(diag, MT_ERR_IO,
-                                  "%s: not a readable HDF5 file (truncated or not HDF5)", path);
+    mt_status st = mt__archive_open_fd(archive, file_name, &fd, &sb, out_fault, diag);
+    if (st != MT_OK) return st;
+    char *path = mt__archive_path(archive, file_name);
+    if (!path) {
+        close(fd);
+        *out_fault = MT_ARCHIVE_FAULT_SYSTEM;
+        return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
     }
+    if (out_bytes) *out_bytes = (uint64_t)sb.st_size;
+    /* HDF5 opens files by name only. It is given /proc/self/fd/N, which
+     * opens the very file checked above whatever happens to its directory
+     * entry meanwhile. Without /proc (a chroot) it gets the name, and what
+     * it opened is compared with the checked file afterwards: a swap in
+     * between is then refused, though HDF5 has opened what was swapped in. */
+    char proc[32];
+    bool by_fd = mt__fd_proc_path(fd, proc, sizeof proc);
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    if (fapl >= 0) H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
+    hid_t file = fapl < 0 ? -1 : H5Fopen(by_fd ? proc : path, H5F_ACC_RDONLY, fapl);
+    int err = file < 0 ? mt__h5_os_errno() : 0;
+    if (fapl >= 0) H5Pclose(fapl);
+    if (file < 0 && err) {
+        *out_fault = MT_ARCHIVE_FAULT_SYSTEM;
+        st = mt__archive_fail_os(diag, MT_ERR_IO, err, path, "%s: cannot be read", path);
+    } else if (file < 0) {
+        *out_fault = MT_ARCHIVE_FAULT_CONTENT;
+        st = mt__archive_fail(diag, MT_ERR_IO,
+                              "%s: not a readable HDF5 file (truncated or not HDF5)", path);
+    } else if (!by_fd && !same_file(file, &sb)) {
+        H5Fclose(file);
+        file = -1;
+        *out_fault = MT_ARCHIVE_FAULT_UNSAFE;
+        st = mt__archive_fail(diag, MT_ERR_IO,
+                              "%s: refused: replaced by another file while being opened", path);
+    }
+    close(fd);
     free(path);
+    *out_file = file;
     return st;
 }
 
@@ -150,7 +192,7 @@ mt_status mt_archive_load_file(const mt_archive *archive, const char *file_name,
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "'%s' is not an archive file name",
                                 file_name ? file_name : "(null)");
     hid_t file;
-    mt_status st = mt__archive_h5_open(archive, file_name, &file, NULL, diag);
+    mt_status st = mt__archive_h5_open(archive, file_name, &file, NULL, NULL, diag);
     if (st != MT_OK) return st;
     mt_archive_record r;
     memset(&r, 0, sizeof r);
@@ -197,7 +239,8 @@ mt_status mt__archive_read_entry(const mt_archive *archive, const char *file_nam
                                  mt_archive_entry *e, mt_diag *diag)
 {
     hid_t file;
-    mt_status st = mt__archive_h5_open(archive, file_name, &file, &e->file_bytes, diag);
+    e->fault = MT_ARCHIVE_FAULT_NONE;
+    mt_status st = mt__archive_h5_open(archive, file_name, &file, &e->file_bytes, &e->fault, diag);
     if (st != MT_OK) return st;
     mt_archive_record r;
     memset(&r, 0, sizeof r);
@@ -213,6 +256,7 @@ mt_status mt__archive_read_entry(const mt_archive *archive, const char *file_nam
     if (g >= 0) H5Gclose(g);
     H5Fclose(file);
     if (st != MT_OK) {
+        e->fault = mt__archive_read_fault(st);
         mt_archive_record_free(&r);
         return st;
     }

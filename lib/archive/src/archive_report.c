@@ -2,7 +2,8 @@
  * flags as attributes of /meshtopo/report named like mt_report's fields,
  * the lists as datasets of named compound rows (h5dump and h5py show the
  * column names; defect kinds are an HDF5 enum of their keys). Also the
- * field-by-field comparison used to check a rebuild against the file. */
+ * field-by-field comparison used to check a rebuild against the file, and
+ * the hash of the stored values that the half-edge digest includes. */
 #include <inttypes.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -10,6 +11,7 @@
 #include <string.h>
 
 #include "archive_internal.h"
+#include "meshtopo/content_hash.h"
 
 #define FIELD(name, type)                      \
     {                                          \
@@ -174,8 +176,8 @@ mt_status mt__report_write(hid_t group, const mt_report *r, const char *file, mt
                                : H5Acreate2(group, f->name, field_file_type(f->type), space,
                                             H5P_DEFAULT, H5P_DEFAULT);
         if (attr < 0 || H5Awrite(attr, mtype, p) < 0)
-            st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot write attribute report/%s", file,
-                                  f->name);
+            st = mt__h5_fail(diag, MT_ERR_IO, file, "%s: cannot write attribute report/%s", file,
+                             f->name);
         if (attr >= 0) H5Aclose(attr);
         if (space >= 0) H5Sclose(space);
     }
@@ -382,6 +384,88 @@ mt_status mt__report_read(hid_t group, const char *file, mt_report *out, mt_diag
     *out = r;
     if (st != MT_OK) mt_archive_report_free(out);
     return st;
+}
+
+/* Appends v as 8 little-endian bytes. */
+static uint8_t *put_u64(uint8_t *at, uint64_t v)
+{
+    for (int i = 0; i < 8; i++) at[i] = (uint8_t)(v >> (8 * i));
+    return at + 8;
+}
+
+mt_status mt__report_hash(const mt_report *r, uint64_t *out, mt_diag *diag)
+{
+    /* Every value stored, 8 bytes each: the fields, then each list's length
+     * and rows. */
+    const size_t words = mt__num_report_fields + 1 + r->boundary_loops + 1 +
+                         12 * (size_t)r->connected_components + 1 + 2 * r->num_face_size_bins + 1 +
+                         2 * r->num_edge_use_bins + 1 + 4 * r->num_defects;
+    uint8_t *bytes = words <= SIZE_MAX / 8 ? malloc(8 * words) : NULL;
+    if (!bytes) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory hashing a report");
+    uint8_t *at = bytes;
+    for (size_t i = 0; i < mt__num_report_fields; i++) {
+        const mt__report_field *f = &mt__report_fields[i];
+        const char *p = (const char *)r + f->offset;
+        uint64_t v = 0;
+        switch (f->type) {
+            case MT__FIELD_U32:
+                v = *(const uint32_t *)(const void *)p;
+                break;
+            case MT__FIELD_U64:
+                v = *(const uint64_t *)(const void *)p;
+                break;
+            case MT__FIELD_I32:
+                v = (uint64_t)(int64_t) * (const int32_t *)(const void *)p;
+                break;
+            case MT__FIELD_I64:
+                v = (uint64_t) * (const int64_t *)(const void *)p;
+                break;
+            case MT__FIELD_BOOL:
+                v = *(const bool *)(const void *)p ? 1 : 0;
+                break;
+        }
+        at = put_u64(at, v);
+    }
+    at = put_u64(at, r->boundary_loops);
+    for (uint32_t i = 0; i < r->boundary_loops; i++) at = put_u64(at, r->boundary_loop_lengths[i]);
+    at = put_u64(at, r->connected_components);
+    for (uint32_t i = 0; i < r->connected_components; i++) {
+        const mt_component_info *c = &r->components[i];
+        const uint64_t row[12] = {c->min_face,
+                                  c->faces,
+                                  c->vertices,
+                                  c->edges,
+                                  (uint64_t)c->euler_characteristic,
+                                  c->boundary_edges,
+                                  c->boundary_loops,
+                                  c->closed,
+                                  c->manifold,
+                                  c->orientable,
+                                  (uint64_t)(int64_t)c->genus,
+                                  (uint64_t)(int64_t)c->genus_with_boundary};
+        for (int k = 0; k < 12; k++) at = put_u64(at, row[k]);
+    }
+    at = put_u64(at, r->num_face_size_bins);
+    for (size_t i = 0; i < r->num_face_size_bins; i++) {
+        at = put_u64(at, r->face_size_histogram[i].key);
+        at = put_u64(at, r->face_size_histogram[i].count);
+    }
+    at = put_u64(at, r->num_edge_use_bins);
+    for (size_t i = 0; i < r->num_edge_use_bins; i++) {
+        at = put_u64(at, r->edge_use_histogram[i].key);
+        at = put_u64(at, r->edge_use_histogram[i].count);
+    }
+    at = put_u64(at, r->num_defects);
+    for (size_t i = 0; i < r->num_defects; i++) {
+        const mt_defect *d = &r->defects[i];
+        at = put_u64(at, d->kind);
+        at = put_u64(at, d->a);
+        at = put_u64(at, d->b);
+        at = put_u64(at, d->c);
+    }
+    *out = mt_msgs_content_hash_bytes(bytes, (size_t)(at - bytes));
+    free(bytes);
+    return MT_OK;
 }
 
 void mt_archive_report_free(mt_report *report)

@@ -1,9 +1,9 @@
 /* Checking an archived version: rebuilding the half-edge mesh from the
- * stored face list and comparing its report with the stored one (also the
- * reload path of version 1 files), and the whole-file verification behind
- * `meshtopo archive verify`: readable, the VTKHDF datasets agreeing with the
- * face list, the content hash matching, the stored half-edge arrays (format
- * 2) validating and equal to the rebuild's. */
+ * stored face list and comparing its report with the stored one
+ * (mt_archive_record_build), and the whole-file verification behind
+ * `meshtopo archive verify`: the checks a load makes (archive_check.c, so a
+ * load and a verification agree on every file), then the VTKHDF datasets
+ * against the face list. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -129,78 +129,60 @@ static mt_status read_vtk(hid_t file, const char *name, vtk_read *v, mt_diag *di
     return st;
 }
 
-/* The stored half-edge arrays restore (mt_mesh_restore validates them) into
- * exactly the arrays of the rebuilt mesh. */
-static mt_status verify_stored_arrays(hid_t file, const char *file_name, const mt_report *report,
-                                      const mt_mesh *rebuilt, mt_diag *diag)
+mt_status mt_archive_verify_file_with(const mt_archive *archive, const char *file_name,
+                                      mt_archive_hash_fn hash, void *hash_ctx,
+                                      mt_archive_fault *out_fault, mt_diag *diag)
 {
-    hid_t g = mt__archive_group_open(file, "meshtopo", file_name, diag);
-    if (g < 0) return MT_ERR_PARSE;
-    mt_mesh *restored = NULL;
-    mt_status st = mt__halfedge_restore(g, file_name, report, &restored, diag);
-    H5Gclose(g);
-    if (st == MT_OK) {
-        mt_mesh_parts a, b;
-        char difference[256];
-        mt_mesh_get_parts(restored, &a);
-        mt_mesh_get_parts(rebuilt, &b);
-        if (!mt__parts_equal(&a, &b, difference, sizeof difference))
-            st = mt__archive_fail(diag, MT_ERR_CORRUPT,
-                                  "%s: the stored half-edge arrays differ from the rebuild's "
-                                  "(meshtopo/halfedge/%s: stored != rebuilt)",
-                                  file_name, difference);
+    mt_diag_clear(diag);
+    mt_archive_fault fault = MT_ARCHIVE_FAULT_NONE;
+    if (out_fault) *out_fault = fault;
+    if (!archive || !file_name || strchr(file_name, '/') || file_name[0] == '.')
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "'%s' is not an archive file name",
+                                file_name ? file_name : "(null)");
+    hid_t file;
+    mt_status st = mt__archive_h5_open(archive, file_name, &file, NULL, &fault, diag);
+    if (st != MT_OK) {
+        if (out_fault) *out_fault = fault;
+        return st;
     }
-    mt_mesh_destroy(restored);
+    /* The checks of a load, with the face list kept for the VTKHDF check. */
+    mt__check c;
+    memset(&c, 0, sizeof c);
+    c.hash = hash ? hash : archive->content_hash;
+    c.hash_ctx = hash ? hash_ctx : archive->content_hash_ctx;
+    c.keep_faces = true;
+    st = mt__archive_check(file, file_name, &c, diag);
+    fault = c.fault;
+    if (st == MT_OK && fault == MT_ARCHIVE_FAULT_DERIVED)
+        st = mt__archive_fail(diag, MT_ERR_CORRUPT, "%s", c.fallback.message);
+    if (st == MT_OK) {
+        /* The VTKHDF cells are the faces the mesh kept. */
+        vtk_read v;
+        st = read_vtk(file, file_name, &v, diag);
+        uint8_t *kept = st == MT_OK ? malloc((size_t)c.record.faces.num_faces + 1) : NULL;
+        if (st == MT_OK && !kept) st = mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
+        if (st == MT_OK) {
+            mt_mesh_view view;
+            mt_mesh_get_view(c.mesh, &view);
+            for (uint32_t f = 0; f < c.record.faces.num_faces; f++)
+                kept[f] = view.face_he[f] != MT_NONE;
+            st = mt_archive_check_vtk(&v.arrays, &c.record.faces, kept, file_name, diag);
+        }
+        free(kept);
+        vtk_read_free(&v);
+        if (st != MT_OK)
+            fault = st == MT_ERR_NOMEM || mt__archive_last_errno ? MT_ARCHIVE_FAULT_SYSTEM
+                                                                 : MT_ARCHIVE_FAULT_VTK;
+    }
+    H5Fclose(file);
+    mt_mesh_destroy(c.mesh);
+    mt_archive_record_free(&c.record);
+    if (out_fault) *out_fault = fault;
     return st;
 }
 
 mt_status mt_archive_verify_file(const mt_archive *archive, const char *file_name,
                                  mt_archive_hash_fn hash, void *hash_ctx, mt_diag *diag)
 {
-    mt_diag_clear(diag);
-    mt_archive_record record;
-    mt_status st = mt_archive_load_file(archive, file_name, &record, diag);
-    if (st != MT_OK) return st;
-    mt_mesh *mesh = NULL;
-    st = mt_archive_record_build(&record, &mesh, diag);
-    if (st == MT_OK && hash && record.format_version >= MT_ARCHIVE_FORMAT_VERSION_HASHED) {
-        uint64_t h = 0;
-        mt_diag why;
-        mt_diag_clear(&why);
-        mt_status hs = hash(hash_ctx, &record.faces, &h, &why);
-        if (hs != MT_OK)
-            st = mt__archive_fail(diag, hs, "%s: the content hash cannot be computed: %s",
-                                  file_name, why.message);
-        else if (h != record.content_hash)
-            st = mt__archive_fail(diag, MT_ERR_CORRUPT,
-                                  "%s: content hash mismatch: the file says %016llx, the face "
-                                  "list hashes to %016llx",
-                                  file_name, (unsigned long long)record.content_hash,
-                                  (unsigned long long)h);
-    }
-    if (st == MT_OK) {
-        hid_t file;
-        st = mt__archive_h5_open(archive, file_name, &file, NULL, diag);
-        if (st == MT_OK) {
-            vtk_read v;
-            st = read_vtk(file, file_name, &v, diag);
-            uint8_t *kept = st == MT_OK ? malloc((size_t)record.faces.num_faces + 1) : NULL;
-            if (st == MT_OK && !kept) st = mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
-            if (st == MT_OK) {
-                mt_mesh_view view;
-                mt_mesh_get_view(mesh, &view);
-                for (uint32_t f = 0; f < record.faces.num_faces; f++)
-                    kept[f] = view.face_he[f] != MT_NONE;
-                st = mt_archive_check_vtk(&v.arrays, &record.faces, kept, file_name, diag);
-            }
-            free(kept);
-            vtk_read_free(&v);
-            if (st == MT_OK && record.format_version >= 2)
-                st = verify_stored_arrays(file, file_name, &record.report, mesh, diag);
-            H5Fclose(file);
-        }
-    }
-    mt_mesh_destroy(mesh);
-    mt_archive_record_free(&record);
-    return st;
+    return mt_archive_verify_file_with(archive, file_name, hash, hash_ctx, NULL, diag);
 }

@@ -2,12 +2,12 @@
  * (/VTKHDF), the face list exactly as submitted with provenance and the
  * topology report (/meshtopo), all into a temporary file that is flushed,
  * closed, fsynced and then linked into place (see write_durably for why
- * each step is needed), and (format 2) the half-edge arrays
- * (archive_halfedge.c). Layout: contiguous datasets by default, or chunked
- * with shuffle + deflate (mt_archive_write_options). */
+ * each step is needed, and for why nothing planted in the directory can
+ * redirect the write), and (format 2) the half-edge arrays with (format 4)
+ * their digest (archive_halfedge.c). Layout: contiguous datasets by
+ * default, or chunked with shuffle + deflate (mt_archive_write_options). */
 #include <errno.h>
 #include <fcntl.h>
-#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,8 +16,10 @@
 
 #include "archive_internal.h"
 
-/* Distinguishes the temporary files of one process. */
-static atomic_uint tmp_counter;
+/* Random temporary names tried before giving up: a collision of 64 random
+ * bits is never expected, so running out means something keeps taking the
+ * names, which is worth an error. */
+#define TMP_ATTEMPTS 16
 
 /* The VTKHDF cells are the faces the build kept (rejected faces would make
  * a viewer read out of bounds), in VTKHDF's types. They are converted and
@@ -158,7 +160,7 @@ static mt_status write_cells_column(hid_t loc, const char *dname, cells_column c
 static hid_t group_create(hid_t loc, const char *name, const char *file, mt_diag *diag)
 {
     hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    if (g < 0) mt__archive_fail(diag, MT_ERR_IO, "%s: cannot create group %s", file, name);
+    if (g < 0) mt__h5_fail(diag, MT_ERR_IO, file, "%s: cannot create group %s", file, name);
     return g;
 }
 
@@ -244,7 +246,7 @@ static mt_status write_meshtopo(hid_t file, const mt_archive_meta *meta, const m
      * /VTKHDF/Points: the same N x 3 float64 values, stored once. */
     if (st == MT_OK && list->positions) {
         if (H5Lcreate_hard(file, "/VTKHDF/Points", g, "positions", H5P_DEFAULT, H5P_DEFAULT) < 0)
-            st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot link /meshtopo/positions", name);
+            st = mt__h5_fail(diag, MT_ERR_IO, name, "%s: cannot link /meshtopo/positions", name);
     } else if (st == MT_OK) {
         st = mt__h5_write_dataset(g, "positions", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 2, pos,
                                   list->positions, name, diag);
@@ -261,96 +263,179 @@ static mt_status write_meshtopo(hid_t file, const mt_archive_meta *meta, const m
     if (st == MT_OK && rg < 0) st = MT_ERR_IO;
     if (st == MT_OK) st = mt__report_write(rg, mt_mesh_report(mesh), name, diag);
     if (rg >= 0) H5Gclose(rg);
-    if (st == MT_OK) st = mt__halfedge_write(g, mesh, layout, name, diag);
+    if (st == MT_OK) st = mt__halfedge_write(g, mesh, meta->content_hash, layout, name, diag);
     H5Gclose(g);
     return st;
 }
 
-/* fsync of a path opened read-only (a file or a directory). */
-static int fsync_path(const char *path, int flags)
+/* The temporary file: ".mt-tmp-<pid>-<16 random hex digits>.part" created
+ * with O_CREAT | O_EXCL | O_NOFOLLOW, so that nothing already there (a
+ * symbolic link planted at a guessed name included) is opened, followed or
+ * truncated; a taken name means another draw. On MT_OK *out_fd is the new
+ * empty file and *out_path its path (malloc'ed). */
+static mt_status tmp_create(const mt_archive *archive, int *out_fd, char **out_path, mt_diag *diag)
 {
-    int fd = open(path, O_RDONLY | flags);
-    if (fd < 0) return -1;
-    int rc = fsync(fd);
-    int saved = errno;
-    close(fd);
-    errno = saved;
-    return rc;
+    *out_fd = -1;
+    *out_path = NULL;
+    for (int attempt = 0; attempt < TMP_ATTEMPTS; attempt++) {
+        char hex[17], name[64];
+        mt__archive_random_hex(hex);
+        snprintf(name, sizeof name, MT__ARCHIVE_TMP_PREFIX "%ld-%s.part", (long)getpid(), hex);
+        char *path = mt__archive_path(archive, name);
+        if (!path) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
+        int fd = open(path, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (fd >= 0) {
+            *out_fd = fd;
+            *out_path = path;
+            return MT_OK;
+        }
+        int err = errno;
+        if (err != EEXIST) {
+            mt_status st = mt__archive_fail_os(diag, MT_ERR_IO, err, archive->dir,
+                                               "%s: cannot create the temporary file", path);
+            free(path);
+            return st;
+        }
+        free(path);
+    }
+    return mt__archive_fail(diag, MT_ERR_IO,
+                            "%s: %d random temporary names were all taken: something keeps "
+                            "creating " MT__ARCHIVE_TMP_PREFIX "* files there",
+                            archive->dir, TMP_ATTEMPTS);
+}
+
+/* What is at a final name that is not a regular file, for the messages. */
+static const char *in_the_way(mode_t mode)
+{
+    return S_ISLNK(mode) ? "a symbolic link" : S_ISDIR(mode) ? "a directory" : "a non-regular file";
+}
+
+/* Links the written file (fd, named tmp) to final_path, never replacing
+ * anything there. With /proc, linkat links the open file itself, whatever
+ * became of its temporary name; without, link(tmp) and a check that the
+ * final name is our file (a swapped-in temporary name is unlinked again). */
+static mt_status link_final(const mt_archive *archive, int fd, const char *tmp,
+                            const char *final_path, const mt_archive_meta *meta, mt_diag *diag)
+{
+    char proc[32];
+    const bool by_fd = mt__fd_proc_path(fd, proc, sizeof proc);
+    int rc = by_fd ? linkat(AT_FDCWD, proc, AT_FDCWD, final_path, AT_SYMLINK_FOLLOW)
+                   : link(tmp, final_path);
+    if (rc != 0) {
+        int err = errno;
+        struct stat there;
+        if (err == EEXIST && lstat(final_path, &there) == 0 && !S_ISREG(there.st_mode))
+            return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
+                                    "%s: version %u of mesh '%s' cannot be archived: %s is in "
+                                    "the way (nothing was written through it)",
+                                    final_path, meta->version, meta->mesh_id,
+                                    in_the_way(there.st_mode));
+        if (err == EEXIST)
+            return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
+                                    "%s: version %u of mesh '%s' is already archived", final_path,
+                                    meta->version, meta->mesh_id);
+        return mt__archive_fail_os(diag, MT_ERR_IO, err, archive->dir,
+                                   "%s: cannot link the new file into place", final_path);
+    }
+    /* linkat of the open file links nothing else; link by name might have. */
+    struct stat ours, linked;
+    if (!by_fd && (fstat(fd, &ours) != 0 || lstat(final_path, &linked) != 0 ||
+                   ours.st_dev != linked.st_dev || ours.st_ino != linked.st_ino)) {
+        unlink(final_path);
+        return mt__archive_fail(diag, MT_ERR_IO,
+                                "%s: the temporary file %s was replaced while being written; "
+                                "nothing was archived",
+                                final_path, tmp);
+    }
+    return MT_OK;
 }
 
 /* Crash safety, step by step (HDF5 1.10 files are not crash-safe while
  * open for writing: a file killed before it is closed cannot be opened
  * again, so nothing is ever written under the final name):
- *  1. H5Fcreate a temporary name in the same directory (same file system,
- *     so step 4 is atomic); H5F_CLOSE_STRONG makes H5Fclose close every
- *     object and really release the file.
+ *  1. Create the temporary file in the same directory (same file system,
+ *     so step 4 is atomic) exclusively and without following links
+ *     (tmp_create), then let HDF5 create its file in it through
+ *     /proc/self/fd: HDF5 opens files by name, and that name leads to the
+ *     file just created whatever its directory entry has become.
+ *     H5F_CLOSE_STRONG makes H5Fclose close every object and really
+ *     release the file.
  *  2. H5Fflush(H5F_SCOPE_GLOBAL) writes HDF5's metadata cache and raw data
  *     out of its buffers; H5Fclose then writes the superblock's final
  *     end-of-file address. Only after both is the file complete.
  *  3. fsync the file: complete in the page cache is not on disk.
- *  4. link() the final name to it (fails with EEXIST instead of replacing
- *     an existing version, unlike rename), then unlink the temporary name.
+ *  4. link the final name to it (fails with EEXIST instead of replacing
+ *     an existing version or a symbolic link planted there, unlike rename),
+ *     then unlink the temporary name.
  *  5. fsync the directory so the new name itself survives a power loss.
  * A crash before 4 leaves only a temporary file (removed at the next open);
- * between 4 and the unlink, both names of one complete file. */
+ * between 4 and the unlink, both names of one complete file. Without /proc
+ * (a chroot) step 1 hands HDF5 the temporary name after removing the empty
+ * file, for HDF5 to create it exclusively itself (H5F_ACC_EXCL is O_CREAT |
+ * O_EXCL: never through a link), and step 4 checks the linked file is ours.
+ * Every failure the system causes is reported with its errno text. */
 static mt_status write_durably(const mt_archive *archive, const char *final_name,
                                const mt_archive_meta *meta, const mt_face_list *list,
                                const mt_mesh *mesh, const mt__h5_layout *layout,
                                mt_archive_write_stats *stats, mt_diag *diag)
 {
-    char tmp_name[64];
-    snprintf(tmp_name, sizeof tmp_name, MT__ARCHIVE_TMP_PREFIX "%ld-%u.part", (long)getpid(),
-             atomic_fetch_add(&tmp_counter, 1u));
-    char *tmp = mt__archive_path(archive, tmp_name);
     char *final_path = mt__archive_path(archive, final_name);
-    if (!tmp || !final_path) {
-        free(tmp);
-        free(final_path);
-        return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
-    }
+    if (!final_path) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
     vtk_cells cells;
     double t0 = mt__archive_now_ms();
     vtk_cells_count(list, mesh, &cells);
     cells.buffer = malloc((size_t)BLOCK_ROWS * 8);
     mt_status st = cells.buffer ? MT_OK : mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
+    int fd = -1;
+    char *tmp = NULL;
+    if (st == MT_OK) st = tmp_create(archive, &fd, &tmp, diag);
     hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
     hid_t file = -1;
     if (st == MT_OK) {
+        char proc[32];
+        bool by_fd = mt__fd_proc_path(fd, proc, sizeof proc);
+        if (!by_fd) {
+            unlink(tmp);
+            close(fd);
+            fd = -1;
+        }
         if (fapl >= 0) H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
-        file = fapl < 0 ? -1 : H5Fcreate(tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-        if (file < 0) st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot create the file", tmp);
+        file = fapl < 0 ? -1
+                        : H5Fcreate(by_fd ? proc : tmp, by_fd ? H5F_ACC_TRUNC : H5F_ACC_EXCL,
+                                    H5P_DEFAULT, fapl);
+        if (file < 0) st = mt__h5_fail(diag, MT_ERR_IO, tmp, "%s: cannot create the file", tmp);
+        /* Without /proc: our own descriptor of what HDF5 created, for the
+         * fsync and the identity check of step 4. */
+        void *handle = NULL;
+        if (st == MT_OK && !by_fd &&
+            (H5Fget_vfd_handle(file, H5P_DEFAULT, &handle) < 0 || !handle ||
+             (fd = fcntl(*(int *)handle, F_DUPFD_CLOEXEC, 0)) < 0))
+            st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot get the file's descriptor", tmp);
     }
     if (st == MT_OK) st = write_vtkhdf(file, &cells, list->num_verts, layout, tmp, diag);
     if (st == MT_OK) st = write_meshtopo(file, meta, list, mesh, layout, tmp, diag);
     if (st == MT_OK && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: H5Fflush failed", tmp);
+        st = mt__h5_fail(diag, MT_ERR_IO, tmp, "%s: cannot flush the file", tmp);
     if (file >= 0 && H5Fclose(file) < 0 && st == MT_OK)
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: H5Fclose failed", tmp);
+        st = mt__h5_fail(diag, MT_ERR_IO, tmp, "%s: cannot close the file", tmp);
     if (fapl >= 0) H5Pclose(fapl);
     free(cells.buffer);
     double t1 = mt__archive_now_ms();
-    if (st == MT_OK && fsync_path(tmp, 0) != 0)
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: fsync failed: %s", tmp, strerror(errno));
-    if (st == MT_OK && link(tmp, final_path) != 0) {
-        if (errno == EEXIST)
-            st = mt__archive_fail(diag, MT_ERR_INVALID_ARG,
-                                  "%s: version %u of mesh '%s' is already archived", final_path,
-                                  meta->version, meta->mesh_id);
-        else
-            st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot link the new file into place: %s",
-                                  final_path, strerror(errno));
-    }
-    unlink(tmp); /* after a successful link: the second name; after a failure: the leftover */
-    if (st == MT_OK && fsync_path(archive->dir, O_DIRECTORY) != 0)
-        st = mt__archive_fail(diag, MT_ERR_IO, "%s: fsync of the directory failed: %s",
-                              archive->dir, strerror(errno));
+    if (st == MT_OK && fsync(fd) != 0)
+        st = mt__archive_fail_os(diag, MT_ERR_IO, errno, tmp, "%s: fsync failed", tmp);
+    if (st == MT_OK) st = link_final(archive, fd, tmp, final_path, meta, diag);
+    /* After a successful link: the second name; after a failure: the
+     * leftover. Unlinking never follows a link. */
+    if (tmp) unlink(tmp);
+    if (st == MT_OK) st = mt__archive_fsync_dir(archive, diag);
     double t2 = mt__archive_now_ms();
     if (st == MT_OK && stats) {
         struct stat sb;
         stats->write_ms = t1 - t0;
         stats->fsync_ms = t2 - t1;
-        stats->file_bytes = stat(final_path, &sb) == 0 ? (uint64_t)sb.st_size : 0;
+        stats->file_bytes = fstat(fd, &sb) == 0 ? (uint64_t)sb.st_size : 0;
     }
+    if (fd >= 0) close(fd);
     free(tmp);
     free(final_path);
     return st;
@@ -401,7 +486,18 @@ mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta
                                 list->num_verts, list->num_faces);
     char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
     mt_archive_file_name(meta->mesh_id, meta->version, name, sizeof name);
-    if (mt_archive_contains(archive, meta->mesh_id, meta->version))
+    /* A quick refusal; the link of write_durably is what guarantees it. */
+    char *final_path = mt__archive_path(archive, name);
+    struct stat there;
+    bool taken = final_path && lstat(final_path, &there) == 0;
+    free(final_path);
+    if (taken && !S_ISREG(there.st_mode))
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
+                                "%s/%s: version %u of mesh '%s' cannot be archived: %s is in the "
+                                "way (nothing was written through it)",
+                                archive->dir, name, meta->version, meta->mesh_id,
+                                in_the_way(there.st_mode));
+    if (taken)
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
                                 "%s/%s: version %u of mesh '%s' is already archived", archive->dir,
                                 name, meta->version, meta->mesh_id);

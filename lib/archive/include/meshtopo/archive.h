@@ -1,10 +1,23 @@
 /* meshtopo::archive: built meshes archived to HDF5, one immutable file per
- * mesh version, written crash-safely (temporary name, flush, fsync, rename,
+ * mesh version, written crash-safely (temporary name, flush, fsync, link,
  * directory fsync). Each file is a VTKHDF 1.0 UnstructuredGrid (VTK 9.1's
  * vtkHDFReader and ParaView open it) plus a /meshtopo group holding the face
  * list exactly as submitted, provenance, the build's topology report and
  * (format 2 and later) the half-edge arrays, so that a reload skips the rebuild.
- * Every value read back from a file is checked before use. */
+ * Every value read back from a file is checked before use.
+ *
+ * Files in the directory are untrusted. Temporary files get unguessable
+ * names and are created exclusively (O_CREAT | O_EXCL | O_NOFOLLOW); HDF5
+ * writes the file so created, never a name that could have been replaced;
+ * the final name is a hard link to that file, which never replaces what is
+ * there (a symbolic link included) and never writes through it. Reading
+ * opens without following symbolic links and refuses what is not a regular
+ * file owned by the process's effective user. Loading a mesh checks the
+ * face list's content hash and the stored half-edge arrays (validated, and
+ * matched against the digest stored with them) before serving; loading and
+ * `archive verify` share those checks and report the same mt_archive_fault
+ * for every file. Failures caused by the system carry its errno text (No
+ * space left on device, Permission denied) and the file's name. */
 #ifndef MESHTOPO_ARCHIVE_H
 #define MESHTOPO_ARCHIVE_H
 
@@ -26,11 +39,17 @@ extern "C" {
  * arrays); files of version 1 lack it and still load, by a rebuild from
  * their face list. 3 has the same layout, its content_hash is the one
  * msgs/mesh_t.lcm now defines (XXH3-64); versions 1 and 2 carry the former
- * hash (FNV-1a), which verification does not check. */
-#define MT_ARCHIVE_FORMAT_VERSION 3
+ * hash (FNV-1a), which verification does not check. 4 adds the digest
+ * attribute of /meshtopo/halfedge, which lets a load check the stored arrays
+ * and report without a rebuild; files of versions 2 and 3 have none, and a
+ * load checks their arrays against a rebuild (as slow as version 1's). */
+#define MT_ARCHIVE_FORMAT_VERSION 4
 
 /* Oldest format version whose content_hash verification checks. */
 #define MT_ARCHIVE_FORMAT_VERSION_HASHED 3
+
+/* Oldest format version whose half-edge arrays carry a digest. */
+#define MT_ARCHIVE_FORMAT_VERSION_DIGEST 4
 
 /* Oldest format version read. */
 #define MT_ARCHIVE_FORMAT_VERSION_MIN 1
@@ -55,6 +74,19 @@ size_t mt_archive_file_name(const char *mesh_id, uint32_t version, char *buf, si
 
 typedef struct mt_archive mt_archive;
 
+/* A content hash of a face list, to check a stored face list against the
+ * hash its submission was acknowledged with: mt_archive_content_hash (the
+ * daemon's, msgs/mesh_t.lcm) or, in tests, a stand-in. */
+typedef mt_status (*mt_archive_hash_fn)(void *ctx, const mt_face_list *faces, uint64_t *out_hash,
+                                        mt_diag *diag);
+
+/* The daemon's content hash (XXH3-64 over the bytes LCM encodes for
+ * mesh_t's content fields, meshtopo/content_hash.h) of a face list, as an
+ * mt_archive_hash_fn (ctx unused). MT_ERR_TOO_LARGE for a list whose counts
+ * do not fit mesh_t's int32 fields. */
+mt_status mt_archive_content_hash(void *ctx, const mt_face_list *faces, uint64_t *out_hash,
+                                  mt_diag *diag);
+
 /* Options for mt_archive_open; a zeroed struct (or NULL) gives the defaults. */
 typedef struct mt_archive_options {
     /* Create the directory (one level, mode 0777 & ~umask) when missing. */
@@ -66,11 +98,24 @@ typedef struct mt_archive_options {
 
 /* Opens the archive in directory `dir`. Unless read_only, removes leftovers
  * of interrupted writes: temporary files (".mt-tmp-<pid>-...") whose writing
- * process is gone; their number is mt_archive_leftovers_removed(). On MT_OK
+ * process is gone; their number is mt_archive_leftovers_removed(). Only
+ * regular files owned by the effective user are removed: anything else with
+ * such a name (a symbolic link planted there, a directory, another user's
+ * file) is left alone, never followed and never opened. On MT_OK
  * *out_archive is to be closed with mt_archive_close. MT_ERR_IO when dir is
- * not a directory or cannot be read, with diag naming it. */
+ * not a directory or cannot be read, with diag naming it and the errno text. */
 mt_status mt_archive_open(const char *dir, const mt_archive_options *options,
                           mt_archive **out_archive, mt_diag *diag);
+
+/* Sets the content hash mt_archive_load_mesh* checks each stored face list
+ * against (files of format MT_ARCHIVE_FORMAT_VERSION_HASHED and later) and
+ * mt_archive_verify_file* uses when passed none; call it before sharing the
+ * handle between threads. NULL (the default): loads do not check it (a face
+ * list is then taken as intact when its rebuild gives the stored report).
+ * The daemon sets mt_archive_content_hash, which a load computes a block
+ * at a time straight from the file. (A setter rather than a member of
+ * mt_archive_options: callers initialize that struct positionally.) */
+void mt_archive_set_content_hash(mt_archive *archive, mt_archive_hash_fn hash, void *ctx);
 
 /* Closes an archive handle. NULL-safe. */
 void mt_archive_close(mt_archive *archive);
@@ -93,19 +138,26 @@ typedef struct mt_archive_meta {
 /* Time spent by one mt_archive_write. */
 typedef struct mt_archive_write_stats {
     double write_ms;     /* HDF5 create, datasets, flush, close */
-    double fsync_ms;     /* fsync of the file, rename, fsync of the directory */
+    double fsync_ms;     /* fsync of the file, link into place, fsync of the directory */
     uint64_t file_bytes; /* size of the archived file */
 } mt_archive_write_stats;
 
 /* Archives one built mesh version: `list` is the face list exactly as
  * submitted and `mesh` what mt_mesh_build made of it (its report is stored;
  * faces it rejected are kept in the face list but left out of the VTKHDF
- * cells). When this returns MT_OK the file is durable (renamed into place
+ * cells). When this returns MT_OK the file is durable (linked into place
  * and the directory fsynced), so a submission may then be acknowledged.
- * An existing version is never overwritten: MT_ERR_INVALID_ARG ("already
- * archived"), like a bad id, version 0 or a mesh that is not list's build.
- * MT_ERR_IO on any HDF5 or file system failure (the temporary file is then
- * removed); MT_ERR_UNSUPPORTED on a read-only handle. out_stats may be NULL. */
+ * The temporary file is ".mt-tmp-<pid>-<16 random hex digits>.part",
+ * created exclusively (another name is drawn when one is taken). An
+ * existing version is never overwritten: MT_ERR_INVALID_ARG ("already
+ * archived"), like a bad id, version 0 or a mesh that is not list's build;
+ * anything else at the final name (a symbolic link, a directory) is
+ * refused the same way, its kind named, and nothing is written through it
+ * (take another version number). MT_ERR_IO on any HDF5 or file system
+ * failure, with the file's name and the system's reason when it has one
+ * ("No space left on device", "Permission denied", "File too large" and
+ * the limit); the temporary file is then removed. MT_ERR_UNSUPPORTED on a
+ * read-only handle. out_stats may be NULL. */
 mt_status mt_archive_write(mt_archive *archive, const mt_archive_meta *meta,
                            const mt_face_list *list, const mt_mesh *mesh,
                            mt_archive_write_stats *out_stats, mt_diag *diag);
@@ -154,12 +206,62 @@ typedef struct mt_archive_summary {
     bool closed, manifold, orientable;
 } mt_archive_summary;
 
+/* What is wrong with an archive file, as a load (mt_archive_load_mesh*) or
+ * a verification (mt_archive_verify_file_with) finds it, for the caller to
+ * act on. The two run the same checks, so they report the same fault for
+ * every file (verification adds MT_ARCHIVE_FAULT_VTK, which loads do not
+ * read). */
+typedef enum mt_archive_fault {
+    /* Nothing: the file holds what was archived. */
+    MT_ARCHIVE_FAULT_NONE = 0,
+    /* What the build derived from the face list is damaged: the half-edge
+     * arrays (unreadable, invalid, or not what was archived: their digest
+     * differs) or the report; the face list is intact (its content hash
+     * matches, or its rebuild gives the stored report). A load succeeds
+     * with the mesh rebuilt from the face list (with the rebuild's report)
+     * and says why in mt_archive_load_info.fallback; verification fails
+     * with MT_ERR_CORRUPT. The file is left as it is: the caller logs it. */
+    MT_ARCHIVE_FAULT_DERIVED,
+    /* The VTKHDF datasets (what ParaView reads) disagree with the face
+     * list. Only verification reads them (MT_ERR_PARSE); loads succeed. */
+    MT_ARCHIVE_FAULT_VTK,
+    /* Nothing in the file can be served: not HDF5 or truncated, the face
+     * list unreadable or not matching its content hash (MT_ERR_CORRUPT,
+     * naming both hashes), provenance or report unreadable, or a rebuild
+     * not giving the stored report without a content hash to vouch for the
+     * face list. The caller sets the file aside (mt_archive_set_aside) and
+     * logs it. */
+    MT_ARCHIVE_FAULT_CONTENT,
+    /* A format_version above MT_ARCHIVE_FORMAT_VERSION (MT_ERR_UNSUPPORTED):
+     * written by a newer meshtopo, or damaged there. Not served, not to be
+     * set aside by this meshtopo. */
+    MT_ARCHIVE_FAULT_NEWER,
+    /* Refused before being read (MT_ERR_IO, message "refused: ..."): a
+     * symbolic link, anything else that is not a regular file, or a file
+     * not owned by this process's effective user. Never followed, opened
+     * (beyond the check) or read. */
+    MT_ARCHIVE_FAULT_UNSAFE,
+    /* The system failed the read (MT_ERR_IO with the errno text, such as
+     * "Permission denied" or "Input/output error"; MT_ERR_NOT_FOUND;
+     * MT_ERR_NOMEM). The file itself may be fine: do not set it aside. */
+    MT_ARCHIVE_FAULT_SYSTEM,
+} mt_archive_fault;
+
+/* "none", "derived", "vtk", "content", "newer", "unsafe", "system"; never
+ * NULL ("unknown" for other values). */
+const char *mt_archive_fault_name(mt_archive_fault fault);
+
 /* One file of the archive as mt_archive_list sees it. */
 typedef struct mt_archive_entry {
     char *file_name;  /* in the archive directory */
     mt_status status; /* MT_OK, or why the file could not be read (diag) */
     mt_diag diag;     /* names the file and the attribute or dataset */
-    char *mesh_id;    /* the rest is set only when status is MT_OK */
+    /* NONE when status is MT_OK; otherwise CONTENT, NEWER, UNSAFE (a
+     * symbolic link or other non-regular entry, or a foreign owner: listed,
+     * never opened) or SYSTEM. Listing reads attributes only: it finds no
+     * DERIVED or VTK fault. */
+    mt_archive_fault fault;
+    char *mesh_id; /* the rest is set only when status is MT_OK */
     uint32_t version;
     int64_t utime;
     char *source;
@@ -173,9 +275,11 @@ typedef struct mt_archive_listing {
     size_t count;
 } mt_archive_listing;
 
-/* Lists every "*.vtkhdf" file of the archive, reading only its attributes.
- * A file that cannot be read is listed with its status; the call fails only
- * when the directory cannot be read (MT_ERR_IO) or memory runs out.
+/* Lists every "*.vtkhdf" entry of the archive, reading only its
+ * attributes. An entry that cannot be read (a symbolic link or another
+ * non-regular entry included) is listed with its status and fault; the call
+ * fails only when the directory cannot be read (MT_ERR_IO) or memory runs
+ * out.
  * Free with mt_archive_listing_free. */
 mt_status mt_archive_list(const mt_archive *archive, mt_archive_listing *out, mt_diag *diag);
 void mt_archive_listing_free(mt_archive_listing *listing);
@@ -195,10 +299,16 @@ typedef struct mt_archive_record {
 } mt_archive_record;
 
 /* Reads version `version` of mesh_id (0 = its highest archived version).
- * MT_ERR_NOT_FOUND when there is no such file; for a bad file MT_ERR_PARSE
- * (wrong shape, type, count or range; mesh id or version not those of the
- * file name), MT_ERR_IO (not HDF5, truncated) or MT_ERR_TOO_LARGE, with diag
- * naming the file and the dataset or attribute. *out is zeroed on failure. */
+ * MT_ERR_NOT_FOUND when there is no such file; MT_ERR_IO when the file is
+ * refused ("refused: ...": a symbolic link, not a regular file, not owned
+ * by the effective user) or the system fails the read (its errno text: a
+ * file without read permission is "Permission denied"); for a bad file
+ * MT_ERR_PARSE (wrong shape, type, count or range; mesh id or version not
+ * those of the file name), MT_ERR_IO (not HDF5, truncated) or
+ * MT_ERR_TOO_LARGE, with diag naming the file and the dataset or attribute.
+ * *out is zeroed on failure. This reads the record as stored: the content
+ * hash and the half-edge arrays are checked by mt_archive_load_mesh* and
+ * mt_archive_verify_file*. */
 mt_status mt_archive_load(const mt_archive *archive, const char *mesh_id, uint32_t version,
                           mt_archive_record *out, mt_diag *diag);
 
@@ -221,29 +331,60 @@ mt_status mt_archive_record_build(const mt_archive_record *record, mt_mesh **out
 /* How mt_archive_load_mesh made its mesh. */
 typedef struct mt_archive_load_info {
     /* true: restored from /meshtopo/halfedge without a rebuild; false:
-     * rebuilt from the face list (a version 1 file, or stored arrays that
-     * failed to read or validate). */
+     * rebuilt from the face list (a version 1 to 3 file, or stored arrays
+     * or report that failed their checks: fault is then DERIVED). */
     bool restored;
-    /* Why the stored arrays were not used, naming the file and the problem
-     * (status MT_OK when restored or when the file predates them). */
+    /* NONE or DERIVED when the load succeeded (DERIVED: served rebuilt,
+     * the file is damaged, log it); on failure what failed (CONTENT: set
+     * the file aside; NEWER, UNSAFE, SYSTEM: leave it). */
+    mt_archive_fault fault;
+    /* The stored face list's content hash was checked (a hash function is
+     * set and the file's format is MT_ARCHIVE_FORMAT_VERSION_HASHED or
+     * later). */
+    bool hash_checked;
+    /* Why the stored arrays or report were not used, naming the file and
+     * the problem (status MT_OK when restored, or when the file predates
+     * the arrays and its rebuild matches). */
     mt_diag fallback;
-    double read_ms; /* HDF5 reads of attributes, report and face list */
-    double mesh_ms; /* arrays read into the mesh and validated, or the rebuild */
+    double read_ms;  /* HDF5 reads of attributes, report and face list */
+    double mesh_ms;  /* arrays read into the mesh and validated, or the rebuild */
+    double check_ms; /* content hash and digest (or comparison with the rebuild) */
 } mt_archive_load_info;
 
-/* Reloads one archived version as a queryable mesh: reads provenance, the
- * stored report and, in a format 2 or later file, the half-edge arrays and
- * positions, and makes the mesh with mt_mesh_restore (which validates the
- * untrusted arrays) instead of rebuilding it. When a version 1 file has no
- * arrays, or the arrays cannot be read or fail validation, it falls back to
- * mt_archive_record_build (a rebuild from the face list compared with the
- * stored report) and says why in out_info->fallback; only if that fails too
- * does the call fail (its status, with diag naming the file and both
- * problems). with_faces also reads the face list into out_record->faces
- * (otherwise left empty unless the fallback needed it). out_record may be
- * NULL; otherwise it is filled as mt_archive_load_file fills it (free with
- * mt_archive_record_free). On MT_OK *out_mesh is the mesh (mt_mesh_destroy);
- * on failure it is NULL and out_record is zeroed. out_info may be NULL. */
+/* Reloads one archived version as a queryable mesh, after these checks
+ * (the ones mt_archive_verify_file_with makes, so both agree on every
+ * file):
+ *  1. The file is opened safely (see mt_archive_load): a symbolic link,
+ *     another non-regular file or a foreign owner is refused (UNSAFE).
+ *  2. Provenance and the stored report are read. When the archive has a
+ *     content hash function (mt_archive_set_content_hash) and the file
+ *     is of format MT_ARCHIVE_FORMAT_VERSION_HASHED or later, the stored
+ *     face list must hash to the stored content_hash (mt_archive_content_hash
+ *     is computed a block at a time from the file, other functions get the
+ *     face list): otherwise MT_ERR_CORRUPT naming the file and both hashes
+ *     (CONTENT).
+ *  3. Format 4 and later: the half-edge arrays and positions are read and
+ *     made into the mesh with mt_mesh_restore (which validates them), then
+ *     the digest of arrays, positions and report must equal the stored one.
+ *     Formats 2 and 3 (no digest): the arrays are read and must equal the
+ *     arrays of a rebuild from the face list, which is served.
+ *  4. When the arrays are missing (format 1) or fail step 3, the mesh is
+ *     rebuilt from the face list (mt_archive_record_build's checks), and
+ *     out_info->fallback says why (fault DERIVED unless format 1). A rebuild
+ *     whose report differs from the stored one fails the load (CONTENT,
+ *     MT_ERR_CORRUPT) unless step 2 vouched for the face list; the stored
+ *     report is then the damaged part (DERIVED) and the rebuild's is used.
+ * Only a failure of the rebuild fails a load whose arrays were bad (its
+ * status, with diag naming the file and both problems). with_faces also
+ * reads the face list into out_record->faces (otherwise left empty unless a
+ * check or the rebuild needed it). out_record may be NULL; otherwise it is
+ * filled as mt_archive_load_file fills it (free with mt_archive_record_free).
+ * On MT_OK *out_mesh is the mesh (mt_mesh_destroy); on failure it is NULL,
+ * out_record is zeroed and out_info->fault says what failed. out_info may
+ * be NULL. Cost, 1M-triangle grid: a restore of about 52 ms (31 of them
+ * validation) gains about 3 ms for the digest and, with
+ * mt_archive_content_hash set, about 6 ms for the content hash; a format 2
+ * or 3 file costs a rebuild instead (about 4 times a restore). */
 mt_status mt_archive_load_mesh(const mt_archive *archive, const char *mesh_id, uint32_t version,
                                bool with_faces, mt_archive_record *out_record, mt_mesh **out_mesh,
                                mt_archive_load_info *out_info, mt_diag *diag);
@@ -262,21 +403,36 @@ bool mt_archive_report_equal(const mt_report *a, const mt_report *b, char *buf, 
  * (Never call it on a mesh's own report.) NULL-safe. */
 void mt_archive_report_free(mt_report *report);
 
-/* The content hash of a face list as the daemon computes it. The archive
- * does not link the LCM message library: the caller (the CLI, the daemon)
- * passes the hash function. */
-typedef mt_status (*mt_archive_hash_fn)(void *ctx, const mt_face_list *faces, uint64_t *out_hash,
-                                        mt_diag *diag);
-
-/* Verifies one file of the archive: readable, every shape and type right,
- * the name matching its mesh id and version, the VTKHDF datasets agreeing
- * with the stored face list, the content hash matching (when hash is not
- * NULL and the file's format is MT_ARCHIVE_FORMAT_VERSION_HASHED or later), a
- * rebuild giving the stored report, and (format 2 and later) the stored
- * half-edge arrays restoring, validating and equal to the rebuild's. MT_OK or the first
- * problem's status with diag naming the file and the problem. */
+/* Verifies one file of the archive: the checks of mt_archive_load_mesh_file
+ * (safe open, provenance and report, the content hash when hash is not NULL
+ * and the file's format is MT_ARCHIVE_FORMAT_VERSION_HASHED or later, the
+ * stored half-edge arrays against their digest or, formats 2 and 3, against
+ * a rebuild; format 1 and a fallback rebuild against the stored report),
+ * then the VTKHDF datasets against the face list. hash NULL: the archive's
+ * content hash function (mt_archive_set_content_hash), if any. MT_OK or
+ * the first problem's status with diag naming the file and the problem. */
 mt_status mt_archive_verify_file(const mt_archive *archive, const char *file_name,
                                  mt_archive_hash_fn hash, void *hash_ctx, mt_diag *diag);
+
+/* mt_archive_verify_file that also says what is wrong: *out_fault (may be
+ * NULL) is the fault mt_archive_load_mesh_file reports for the same file
+ * and hash (NONE when the load would serve it as stored), or VTK when only
+ * the VTKHDF datasets are wrong. A DERIVED file fails verification with
+ * MT_ERR_CORRUPT (a load would serve it rebuilt). */
+mt_status mt_archive_verify_file_with(const mt_archive *archive, const char *file_name,
+                                      mt_archive_hash_fn hash, void *hash_ctx,
+                                      mt_archive_fault *out_fault, mt_diag *diag);
+
+/* Sets a file of the archive aside: renames it to ".mt-aside-<file_name>.
+ * <16 random hex digits>" in the same directory (hidden: never listed,
+ * loaded or removed as a leftover; kept for inspection), then fsyncs the
+ * directory. A symbolic link is renamed itself, never followed. The new
+ * name goes to out_name (size bytes, may be NULL/0). MT_ERR_NOT_FOUND when
+ * there is no such entry, MT_ERR_INVALID_ARG for a name that is not an
+ * archive file's, MT_ERR_UNSUPPORTED on a read-only handle, MT_ERR_IO with
+ * the errno text. */
+mt_status mt_archive_set_aside(mt_archive *archive, const char *file_name, char *out_name,
+                               size_t size, mt_diag *diag);
 
 /* Removes version `version` (>= 1) of mesh_id and fsyncs the directory.
  * MT_ERR_NOT_FOUND when it is not archived; MT_ERR_UNSUPPORTED on a
