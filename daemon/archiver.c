@@ -115,6 +115,22 @@ static cat_entry *cat_find(mtd_archiver *a, const char *id, uint32_t version)
 }
 
 /* The highest archived version of id, 0 if none. */
+/* Drops version `version` of id from the catalog, if there (takes the lock). */
+static void cat_remove(mtd_archiver *a, const char *id, uint32_t version)
+{
+    pthread_mutex_lock(&a->lock);
+    bool found;
+    size_t at = cat_lower_bound(a, id, version, &found);
+    if (found) {
+        a->bytes -= a->entries[at].file_bytes;
+        free(a->entries[at].id);
+        free(a->entries[at].source);
+        memmove(&a->entries[at], &a->entries[at + 1], (a->count - at - 1) * sizeof(cat_entry));
+        a->count--;
+    }
+    pthread_mutex_unlock(&a->lock);
+}
+
 static uint32_t cat_highest(const mtd_archiver *a, const char *id)
 {
     bool found;
@@ -197,6 +213,9 @@ static void touch(mtd_archiver *a, const char *id, uint32_t version)
 }
 
 /* ---- writing ------------------------------------------------------------- */
+
+/* Version numbers tried when the archive's names for them are taken. */
+#define NAME_TAKEN_ATTEMPTS 8
 
 /* Archives one stored version and adds it to the catalog. */
 static mt_status write_version(mtd_archiver *a, const mtd_mesh_info *info, const mt_face_list *list,
@@ -309,20 +328,27 @@ int32_t mtd_archiver_store(mtd_archiver *a, const meshtopo_mesh_t *m, const mt_f
     bool sync = a->archive && a->mode == MTD_ARCHIVE_SYNC;
     if (sync) {
         /* Write first, under a reserved number: the store sees the version
-         * only once it is durable. A failed write leaves a gap. */
-        mt_status s = mtd_store_reserve_version(a->store, m->mesh_id, 0, &meta.version, &diag);
-        if (s != MT_OK) {
-            snprintf(error, size, "not stored: %.400s", diag.message);
-            return s == MT_ERR_TOO_LARGE ? MESHTOPO_STATUS_CODE_T_TOO_LARGE
-                                         : MESHTOPO_STATUS_CODE_T_INTERNAL;
+         * only once it is durable. A failed write leaves a gap; a number
+         * whose name is taken in the directory (a file the catalog could
+         * not read, or something planted there) is skipped. */
+        mt_status s = MT_OK;
+        for (int attempt = 0; attempt < NAME_TAKEN_ATTEMPTS; attempt++) {
+            s = mtd_store_reserve_version(a->store, m->mesh_id, 0, &meta.version, &diag);
+            if (s != MT_OK) {
+                snprintf(error, size, "not stored: %.400s", diag.message);
+                return s == MT_ERR_TOO_LARGE ? MESHTOPO_STATUS_CODE_T_TOO_LARGE
+                                             : MESHTOPO_STATUS_CODE_T_INTERNAL;
+            }
+            mtd_mesh_info info = {.id = m->mesh_id,
+                                  .version = meta.version,
+                                  .source = m->source,
+                                  .utime = m->utime,
+                                  .content_hash = content_hash};
+            s = write_version(a, &info, list, mesh, false, &diag);
+            if (s != MT_ERR_INVALID_ARG) break;
+            note_error(a, "archive_name_taken", diag.message);
         }
         meta.reserved = true;
-        mtd_mesh_info info = {.id = m->mesh_id,
-                              .version = meta.version,
-                              .source = m->source,
-                              .utime = m->utime,
-                              .content_hash = content_hash};
-        s = write_version(a, &info, list, mesh, false, &diag);
         if (s != MT_OK) {
             snprintf(error, size, "not archived, so not stored: %.400s", diag.message);
             count_error(a, "archive_write", error);
@@ -336,18 +362,7 @@ int32_t mtd_archiver_store(mtd_archiver *a, const meshtopo_mesh_t *m, const mt_f
             /* Not acknowledged, so not kept: a restart must not serve it. */
             mt_diag ignored;
             mt_archive_remove(a->archive, m->mesh_id, meta.version, &ignored);
-            pthread_mutex_lock(&a->lock);
-            bool found;
-            size_t at = cat_lower_bound(a, m->mesh_id, meta.version, &found);
-            if (found) {
-                a->bytes -= a->entries[at].file_bytes;
-                free(a->entries[at].id);
-                free(a->entries[at].source);
-                memmove(&a->entries[at], &a->entries[at + 1],
-                        (a->count - at - 1) * sizeof(cat_entry));
-                a->count--;
-            }
-            pthread_mutex_unlock(&a->lock);
+            cat_remove(a, m->mesh_id, meta.version);
         }
         return s == MT_ERR_TOO_LARGE ? MESHTOPO_STATUS_CODE_T_TOO_LARGE
                                      : MESHTOPO_STATUS_CODE_T_INTERNAL;
@@ -366,6 +381,24 @@ int32_t mtd_archiver_store(mtd_archiver *a, const meshtopo_mesh_t *m, const mt_f
 
 /* ---- loading ------------------------------------------------------------- */
 
+/* A file that can serve nothing (its face list does not match its content
+ * hash, or cannot be read): renamed out of the way, kept for inspection,
+ * and no longer catalogued, so that the daemon and `archive verify` agree
+ * and nobody is served it. diag (the load's) gets the new name added. */
+static void set_aside(mtd_archiver *a, const char *id, uint32_t version, mt_diag *diag)
+{
+    char file[MT_ARCHIVE_FILE_NAME_MAX + 1], aside[MT_ARCHIVE_FILE_NAME_MAX + 64];
+    mt_diag aside_diag;
+    if (mt_archive_file_name(id, version, file, sizeof file) == 0) return;
+    if (mt_archive_set_aside(a->archive, file, aside, sizeof aside, &aside_diag) != MT_OK) {
+        note_error(a, "archive_set_aside", aside_diag.message);
+        return;
+    }
+    cat_remove(a, id, version);
+    size_t n = strlen(diag->message);
+    snprintf(diag->message + n, sizeof diag->message - n, " (set aside as %s)", aside);
+}
+
 /* Loads version `version` of id into the store (reserved: its number was
  * handed out before). MT_OK also when it is there already. */
 static mt_status load_version(mtd_archiver *a, const char *id, uint32_t version, mt_diag *diag)
@@ -381,10 +414,19 @@ static mt_status load_version(mtd_archiver *a, const char *id, uint32_t version,
     mt_mesh *mesh = NULL;
     mt_archive_load_info info;
     mt_status s = mt_archive_load_mesh(a->archive, id, version, false, &record, &mesh, &info, diag);
-    if (s != MT_OK) return s;
-    if (info.fallback.status != MT_OK)
-        mtd_log(MTD_LOG_WARN, "archive_rebuilt", "mesh_id=%s version=%" PRIu32 " reason=%s", id,
-                version, info.fallback.message);
+    if (s != MT_OK) {
+        if (info.fault == MT_ARCHIVE_FAULT_CONTENT) set_aside(a, id, version, diag);
+        return s;
+    }
+    if (info.fault == MT_ARCHIVE_FAULT_DERIVED) {
+        char text[MTD_ERROR_MAX];
+        snprintf(text, sizeof text,
+                 "mesh '%.200s' version %" PRIu32
+                 ": stored arrays damaged, rebuilt from its "
+                 "intact face list: %.200s",
+                 id, version, info.fallback.message);
+        note_error(a, "archive_rebuilt", text);
+    }
     mtd_mesh_meta meta = {.source = record.source,
                           .utime = record.utime,
                           .content_hash = record.content_hash,
@@ -580,6 +622,8 @@ static mt_status open_archive(mtd_archiver *a, const mtd_config *c, mt_diag *dia
                                   .read_only = a->mode == MTD_ARCHIVE_OFF};
     mt_status s = mt_archive_open(c->archive_dir, &options, &a->archive, diag);
     if (s != MT_OK) return s;
+    /* Loads check each face list against the hash it was acknowledged with. */
+    mt_archive_set_content_hash(a->archive, mt_archive_content_hash, NULL);
     mt_archive_listing listing;
     s = mt_archive_list(a->archive, &listing, diag);
     if (s != MT_OK) return s;
@@ -588,7 +632,10 @@ static mt_status open_archive(mtd_archiver *a, const mtd_config *c, mt_diag *dia
         const mt_archive_entry *e = &listing.entries[i];
         if (e->status != MT_OK) {
             bad++;
-            note_error(a, "archive_list", e->diag.message);
+            char text[MTD_ERROR_MAX];
+            snprintf(text, sizeof text, "%.440s (%s)", e->diag.message,
+                     mt_archive_fault_name(e->fault));
+            note_error(a, "archive_list", text);
             continue;
         }
         cat_entry ce = {.id = e->mesh_id,

@@ -14,6 +14,13 @@
              all five in turn answer as before; the heartbeat counts
              evictions and loads.
   modes      async: acknowledged, then all archived; off: nothing written.
+  hostile    files planted in the archive directory: a symbolic link at the
+             name of the next version (the write takes the next number, the
+             file it points to is untouched), at guessable temporary names, and
+             in place of a version file (refused, not followed); a version
+             whose face list was altered (verify says BAD, the daemon does not
+             serve it, sets it aside and says why); every acknowledged
+             version the attacker did not touch stays served.
 
 usage: archive_check.py MODE --meshtopo PATH --meshtopod PATH [--corpus DIR]
 """
@@ -351,9 +358,93 @@ def mode_modes(args, tmp):
     check(d.stop() == 0, "sync daemon exits 0")
 
 
+def file_sha(path):
+    import hashlib
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def mode_hostile(args, tmp):
+    import glob
+    import h5py
+    archive = os.path.join(tmp, "arc")
+    outside = os.path.join(tmp, "outside")
+    os.makedirs(outside)
+    target = os.path.join(outside, "precious.txt")
+    with open(target, "w") as f:
+        f.write("not the daemon's to write\n")
+    before = file_sha(target)
+    grid = os.path.join(tmp, "g.off")
+    make_grid(grid, 6, 1)
+    log_path = os.path.join(tmp, "daemon.log")
+    log = open(log_path, "w")
+    d = Daemon(args.meshtopod, archive, log=log)
+    if not check(heartbeat(args.meshtopo) is not None, "daemon's heartbeat"):
+        d.stop()
+        return
+    a1 = send(args.meshtopo, grid, "m")
+    check(a1 is not None and a1["version"] == 1, "m v1 acknowledged")
+    keep = send(args.meshtopo, grid, "keep")
+    check(keep is not None and keep["version"] == 1, "keep v1 acknowledged")
+    # A link at the name version 2 would get, and at temporary names.
+    os.symlink(target, os.path.join(archive, "m.v2.vtkhdf"))
+    for k in range(4):
+        os.symlink(target, os.path.join(archive, f".mt-tmp-{d.proc.pid}-{k:016x}.part"))
+    a3 = send(args.meshtopo, grid, "m")
+    check(a3 is not None and a3["version"] == 3,
+          f"m with version 2's name taken: acknowledged as {a3 and a3['version']} (3 expected)")
+    check(file_sha(target) == before and os.path.islink(os.path.join(archive, "m.v2.vtkhdf")),
+          "the file the planted links point to is untouched, the link still there")
+    # A version file replaced by a link to a copy of itself.
+    v1 = os.path.join(archive, "m.v1.vtkhdf")
+    copy = os.path.join(outside, "m.v1.copy")
+    os.rename(v1, copy)
+    os.symlink(copy, v1)
+    # The face list of m v3 altered in place.
+    v3 = os.path.join(archive, "m.v3.vtkhdf")
+    with h5py.File(v3, "r+") as h:
+        idx = h["/meshtopo/face_vertex_indices"]
+        first = idx[0]
+        idx[0] = idx[1]
+        idx[1] = first
+    p = run([args.meshtopo, "archive", "verify", archive, "--json"], timeout=60)
+    verdict = json.loads(p.stdout) if p is not None and p.stdout.strip() else None
+    files = {r["file"]: r for r in (verdict or {}).get("files", [])} if verdict else {}
+    check(p is not None and p.returncode != 0, "archive verify fails on the planted and altered files")
+    want = {"keep.v1.vtkhdf": (True, ""), "m.v1.vtkhdf": (False, "symbolic link"),
+            "m.v2.vtkhdf": (False, "symbolic link"), "m.v3.vtkhdf": (False, "content hash")}
+    for name, (ok, needle) in want.items():
+        r = files.get(name)
+        check(r is not None and r["ok"] == ok and needle in (r["error"] or ""),
+              f"verify: {name} {'OK' if ok else 'BAD naming ' + repr(needle)}: {r}")
+    check(d.stop() == 0, "daemon exits 0 on SIGTERM")
+    log.close()
+    log = open(log_path, "a")
+    d = Daemon(args.meshtopod, archive, log=log)
+    check(heartbeat(args.meshtopo) is not None, "restarted daemon's heartbeat")
+    q = run([args.meshtopo, "query", "m", "report", "--version", 3, "--json", "--timeout-ms", 3000])
+    check(q is not None and q.returncode == 5 and "content" in (q.stderr + q.stdout).lower(),
+          f"m v3 (altered face list) is refused, naming the content hash: {q and q.stderr.strip()}")
+    q = run([args.meshtopo, "query", "m", "report", "--version", 1, "--json", "--timeout-ms", 3000])
+    check(q is not None and q.returncode == 5, f"m v1 (a link) is not served: {q and q.stderr.strip()}")
+    q = run([args.meshtopo, "query", "keep", "report", "--json", "--timeout-ms", 3000])
+    check(q is not None and q.returncode == 0, "keep v1, untouched, is still served")
+    aside = glob.glob(os.path.join(archive, ".mt-aside-m.v3.vtkhdf.*"))
+    check(len(aside) == 1 and not os.path.exists(v3), f"m v3 set aside as {aside}")
+    check(file_sha(target) == before and file_sha(copy) != "", "files outside the archive untouched")
+    a4 = send(args.meshtopo, grid, "m")
+    check(a4 is not None and a4["version"] == 4, f"m takes version {a4 and a4['version']} next")
+    check(d.stop() == 0, "restarted daemon exits 0 on SIGTERM")
+    log.close()
+    text = open(log_path).read()
+    check("set aside as .mt-aside-m.v3.vtkhdf." in text, "the daemon logged the set-aside file")
+    check("m.v1.vtkhdf: refused: a symbolic link" in text,
+          "the daemon logged the link in place of m v1 as refused, not followed")
+
+
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("mode", choices=["roundtrip", "crash", "budget", "modes"])
+    ap.add_argument("mode", choices=["roundtrip", "crash", "budget", "modes", "hostile"])
     ap.add_argument("--meshtopo", required=True)
     ap.add_argument("--meshtopod", required=True)
     ap.add_argument("--corpus", default=os.environ.get("MESHTOPO_CORPUS"))
@@ -366,7 +457,7 @@ def main():
     os.environ["MESHTOPO_PREFIX"] = PREFIX
     with tempfile.TemporaryDirectory(prefix="meshtopo-archive-") as tmp:
         {"roundtrip": mode_roundtrip, "crash": mode_crash, "budget": mode_budget,
-         "modes": mode_modes}[args.mode](args, tmp)
+         "modes": mode_modes, "hostile": mode_hostile}[args.mode](args, tmp)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1
