@@ -33,7 +33,11 @@ int mt_cli_archive_open(const char *dir, bool read_only, mt_archive **out)
     mt_archive_options open_options = {.read_only = read_only};
     mt_diag diag;
     mt_status st = mt_archive_open(dir, &open_options, out, &diag);
-    if (st == MT_OK) return MT_CLI_EXIT_OK;
+    if (st == MT_OK) {
+        /* Check content as meshtopod does on load. */
+        mt_archive_set_content_hash(*out, mt_archive_content_hash, NULL);
+        return MT_CLI_EXIT_OK;
+    }
     mt_cli_error("archive", "%s", diag.message);
     return MT_CLI_EXIT_READ;
 }
@@ -96,9 +100,12 @@ const mt_cli_command mt_cli_cmd_archive = {
         "      one version's provenance and topology report (rebuilt from the stored face\n"
         "      list and checked against the stored report).\n"
         "  archive verify DIR [--json]\n"
-        "      checks every file: readable, shapes and types consistent, name matching its\n"
-        "      mesh id and version, VTKHDF cells matching the face list, content hash\n"
-        "      matching, rebuild giving the stored report. One line per file.\n"
+        "      checks every file as meshtopod's loads do: a regular file of this user\n"
+        "      (links are never followed), shapes and types consistent, name matching its\n"
+        "      mesh id and version, content hash matching the face list, stored half-edge\n"
+        "      arrays matching their digest (or a rebuild), VTKHDF cells matching the face\n"
+        "      list. One line per file; a bad one names its fault: derived (rebuilt on\n"
+        "      load), vtk, content (set aside by the daemon), newer, unsafe, system.\n"
         "  archive export DIR ID [--version N] OUT.{off,obj,ply}\n"
         "      writes the face list exactly as submitted (rejected faces too).\n"
         "  archive rm DIR ID [--version N | --all]\n"

@@ -1,20 +1,14 @@
-/* `meshtopo archive verify DIR [--json]`: checks every archive file (read,
- * shapes and types, name, VTKHDF cells, content hash as meshtopod computes
- * it, rebuild against the stored report) and names each bad file and its
- * problem. Exit 0 only when every file passes. */
+/* `meshtopo archive verify DIR [--json]`: checks every archive file with
+ * the checks meshtopod's loads make (safe open, content hash as the daemon
+ * computes it, stored arrays against their digest or a rebuild, report),
+ * plus the VTKHDF cells, and names each bad file, its problem and what kind
+ * of fault it is (mt_archive_fault: derived data rebuilt on load, content
+ * set aside by the daemon, unsafe entries never opened, ...). Exit 0 only
+ * when every file passes. */
 #include <stdio.h>
 
 #include "cmd_archive.h"
 #include "json_writer.h"
-#include "meshtopo/client.h"
-
-/* The daemon's content hash (msgs/mesh_t.lcm), computed from the face list. */
-static mt_status content_hash(void *ctx, const mt_face_list *faces, uint64_t *out_hash,
-                              mt_diag *diag)
-{
-    (void)ctx;
-    return mt_client_content_hash(faces, out_hash, diag);
-}
 
 int mt_cli_archive_verify(const mt_cli_args *args)
 {
@@ -42,7 +36,8 @@ int mt_cli_archive_verify(const mt_cli_args *args)
     size_t bad = 0;
     for (size_t i = 0; i < listing.count; i++) {
         const char *name = listing.entries[i].file_name;
-        mt_status st = mt_archive_verify_file(archive, name, content_hash, NULL, &diag);
+        mt_archive_fault fault = MT_ARCHIVE_FAULT_NONE;
+        mt_status st = mt_archive_verify_file_with(archive, name, NULL, NULL, &fault, &diag);
         if (st != MT_OK) bad++;
         if (json) {
             mt_json_object_begin(&j);
@@ -50,6 +45,8 @@ int mt_cli_archive_verify(const mt_cli_args *args)
             mt_json_string(&j, name);
             mt_json_key(&j, "ok");
             mt_json_bool(&j, st == MT_OK);
+            mt_json_key(&j, "fault");
+            mt_json_string(&j, mt_archive_fault_name(fault));
             mt_json_key(&j, "error");
             if (st == MT_OK)
                 mt_json_null(&j);
@@ -59,7 +56,7 @@ int mt_cli_archive_verify(const mt_cli_args *args)
         } else if (st == MT_OK) {
             printf("ok   %s\n", name);
         } else {
-            printf("BAD  %s\n", diag.message);
+            printf("BAD  [%s] %s\n", mt_archive_fault_name(fault), diag.message);
         }
     }
     if (json) {

@@ -411,12 +411,15 @@ def mode_hostile(args, tmp):
     verdict = json.loads(p.stdout) if p is not None and p.stdout.strip() else None
     files = {r["file"]: r for r in (verdict or {}).get("files", [])} if verdict else {}
     check(p is not None and p.returncode != 0, "archive verify fails on the planted and altered files")
-    want = {"keep.v1.vtkhdf": (True, ""), "m.v1.vtkhdf": (False, "symbolic link"),
-            "m.v2.vtkhdf": (False, "symbolic link"), "m.v3.vtkhdf": (False, "content hash")}
-    for name, (ok, needle) in want.items():
+    want = {"keep.v1.vtkhdf": (True, "", "none"),
+            "m.v1.vtkhdf": (False, "symbolic link", "unsafe"),
+            "m.v2.vtkhdf": (False, "symbolic link", "unsafe"),
+            "m.v3.vtkhdf": (False, "content hash", "content")}
+    for name, (ok, needle, fault) in want.items():
         r = files.get(name)
-        check(r is not None and r["ok"] == ok and needle in (r["error"] or ""),
-              f"verify: {name} {'OK' if ok else 'BAD naming ' + repr(needle)}: {r}")
+        check(r is not None and r["ok"] == ok and needle in (r["error"] or "") and
+              r["fault"] == fault,
+              f"verify: {name} {'OK' if ok else 'BAD naming ' + repr(needle)}, fault {fault}: {r}")
     check(d.stop() == 0, "daemon exits 0 on SIGTERM")
     log.close()
     log = open(log_path, "a")
