@@ -8,6 +8,7 @@ packages=(
     build-essential cmake ninja-build pkg-config   # compiler and build
     zlib1g-dev                                     # meshtopo::io reads .gz meshes
     libcjson-dev python3                           # tests: JSON reference answers
+    time                                           # tests/io: peak RSS of meshtopo inspect
     clang libclang-rt-14-dev clang-format          # fuzzers (libFuzzer), format check
     libopenmesh-dev libcgal-dev                    # benchmark peers (optional)
     # LCM: library, lcm-gen, lcm.jar; a JDK builds meshtopo-msgs.jar for lcm-spy

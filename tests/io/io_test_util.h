@@ -25,6 +25,36 @@ int io_test_spill(const char *path, const void *data, size_t size);
 mt_status io_test_read_text(const char *text, mt_format format, const char *name, mt_face_list *out,
                             mt_diag *diag);
 
+/* The gzip form of [data, data + size) with stored (uncompressed) deflate
+ * blocks: one member, CRC and length as RFC 1952 says. Returns a malloc'd
+ * buffer and its size in *out_size, or NULL. */
+unsigned char *io_test_gzip_stored(const void *data, size_t size, size_t *out_size);
+
+/* gzip data that inflates to `members` members, each `member_size` bytes
+ * of `pattern` (1 to 4 bytes) repeated, made cheaply (fixed-Huffman
+ * deflate: 258-byte matches), so gigabytes fit in a few megabytes. Returns
+ * a malloc'd buffer and its size in *out_size, or NULL. */
+unsigned char *io_test_gzip_repeat(const char *pattern, size_t pattern_len, uint64_t member_size,
+                                   size_t members, size_t *out_size);
+
+/* Reads [data, data + size) whole with mt_read_memory into *out / *diag
+ * and returns its status, after CHECKing that the other ways of reading the
+ * same bytes agree with it: through windows of a few bytes (the input's
+ * length known), and as gzip data (its length unknown until its end; unless
+ * the data is gzip already). They must give the same status and list, and
+ * the same message, line and byte offset, bar the documented differences
+ * of streamed gzip data (the read fails, with another message): when the
+ * whole read fails a check of counts against the bytes that follow, the
+ * gzip read may report an error it met before the end of the data instead;
+ * when the whole read fails on damaged gzip data, a smaller window may
+ * meet a parse error in what was inflated before the damage. Reports
+ * failures at the caller's line. */
+mt_status io_test_read_variants_at(const char *file, int line_no, const void *data, size_t size,
+                                   mt_format format, const char *name, mt_face_list *out,
+                                   mt_diag *diag);
+#define IO_TEST_READ_VARIANTS(data, size, format, name, out, diag) \
+    io_test_read_variants_at(__FILE__, __LINE__, data, size, format, name, out, diag)
+
 /* CHECKs that a and b hold the same counts, face sizes, indices and
  * (bit for bit) positions; `what` names the comparison in failures. */
 void io_test_check_same(const mt_face_list *a, const mt_face_list *b, const char *what);
@@ -32,8 +62,9 @@ void io_test_check_same(const mt_face_list *a, const mt_face_list *b, const char
 /* CHECKs that reading data gives MT_ERR_PARSE, a zeroed list, and a
  * message that contains `name`, the position ("name:LINE: " when line > 0,
  * else "name: byte offset OFFSET: ", any offset when OFFSET is UINT64_MAX;
- * diag.line / diag.byte_offset must match) and `fragment`. Reports failures at the
- * caller's line. */
+ * diag.line / diag.byte_offset must match) and `fragment`; the other ways of
+ * reading the same bytes must agree (io_test_read_variants_at). Reports
+ * failures at the caller's line. */
 void io_test_expect_parse_error_at(const char *file, int line_no, const void *data, size_t size,
                                    mt_format format, const char *name, uint64_t line,
                                    uint64_t offset, const char *fragment);

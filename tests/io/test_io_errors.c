@@ -342,7 +342,8 @@ static mt_status read_any_outcome(const unsigned char *data, size_t size, mt_for
     mt_face_list list;
     memset(&list, 0xab, sizeof list);
     mt_diag diag;
-    mt_status status = mt_read_memory(data, size, format, name, &list, &diag);
+    mt_status status =
+        io_test_read_variants_at(__FILE__, __LINE__, data, size, format, name, &list, &diag);
     if (status == MT_OK) {
         CHECK_OK(mt_face_list_check(&list, NULL));
         mt_face_list_free(&list);

@@ -126,12 +126,21 @@ int mt_cli_face_list_read(const char *command, const char *path, const char *for
                           mt_face_list *out_list);
 
 /* Reads `path` (format auto-detected unless `format_name` names one) and
- * builds it. Returns MT_CLI_EXIT_OK, MT_CLI_EXIT_USAGE (unknown format
- * name), MT_CLI_EXIT_READ or MT_CLI_EXIT_BUILD after printing the reason,
- * naming the file, to stderr. */
+ * builds it. max_input_bytes: the largest input read, after gzip inflation
+ * (0: the library's default; set by --max-input-bytes). Returns
+ * MT_CLI_EXIT_OK, MT_CLI_EXIT_USAGE (unknown format name), MT_CLI_EXIT_READ
+ * or MT_CLI_EXIT_BUILD after printing the reason, naming the file, to
+ * stderr. */
 int mt_cli_mesh_load(const char *command, const char *path, const char *format_name,
-                     const mt_build_options *options, mt_cli_mesh *out);
+                     uint64_t max_input_bytes, const mt_build_options *options, mt_cli_mesh *out);
 void mt_cli_mesh_free(mt_cli_mesh *m);
+
+/* Environment variable giving the default of --max-input-bytes. */
+#define MT_CLI_ENV_MAX_INPUT_BYTES "MESHTOPO_MAX_INPUT_BYTES"
+
+/* Parses a byte count of at least 1: decimal digits, optionally followed
+ * by K, M, G or T (any case; powers of 1024). */
+bool mt_cli_byte_count_parse(const char *text, uint64_t *out);
 
 /* Milliseconds on a monotonic clock. */
 double mt_cli_now_ms(void);

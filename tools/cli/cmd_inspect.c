@@ -20,7 +20,28 @@ static const mt_cli_option options[] = {
     {"fail-on-defect", NULL, "exit 1 after printing when the report lists any defect"},
     {"format", "NAME", "file format: auto (default), off, obj, ply-ascii, ply-le, ply-be"},
     {"limit", "N", "items per list in the readable output (default 5, 0 = all)"},
+    {"max-input-bytes", "N",
+     "refuse FILE past N bytes inflated (e.g. 512M; default $" MT_CLI_ENV_MAX_INPUT_BYTES
+     " or 16G)"},
 };
+
+/* --max-input-bytes, else $MESHTOPO_MAX_INPUT_BYTES, else 0 (the library's
+ * default). Returns false after printing the problem. */
+static bool parse_max_input(const mt_cli_args *args, uint64_t *out)
+{
+    *out = 0;
+    const char *text = mt_cli_arg(args, "max-input-bytes");
+    const char *what = "--max-input-bytes";
+    if (!text) {
+        text = getenv(MT_CLI_ENV_MAX_INPUT_BYTES);
+        what = "$" MT_CLI_ENV_MAX_INPUT_BYTES;
+        if (!text || !text[0]) return true;
+    }
+    if (mt_cli_byte_count_parse(text, out)) return true;
+    mt_cli_error("inspect", "%s: expected a byte count such as 1048576 or 512M, got '%s'", what,
+                 text);
+    return false;
+}
 
 static bool parse_limit(const char *text, size_t *out)
 {
@@ -51,11 +72,15 @@ static int run_inspect(const mt_cli_args *args)
         return MT_CLI_EXIT_USAGE;
     }
 
+    uint64_t max_input;
+    if (!parse_max_input(args, &max_input)) return MT_CLI_EXIT_USAGE;
+
     mt_build_options build;
     memset(&build, 0, sizeof build);
     build.strict = mt_cli_flag(args, "strict");
     mt_cli_mesh mesh;
-    int code = mt_cli_mesh_load("inspect", path, mt_cli_arg(args, "format"), &build, &mesh);
+    int code =
+        mt_cli_mesh_load("inspect", path, mt_cli_arg(args, "format"), max_input, &build, &mesh);
     if (code != MT_CLI_EXIT_OK) return code;
 
     mt_inspect_request req;
@@ -102,6 +127,9 @@ const mt_cli_command mt_cli_cmd_inspect = {
         "content), builds the half-edge mesh and prints counts, boundary loops, components,\n"
         "Euler characteristic, genus, the closed/manifold/orientable flags and every defect\n"
         "with the ids of the elements involved. Nothing is welded or dropped silently.\n"
+        "FILE is parsed as it is read and inflated, so memory follows the mesh, not the\n"
+        "file: data past what an OFF or PLY header declares is refused, and so is a FILE\n"
+        "longer than --max-input-bytes once inflated.\n"
         "\n"
         "--vertices prints each vertex's one-ring fan by fan; --faces prints each face's\n"
         "neighbours edge by edge. With --json the output is one JSON object with the keys\n"

@@ -1,6 +1,8 @@
 /* Reading a mesh file and building it, for every command that takes a
  * FILE: maps the library's failures onto the CLI exit codes (3 read/parse,
- * 4 build) and makes sure every message names the file. */
+ * 4 build), makes sure every message names the file, and reads the byte
+ * counts of input limits (--max-input-bytes). */
+#include <stdio.h>
 #include <string.h>
 #include <time.h>
 
@@ -40,7 +42,11 @@ static const char *diag_text(const mt_diag *diag, mt_status status)
     return diag->message[0] ? diag->message : mt_strerror(status);
 }
 
-int mt_cli_face_list_read(const char *command, const char *path, const char *format_name,
+/* mt_cli_face_list_read with an input limit (0: the library's default);
+ * `limit_option` names the option that sets it, for the message of an
+ * input over the limit (NULL: none). */
+static int face_list_read(const char *command, const char *path, const char *format_name,
+                          uint64_t max_input_bytes, const char *limit_option,
                           mt_face_list *out_list)
 {
     memset(out_list, 0, sizeof *out_list);
@@ -52,24 +58,58 @@ int mt_cli_face_list_read(const char *command, const char *path, const char *for
     }
     mt_diag diag;
     mt_diag_clear(&diag);
-    mt_status st = mt_read_file(path, format, out_list, &diag);
+    mt_read_options options;
+    memset(&options, 0, sizeof options);
+    options.max_input_bytes = max_input_bytes;
+    mt_status st = mt_read_file_with(path, format, &options, out_list, &diag);
     if (st != MT_OK) {
         const char *text = diag_text(&diag, st);
+        char hint[64] = "";
+        if (st == MT_ERR_TOO_LARGE && limit_option && strstr(text, "input limit"))
+            snprintf(hint, sizeof hint, " (%s raises it)", limit_option);
         if (strstr(text, path))
-            mt_cli_error(command, "%s", text);
+            mt_cli_error(command, "%s%s", text, hint);
         else
-            mt_cli_error(command, "cannot read %s: %s", path, text);
+            mt_cli_error(command, "cannot read %s: %s%s", path, text, hint);
         return MT_CLI_EXIT_READ;
     }
     return MT_CLI_EXIT_OK;
 }
 
+int mt_cli_face_list_read(const char *command, const char *path, const char *format_name,
+                          mt_face_list *out_list)
+{
+    return face_list_read(command, path, format_name, 0, NULL, out_list);
+}
+
+bool mt_cli_byte_count_parse(const char *text, uint64_t *out)
+{
+    uint64_t v = 0;
+    const char *p = text;
+    if (*p < '0' || *p > '9') return false;
+    for (; *p >= '0' && *p <= '9'; p++) {
+        if (v > (UINT64_MAX - (uint64_t)(*p - '0')) / 10) return false;
+        v = v * 10 + (uint64_t)(*p - '0');
+    }
+    static const char units[] = "KMGT";
+    const char *unit = *p ? strchr(units, *p >= 'a' ? *p - 'a' + 'A' : *p) : NULL;
+    if (*p && (!unit || p[1] != '\0')) return false;
+    for (int k = unit ? (int)(unit - units) + 1 : 0; k > 0; k--) {
+        if (v > UINT64_MAX / 1024) return false;
+        v *= 1024;
+    }
+    if (v == 0) return false;
+    *out = v;
+    return true;
+}
+
 int mt_cli_mesh_load(const char *command, const char *path, const char *format_name,
-                     const mt_build_options *options, mt_cli_mesh *out)
+                     uint64_t max_input_bytes, const mt_build_options *options, mt_cli_mesh *out)
 {
     memset(out, 0, sizeof *out);
     double t0 = mt_cli_now_ms();
-    int code = mt_cli_face_list_read(command, path, format_name, &out->list);
+    int code = face_list_read(command, path, format_name, max_input_bytes, "--max-input-bytes",
+                              &out->list);
     out->read_ms = mt_cli_now_ms() - t0;
     if (code != MT_CLI_EXIT_OK) return code;
 

@@ -1,19 +1,44 @@
 /* The face list a reader fills: three arrays that grow geometrically (so n
  * appends cost O(log n) reallocations, never one allocation per element)
- * and are trimmed and handed over as an mt_face_list at the end. */
+ * and are trimmed and handed over as an mt_face_list at the end. A reader
+ * may have the growth past MT__IO_BLIND_BYTES confirmed first (confirm). */
 #include <stdlib.h>
 
 #include "io_internal.h"
 
-/* Grows *data (elem bytes each, capacity *cap) to hold at least n elements. */
-static int grow(void **data, size_t *cap, size_t n, size_t elem)
+/* The capacity that holds at least n elements: doubling from cap (at
+ * least 1024), or exactly n when the doubling would overflow. 0 when n
+ * elements of `elem` bytes cannot be addressed. */
+static size_t grown(size_t cap, size_t n, size_t elem)
 {
-    if (n <= *cap) return 1;
     size_t max = SIZE_MAX / elem;
     if (n > max) return 0;
-    size_t want = *cap < 1024 ? 1024 : *cap;
+    size_t want = cap < 1024 ? 1024 : cap;
     while (want < n) want = want > max / 2 ? max : want * 2;
-    if (want > max) want = max;
+    return want;
+}
+
+/* Before the arrays grow to `bytes` in all: asks confirm once when that
+ * passes MT__IO_BLIND_BYTES. Returns 0 when it refused. */
+static int may_grow(mt__builder *b, uint64_t bytes)
+{
+    if (b->refused != MT_OK) return 0;
+    if (!b->confirm || b->confirmed || bytes <= MT__IO_BLIND_BYTES) return 1;
+    b->confirmed = 1;
+    b->refused = b->confirm(b->confirm_ctx, &b->refusal);
+    return b->refused == MT_OK;
+}
+
+/* Bytes of the arrays with these capacities. */
+static uint64_t bytes_of(size_t verts, size_t faces, size_t indices)
+{
+    return 3 * sizeof(double) * (uint64_t)verts + sizeof(uint32_t) * ((uint64_t)faces + indices);
+}
+
+/* Grows *data (elem bytes each, capacity *cap) to `want` elements, or to
+ * exactly n when that much memory is not there. */
+static int grow(void **data, size_t *cap, size_t want, size_t n, size_t elem)
+{
     void *p = realloc(*data, want * elem);
     if (!p) {
         /* the doubling may be too greedy for the memory left: try exactly n */
@@ -29,33 +54,42 @@ static int grow(void **data, size_t *cap, size_t n, size_t elem)
 
 int mt__builder_reserve_verts(mt__builder *b, size_t n)
 {
-    if (n > SIZE_MAX / 3) return 0;
+    if (n <= b->cap_verts) return 1;
+    size_t want = n > SIZE_MAX / 3 ? 0 : grown(b->cap_verts, n, 3 * sizeof(double));
+    if (!want || !may_grow(b, bytes_of(want, b->cap_faces, b->cap_indices))) return 0;
     void *data = b->positions;
-    size_t cap = b->cap_verts;
-    if (!grow(&data, &cap, n, 3 * sizeof(double))) return 0;
+    if (!grow(&data, &b->cap_verts, want, n, 3 * sizeof(double))) return 0;
     b->positions = data;
-    b->cap_verts = cap;
     return 1;
 }
 
 int mt__builder_reserve_faces(mt__builder *b, size_t n)
 {
+    if (n <= b->cap_faces) return 1;
+    size_t want = grown(b->cap_faces, n, sizeof(uint32_t));
+    if (!want || !may_grow(b, bytes_of(b->cap_verts, want, b->cap_indices))) return 0;
     void *data = b->sizes;
-    size_t cap = b->cap_faces;
-    if (!grow(&data, &cap, n, sizeof(uint32_t))) return 0;
+    if (!grow(&data, &b->cap_faces, want, n, sizeof(uint32_t))) return 0;
     b->sizes = data;
-    b->cap_faces = cap;
     return 1;
 }
 
 int mt__builder_reserve_indices(mt__builder *b, size_t n)
 {
+    if (n <= b->cap_indices) return 1;
+    size_t want = grown(b->cap_indices, n, sizeof(uint32_t));
+    if (!want || !may_grow(b, bytes_of(b->cap_verts, b->cap_faces, want))) return 0;
     void *data = b->indices;
-    size_t cap = b->cap_indices;
-    if (!grow(&data, &cap, n, sizeof(uint32_t))) return 0;
+    if (!grow(&data, &b->cap_indices, want, n, sizeof(uint32_t))) return 0;
     b->indices = data;
-    b->cap_indices = cap;
     return 1;
+}
+
+mt_status mt__builder_fail(const mt__builder *b, const mt__io_src *src, mt_diag *diag)
+{
+    if (b->refused == MT_OK) return mt__io_fail_nomem(diag, src);
+    if (diag) *diag = b->refusal;
+    return b->refused;
 }
 
 /* Shrinks an array to exactly n elements (at least one, so that pointers

@@ -1,37 +1,49 @@
-/* gzip input (RFC 1952) inflated with zlib into one buffer: every member of
- * a multi-member file, trailing zero padding allowed. The output grows
- * geometrically from a size hint that is only trusted when plausible, and
- * is refused above 16 GiB or when it would not fit in memory, so a small
- * gzip bomb cannot make us allocate more than it really inflates to. */
+/* gzip input (RFC 1952) inflated with zlib a piece at a time, as the
+ * window of the input moves on (io_source.c): every member of a
+ * multi-member file, then only zero bytes (padding) to the end. Nothing is
+ * inflated ahead of what the parser asks for, so a small file that
+ * inflates to gigabytes costs time, never memory. Errors name the offset in
+ * the compressed bytes. */
 #include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <zlib.h>
 
 #include "io_internal.h"
 
-/* Largest inflated size accepted. */
-#define MT__INFLATE_LIMIT ((uint64_t)16 << 30)
+struct mt__inflater {
+    z_stream zs;
+    int member_end; /* a member ended: what follows is not looked at yet */
+};
 
-static size_t inflate_limit(void)
+mt__inflater *mt__inflater_new(void)
 {
-    return MT__INFLATE_LIMIT < (uint64_t)SIZE_MAX ? (size_t)MT__INFLATE_LIMIT : SIZE_MAX - 1;
+    mt__inflater *z = calloc(1, sizeof *z);
+    if (!z) return NULL;
+    if (inflateInit2(&z->zs, 16 + MAX_WBITS) != Z_OK) {
+        free(z);
+        return NULL;
+    }
+    return z;
 }
 
-/* Initial capacity: the size in the last member's trailer (ISIZE, the size
- * modulo 2^32) when deflate could produce it from this input (ratio at most
- * about 1032:1), else a few times the input. */
-static size_t initial_capacity(const unsigned char *data, size_t size, size_t limit)
+mt__inflater *mt__inflater_dup(const mt__inflater *z)
 {
-    uint64_t ratio_cap = (uint64_t)size * 1040u + 4096u;
-    uint64_t guess = (uint64_t)size * 4u + 4096u;
-    if (size >= 18) {
-        const unsigned char *t = data + size - 4;
-        uint64_t isize =
-            (uint64_t)t[0] | (uint64_t)t[1] << 8 | (uint64_t)t[2] << 16 | (uint64_t)t[3] << 24;
-        if (isize + 1 <= ratio_cap) guess = isize + 1;
+    mt__inflater *copy = calloc(1, sizeof *copy);
+    if (!copy) return NULL;
+    if (inflateCopy(&copy->zs, (z_streamp)&z->zs) != Z_OK) {
+        free(copy);
+        return NULL;
     }
-    if (guess > limit) guess = limit;
-    return (size_t)guess;
+    copy->member_end = z->member_end;
+    return copy;
+}
+
+void mt__inflater_free(mt__inflater *z)
+{
+    if (!z) return;
+    inflateEnd(&z->zs);
+    free(z);
 }
 
 static int all_zero(const unsigned char *p, size_t n)
@@ -41,89 +53,92 @@ static int all_zero(const unsigned char *p, size_t n)
     return 1;
 }
 
-mt_status mt__inflate(const mt__io_src *src, unsigned char **out, size_t *out_size, mt_diag *diag)
+static mt_status read_error(const mt__io_src *src, int err, mt_diag *diag)
 {
-    *out = NULL;
-    *out_size = 0;
-    const unsigned char *data = src->data;
-    size_t size = src->size;
-    size_t limit = inflate_limit();
-    size_t cap = initial_capacity(data, size, limit);
-    unsigned char *buf = malloc(cap);
-    if (!buf) return mt__io_fail_nomem(diag, src);
+    char text[256];
+    if (strerror_r(err, text, sizeof text) != 0) snprintf(text, sizeof text, "error %d", err);
+    return mt__io_fail(diag, MT_ERR_IO, src, MT__POS_NONE, 0, MT_NONE, "cannot read: %s", text);
+}
 
-    z_stream zs;
-    memset(&zs, 0, sizeof zs);
-    if (inflateInit2(&zs, 16 + MAX_WBITS) != Z_OK) {
-        free(buf);
-        return mt__io_fail_nomem(diag, src);
+/* After a member: another member starts (1), or only zero bytes follow to
+ * the end (0, *done set), or something else does (-1, diag filled). */
+static int after_member(mt__inflater *z, mt__io_raw *raw, const mt__io_src *src, int *done,
+                        mt_status *status, mt_diag *diag)
+{
+    while (raw->end - raw->p < 2 && mt__raw_more(raw)) continue;
+    size_t left = (size_t)(raw->end - raw->p);
+    if (mt__is_gzip(raw->p, left)) {
+        if (inflateReset(&z->zs) != Z_OK) {
+            *status = mt__io_fail_nomem(diag, src);
+            return -1;
+        }
+        z->member_end = 0;
+        return 1;
     }
-    size_t fed = 0; /* input bytes handed to zlib so far */
-    size_t len = 0; /* output bytes produced so far */
-    mt_status status = MT_OK;
+    uint64_t at = raw->offset;
     for (;;) {
-        if (zs.avail_in == 0 && fed < size) {
-            size_t chunk = size - fed < UINT_MAX ? size - fed : UINT_MAX;
-            zs.next_in = (unsigned char *)(data + fed);
-            zs.avail_in = (uInt)chunk;
-            fed += chunk;
+        if (!all_zero(raw->p, left)) {
+            *status = mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_BYTE, at, MT_NONE,
+                                  "unexpected data after the end of the gzip stream");
+            return -1;
         }
-        if (len == cap) {
-            if (cap >= limit) {
-                status = mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_NONE, 0, MT_NONE,
-                                     "gzip data inflates to more than %zu bytes", limit);
-                break;
-            }
-            size_t grown = cap > limit / 2 ? limit : cap * 2;
-            unsigned char *p = realloc(buf, grown);
-            if (!p) {
-                status = mt__io_fail(diag, MT_ERR_NOMEM, src, MT__POS_NONE, 0, MT_NONE,
-                                     "out of memory inflating gzip data (%zu bytes so far)", len);
-                break;
-            }
-            buf = p;
-            cap = grown;
+        raw->p += left;
+        raw->offset += left;
+        if (!mt__raw_more(raw)) break;
+        left = (size_t)(raw->end - raw->p);
+    }
+    if (raw->err) {
+        *status = read_error(src, raw->err, diag);
+        return -1;
+    }
+    *done = 1;
+    return 0;
+}
+
+size_t mt__inflate(mt__inflater *z, mt__io_raw *raw, unsigned char *out, size_t room,
+                   const mt__io_src *src, int *done, mt_status *status, mt_diag *diag)
+{
+    size_t made = 0;
+    while (made < room) {
+        if (z->member_end) {
+            if (after_member(z, raw, src, done, status, diag) <= 0) break;
+            continue;
         }
-        size_t room = cap - len < UINT_MAX ? cap - len : UINT_MAX;
-        zs.next_out = buf + len;
-        zs.avail_out = (uInt)room;
-        int ret = inflate(&zs, Z_NO_FLUSH);
-        len = (size_t)(zs.next_out - buf);
-        size_t consumed = (size_t)(zs.next_in - data);
-        if (ret == Z_STREAM_END) {
-            if (consumed < size && mt__is_gzip(data + consumed, size - consumed)) {
-                if (inflateReset(&zs) != Z_OK) {
-                    status = mt__io_fail_nomem(diag, src);
-                    break;
-                }
-                continue;
-            }
-            if (consumed < size && !all_zero(data + consumed, size - consumed))
-                status = mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_BYTE, consumed, MT_NONE,
-                                     "unexpected data after the end of the gzip stream");
+        if (raw->p == raw->end && !mt__raw_more(raw) && raw->err) {
+            *status = read_error(src, raw->err, diag);
             break;
         }
+        size_t avail = (size_t)(raw->end - raw->p);
+        uInt in = avail < UINT_MAX ? (uInt)avail : UINT_MAX;
+        size_t want = room - made;
+        z->zs.next_in = (Bytef *)raw->p;
+        z->zs.avail_in = in;
+        z->zs.next_out = out + made;
+        z->zs.avail_out = want < UINT_MAX ? (uInt)want : UINT_MAX;
+        int ret = inflate(&z->zs, Z_NO_FLUSH);
+        size_t used = in - z->zs.avail_in;
+        raw->p += used;
+        raw->offset += used;
+        made = (size_t)(z->zs.next_out - out);
+        if (ret == Z_STREAM_END) {
+            z->member_end = 1;
+            continue;
+        }
         if (ret == Z_MEM_ERROR) {
-            status = mt__io_fail_nomem(diag, src);
+            *status = mt__io_fail_nomem(diag, src);
             break;
         }
         if (ret != Z_OK && ret != Z_BUF_ERROR) {
-            status = mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_BYTE, consumed, MT_NONE,
-                                 "corrupt gzip data (%s)", zs.msg ? zs.msg : "inflate failed");
+            *status =
+                mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_BYTE, raw->offset, MT_NONE,
+                            "corrupt gzip data (%s)", z->zs.msg ? z->zs.msg : "inflate failed");
             break;
         }
-        if (zs.avail_in == 0 && fed == size && zs.avail_out > 0) {
-            status = mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_BYTE, size, MT_NONE,
-                                 "gzip data ends before the end of its stream (truncated file)");
+        if (z->zs.avail_in == 0 && raw->p == raw->end && raw->at_end && z->zs.avail_out > 0) {
+            *status = mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_BYTE, raw->offset, MT_NONE,
+                                  "gzip data ends before the end of its stream (truncated file)");
             break;
         }
     }
-    inflateEnd(&zs);
-    if (status != MT_OK) {
-        free(buf);
-        return status;
-    }
-    *out = buf;
-    *out_size = len;
-    return MT_OK;
+    return made;
 }

@@ -1,8 +1,8 @@
 /* Shared internals of meshtopo::io: the input being parsed, error reporting
  * with file name and line or byte offset, number parsing, the growable face
  * list the readers fill, and the output sink the writers use. Parsers never
- * read outside [data, data + size) and never trust a count for allocation
- * before checking it against the bytes that remain. */
+ * read outside [data, data + size) of their window and never allocate by a
+ * count a file declares: arrays grow as elements are read. */
 #ifndef MESHTOPO_IO_INTERNAL_H
 #define MESHTOPO_IO_INTERNAL_H
 
@@ -20,20 +20,98 @@
 
 /* ---- The input --------------------------------------------------------- */
 
+/* An input length not known yet (gzip data, a pipe). */
+#define MT__UNKNOWN UINT64_MAX
+
+typedef struct mt__io_stream mt__io_stream;
+
+/* The bytes being parsed. A plain buffer read whole: data/size is all of it
+ * and base 0. Any other input (a file, gzip data): data/size is a window on
+ * it, the bytes at input offsets [base, base + size), moved on by
+ * mt__src_more as the parser advances. While the window is on text it ends
+ * just after a whitespace byte (never after a '\r' that follows a '\\'),
+ * unless it ends the input: so a token, a number or an OBJ continuation
+ * never straddles its end, and parsers treat the end of the window as the
+ * end of a token; they call mt__src_more only where they need bytes past it.
+ * Messages give input offsets (base + index into data). */
 typedef struct mt__io_src {
     const char *name; /* for messages; never NULL */
     const unsigned char *data;
     size_t size;
+    uint64_t base;      /* input offset of data[0] */
+    int eof;            /* data + size is the end of the input */
+    uint64_t total;     /* the input's length when known (buffers, plain files), else MT__UNKNOWN */
+    uint64_t lines;     /* '\n' bytes before base (text windows) */
+    uint64_t mark;      /* input offset of the record being read: its line is kept when the */
+    uint64_t mark_line; /* window moves past it, so a message can still point there */
+    mt__io_stream *stream; /* NULL when data is all the input */
 } mt__io_src;
+
+/* A source over all of [data, data + size). */
+void mt__src_init_buffer(mt__io_src *src, const char *name, const void *data, size_t size);
+
+/* Moves the window on: drops the bytes before *pos (*pos then indexes the
+ * same byte as before), keeps the others and appends more input. Returns 1
+ * when the window shows bytes past those it kept, 0 at the end of the input
+ * (src->eof is then set) or when reading failed (mt__src_status has the
+ * failure). A buffer read whole always gives 0. data may move: reload it. */
+int mt__src_more(mt__io_src *src, size_t *pos);
+
+/* Makes at least k bytes available at *pos (mt__src_more as needed).
+ * Returns 0 when the input ends first. */
+static inline int mt__src_need(mt__io_src *src, size_t *pos, size_t k)
+{
+    while (src->size - *pos < k)
+        if (!mt__src_more(src, pos)) return 0;
+    return 1;
+}
+
+/* From here on the window is on binary data: it shows every byte read. */
+void mt__src_binary(mt__io_src *src);
+
+/* The number of '\n' bytes in [p, p + n). */
+uint64_t mt__count_newlines(const unsigned char *p, size_t n);
+
+/* The 1-based line of an input offset in the window or at the mark. */
+uint64_t mt__src_line(const mt__io_src *src, uint64_t offset);
+
+/* The input's length: known at once for buffers and plain files, else
+ * when the window has reached the end of the input; MT__UNKNOWN before. */
+static inline uint64_t mt__src_length(const mt__io_src *src)
+{
+    if (src->total != MT__UNKNOWN) return src->total;
+    return src->eof ? src->base + src->size : MT__UNKNOWN;
+}
+
+/* What follows the last element of an OFF or PLY file. */
+typedef enum mt__trail {
+    MT__TRAIL_END,  /* only whitespace (and comments) up to the end of the input */
+    MT__TRAIL_DATA, /* something else, at *pos */
+    MT__TRAIL_LONG  /* MT_READ_MAX_TRAILING_BYTES of whitespace and more input after them,
+                       the first of which is at *pos */
+} mt__trail;
+
+/* Skips whitespace (and '#' comments to the end of their line when
+ * `comments`) from *pos, but no more than MT_READ_MAX_TRAILING_BYTES. */
+mt__trail mt__src_skip_trailer(mt__io_src *src, size_t *pos, int comments);
 
 /* How a failure position is shown: "name:LINE: " for text (the line is
  * computed from the offset) or "name: byte offset N: " for binary data. */
 typedef enum mt__io_pos { MT__POS_NONE, MT__POS_LINE, MT__POS_BYTE } mt__io_pos;
 
 /* Fills diag with status, element, the position (line and/or byte_offset)
- * and "name:position: message"; returns status. */
+ * and "name:position: message"; returns status. `offset` is an input offset
+ * (base + index); a line position must be in the window or at the mark. */
 mt_status mt__io_fail(mt_diag *diag, mt_status status, const mt__io_src *src, mt__io_pos pos,
-                      size_t offset, uint32_t element, const char *fmt, ...)
+                      uint64_t offset, uint32_t element, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 7, 8)))
+#endif
+    ;
+
+/* The same at a text offset whose line is already known. */
+mt_status mt__io_fail_line(mt_diag *diag, mt_status status, const mt__io_src *src, uint64_t offset,
+                           uint64_t line, uint32_t element, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 7, 8)))
 #endif
@@ -140,6 +218,15 @@ void mt__c_locale_leave(mt__locale_state *state);
 
 /* ---- The face list being read ------------------------------------------ */
 
+/* The most the face list may hold (bytes, all arrays) while the input's
+ * length is unknown, before the reader confirms the counts it declares
+ * against that length (mt__builder.confirm): 64 MiB. */
+#define MT__IO_BLIND_BYTES ((size_t)64 << 20)
+
+/* A list (a face record, a PLY list) declaring more entries than this
+ * makes a reader learn the input's length before reading it. */
+#define MT__IO_BIG_LIST ((uint64_t)1 << 20)
+
 /* Arrays that grow geometrically; counts are checked against the face list
  * limits (MT__IO_MAX_VERTS vertices, 2^32 - 1 faces) by the readers. */
 typedef struct mt__builder {
@@ -149,13 +236,35 @@ typedef struct mt__builder {
     size_t num_faces, cap_faces;
     uint32_t *indices;
     size_t num_indices, cap_indices;
+    /* When set, called once before the arrays would hold more than
+     * MT__IO_BLIND_BYTES: MT_OK lets them grow; another status refuses the
+     * growth, and mt__builder_fail reports it (from `refusal`). */
+    mt_status (*confirm)(void *ctx, mt_diag *diag);
+    void *confirm_ctx;
+    int confirmed;
+    mt_status refused;
+    mt_diag refusal;
 } mt__builder;
 
 /* Make room for at least n vertices / faces / indices in total. Return 0
- * when memory runs out (or the size overflows). */
+ * when memory runs out (or the size overflows) or confirm refused. */
 int mt__builder_reserve_verts(mt__builder *b, size_t n);
 int mt__builder_reserve_faces(mt__builder *b, size_t n);
 int mt__builder_reserve_indices(mt__builder *b, size_t n);
+
+/* The failure a reader reports when the builder refused to grow: confirm's
+ * refusal, else out of memory. */
+mt_status mt__builder_fail(const mt__builder *b, const mt__io_src *src, mt_diag *diag);
+
+/* The element count to make room for when `done` of `declared` elements
+ * are read and the arrays are full: all of them when few remain, else a
+ * batch as large as what was read so far (at least 64 Ki). So arrays grow
+ * with what a file holds, never with what its header declares. */
+static inline size_t mt__builder_ahead(size_t done, uint64_t declared)
+{
+    size_t step = done > ((size_t)1 << 16) ? done : ((size_t)1 << 16);
+    return declared - done <= step ? (size_t)declared : done + step;
+}
 
 static inline int mt__builder_add_vert(mt__builder *b, double x, double y, double z)
 {
@@ -190,28 +299,88 @@ void mt__builder_free(mt__builder *b);
 /* The failure every reader reports when an array cannot grow. */
 mt_status mt__io_fail_nomem(mt_diag *diag, const mt__io_src *src);
 
-/* ---- gzip -------------------------------------------------------------- */
+/* ---- Streamed input: raw bytes, gzip, the window ------------------------ */
+
+/* Raw input bytes, from a file descriptor (read a chunk at a time) or a
+ * buffer: [p, end) are bytes read and not used yet, `offset` the input
+ * offset of p. */
+typedef struct mt__io_raw {
+    int fd; /* -1 for a buffer */
+    const unsigned char *p, *end;
+    uint64_t offset;
+    unsigned char *chunk; /* fd: where chunks are read */
+    size_t chunk_cap;
+    int at_end;        /* nothing follows end */
+    int err;           /* errno of a failed read, else 0 */
+    int positioned;    /* read with pread at file_pos (a second reader of the file) */
+    uint64_t file_pos; /* fd: file offset of end */
+} mt__io_raw;
+
+/* Reads another chunk after the unused bytes (moved to the chunk's start).
+ * Returns 1 when bytes arrived, 0 at the end or on a read error (err). */
+int mt__raw_more(mt__io_raw *raw);
+
+/* Copies up to n bytes into dst: the unused ones first, then straight from
+ * the file. Returns fewer than n only at the end of the input or on a read
+ * error (err). */
+size_t mt__raw_read(mt__io_raw *raw, unsigned char *dst, size_t n);
 
 static inline int mt__is_gzip(const unsigned char *data, size_t size)
 {
     return size >= 2 && data[0] == 0x1f && data[1] == 0x8b;
 }
 
-/* Inflates the gzip data of src (all members) into a new buffer (free()).
- * Refuses output larger than 16 GiB or than fits in memory. */
-mt_status mt__inflate(const mt__io_src *src, unsigned char **out, size_t *out_size, mt_diag *diag);
+/* gzip data (RFC 1952) being inflated: every member of a multi-member
+ * file, then nothing but zero bytes. */
+typedef struct mt__inflater mt__inflater;
 
-/* ---- Readers (src is already decompressed) ----------------------------- */
+mt__inflater *mt__inflater_new(void);
+/* A copy that goes on from the same place (for a read ahead). */
+mt__inflater *mt__inflater_dup(const mt__inflater *z);
+void mt__inflater_free(mt__inflater *z);
 
-mt_status mt__read_off(const mt__io_src *src, mt_face_list *out, mt_diag *diag);
-mt_status mt__read_obj(const mt__io_src *src, mt_face_list *out, mt_diag *diag);
+/* Inflates up to `room` bytes into out from raw; returns how many. Sets
+ * *done at the clean end of the gzip data; on corrupt or truncated data or
+ * a read error fills diag (offsets in the compressed bytes, name from src)
+ * and *status. */
+size_t mt__inflate(mt__inflater *z, mt__io_raw *raw, unsigned char *out, size_t room,
+                   const mt__io_src *src, int *done, mt_status *status, mt_diag *diag);
+
+/* Opens src on the file descriptor fd (not closed) or, with fd < 0, on the
+ * buffer [data, data + size), through a window (gzip recognised by its
+ * magic bytes and inflated as the window moves on). `total` is the plain
+ * input's length when known. The first window is read. On failure src
+ * holds nothing to close. */
+mt_status mt__src_open(mt__io_src *src, const char *name, int fd, const void *data, size_t size,
+                       uint64_t total, const mt_read_options *options, mt_diag *diag);
+/* Learns the input's length when it is not known yet and the input can be
+ * read again (gzip data from a buffer or a regular file): the rest is
+ * inflated once, ahead of the window, and not kept. A failure met on the
+ * way (corrupt data, the input limit) ends the input at once, as it would
+ * be met later. Returns 1 when the length is known (src->total). */
+int mt__src_learn_length(mt__io_src *src);
+/* MT_OK, or the failure met while reading the input (copied into diag). */
+mt_status mt__src_status(const mt__io_src *src, mt_diag *diag);
+/* Frees the window (NULL-safe for a buffer read whole). */
+void mt__src_close(mt__io_src *src);
+
+/* ---- Readers ------------------------------------------------------------- */
+
+/* Each parses src to its end; input failures are left in src for the
+ * caller (mt__src_status), which reports them instead of the parser's. */
+mt_status mt__read_off(mt__io_src *src, mt_face_list *out, mt_diag *diag);
+mt_status mt__read_obj(mt__io_src *src, mt_face_list *out, mt_diag *diag);
 /* Any PLY encoding: the header says which. */
-mt_status mt__read_ply(const mt__io_src *src, mt_face_list *out, mt_diag *diag);
+mt_status mt__read_ply(mt__io_src *src, mt_face_list *out, mt_diag *diag);
 
-/* 1 when the first non-comment line of src starts with an OBJ keyword. */
+/* Format detection on the start of the window: 1 yes, 0 no, -1 cannot tell
+ * before the window shows more of the input. */
+/* the first non-comment line of src starts with an OBJ keyword */
 int mt__looks_like_obj(const mt__io_src *src);
-/* 1 when the first token of src is an OFF header keyword (OFF, COFF, ...). */
+/* the first token of src is an OFF header keyword (OFF, COFF, ...) */
 int mt__looks_like_off(const mt__io_src *src);
+/* src starts with the PLY magic line */
+int mt__looks_like_ply(const mt__io_src *src);
 
 /* 1 when path ends in ".gz" (any case). */
 int mt__path_is_gzip(const char *path);

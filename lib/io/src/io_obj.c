@@ -2,7 +2,8 @@
  * writing them. Face entries a, a/b, a/b/c and a//c give the vertex a;
  * indices are 1-based, negative ones count back from the vertices defined
  * so far, 0 is stored as -1 (out of range). A backslash at the end of a
- * line continues it. All objects and groups go into one mesh in file order. */
+ * line continues it. All objects and groups go into one mesh in file order.
+ * OBJ declares no counts: the input limit (max_input_bytes) bounds a read. */
 #include <stdio.h>
 
 #include "io_internal.h"
@@ -35,12 +36,21 @@ static inline size_t skip_hspace(const unsigned char *d, size_t n, size_t i)
     }
 }
 
-/* The index just past the '\n' ending the logical line at i (or n). */
-static size_t skip_line(const unsigned char *d, size_t n, size_t i)
+/* The index just past the '\n' ending the logical line at i (or the end of
+ * the input), moving the window on. The window never ends between a '\\'
+ * and the '\r' '\n' that make it a continuation (io_internal.h), so the
+ * check of the bytes before a '\n' in view is exact. */
+static size_t skip_line(mt__io_src *src, size_t i)
 {
     for (;;) {
+        const unsigned char *d = src->data;
+        size_t n = src->size;
         size_t e = mt__line_end(d, n, i);
-        if (e >= n) return n;
+        if (e >= n) {
+            i = n;
+            if (!mt__src_more(src, &i)) return i;
+            continue;
+        }
         size_t b = e;
         if (b > i && d[b - 1] == '\r') b--;
         if (b > i && d[b - 1] == '\\') {
@@ -52,19 +62,26 @@ static size_t skip_line(const unsigned char *d, size_t n, size_t i)
 }
 
 /* Next token on the current logical line; 0 at its end or at a comment
- * (*pos is then at the '\n', the '#' or n). */
-static inline int line_token(const unsigned char *d, size_t n, size_t *pos, size_t *start,
-                             size_t *len)
+ * (*pos is then at the '\n', the '#' or the end of the input). */
+static int line_token(mt__io_src *src, size_t *pos, size_t *start, size_t *len)
 {
-    size_t i = skip_hspace(d, n, *pos);
-    *pos = i;
-    if (i >= n || d[i] == '\n' || d[i] == '#') return 0;
-    size_t s = i;
-    while (i < n && !mt__is_space(d[i]) && !is_continuation(d, n, i)) i++;
-    *start = s;
-    *len = i - s;
-    *pos = i;
-    return 1;
+    for (;;) {
+        const unsigned char *d = src->data;
+        size_t n = src->size;
+        size_t i = skip_hspace(d, n, *pos);
+        *pos = i;
+        if (i >= n) {
+            if (mt__src_more(src, pos)) continue;
+            return 0;
+        }
+        if (d[i] == '\n' || d[i] == '#') return 0;
+        size_t s = i;
+        while (i < n && !mt__is_space(d[i]) && !is_continuation(d, n, i)) i++;
+        *start = s;
+        *len = i - s;
+        *pos = i;
+        return 1;
+    }
 }
 
 /* 1 when the keyword at i is exactly the letter k. */
@@ -82,9 +99,21 @@ int mt__looks_like_obj(const mt__io_src *src)
     size_t n = src->size, i = 0;
     while (i < n) {
         while (i < n && mt__is_space(d[i])) i++;
-        if (i >= n) return 0;
+        if (i >= n) break;
         if (d[i] == '#') {
-            i = skip_line(d, n, i);
+            /* a comment line, continued by a '\\' before its end */
+            for (;;) {
+                size_t e = mt__line_end(d, n, i);
+                if (e >= n) return src->eof ? 0 : -1;
+                size_t b = e;
+                if (b > i && d[b - 1] == '\r') b--;
+                if (b > i && d[b - 1] == '\\') {
+                    i = e + 1;
+                    continue;
+                }
+                i = e + 1;
+                break;
+            }
             continue;
         }
         size_t s = i;
@@ -93,7 +122,7 @@ int mt__looks_like_obj(const mt__io_src *src)
             if (strlen(keywords[k]) == i - s && memcmp(keywords[k], d + s, i - s) == 0) return 1;
         return 0;
     }
-    return 0;
+    return src->eof ? 0 : -1;
 }
 
 static mt_status fail_token(mt_diag *diag, const mt__io_src *src, size_t start, size_t len,
@@ -101,8 +130,8 @@ static mt_status fail_token(mt_diag *diag, const mt__io_src *src, size_t start, 
 {
     char excerpt[64];
     mt__io_excerpt(excerpt, sizeof excerpt, src->data + start, len);
-    return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, start, element, "%s: '%s'", what,
-                       excerpt);
+    return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->base + start, element,
+                       "%s: '%s'", what, excerpt);
 }
 
 /* 1 when [p, end) is "/[vt]" or "/[vt]/[vn]" with optional signed integers. */
@@ -117,15 +146,15 @@ static int entry_rest_ok(const unsigned char *p, const unsigned char *end)
     return p == end;
 }
 
-static mt_status read_vertex_line(const mt__io_src *src, size_t *pos, size_t line_start,
-                                  mt__builder *b, mt_diag *diag)
+/* Messages about a line point at its start: src->mark. */
+static mt_status read_vertex_line(mt__io_src *src, size_t *pos, mt__builder *b, mt_diag *diag)
 {
-    const unsigned char *d = src->data;
-    size_t n = src->size;
     double xyz[3];
     uint32_t v = (uint32_t)b->num_verts;
     for (int k = 0; k < 3; k++) {
         /* Fast path: a plain decimal ended by whitespace. */
+        const unsigned char *d = src->data;
+        size_t n = src->size;
         size_t i = skip_hspace(d, n, *pos);
         size_t used = i < n ? mt__scan_decimal(d + i, d + n, &xyz[k]) : 0;
         if (used && (i + used == n || mt__is_space(d[i + used]))) {
@@ -133,36 +162,33 @@ static mt_status read_vertex_line(const mt__io_src *src, size_t *pos, size_t lin
             continue;
         }
         size_t start, len;
-        if (!line_token(d, n, pos, &start, &len))
-            return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, line_start, v,
+        if (!line_token(src, pos, &start, &len))
+            return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->mark, v,
                                "vertex %u: expected 3 coordinates, found %d", v, k);
-        if (!mt__parse_double(d + start, len, &xyz[k])) {
+        if (!mt__parse_double(src->data + start, len, &xyz[k])) {
             char msg[96];
             snprintf(msg, sizeof msg, "vertex %u: coordinate %d is not a number", v, k);
             return fail_token(diag, src, start, len, v, msg);
         }
     }
     if (b->num_verts >= MT__IO_MAX_VERTS)
-        return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_LINE, line_start, MT_NONE,
+        return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_LINE, src->mark, MT_NONE,
                            "more than %u vertices", MT__IO_MAX_VERTS);
-    if (!mt__builder_add_vert(b, xyz[0], xyz[1], xyz[2])) return mt__io_fail_nomem(diag, src);
+    if (!mt__builder_add_vert(b, xyz[0], xyz[1], xyz[2])) return mt__builder_fail(b, src, diag);
     return MT_OK;
 }
 
-static mt_status read_face_line(const mt__io_src *src, size_t *pos, size_t line_start,
-                                mt__builder *b, mt_diag *diag)
+static mt_status read_face_line(mt__io_src *src, size_t *pos, mt__builder *b, mt_diag *diag)
 {
-    const unsigned char *d = src->data;
-    size_t n = src->size;
     if (b->num_faces >= UINT32_MAX)
-        return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_LINE, line_start, MT_NONE,
+        return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_LINE, src->mark, MT_NONE,
                            "more than %u faces", UINT32_MAX);
     uint32_t f = (uint32_t)b->num_faces;
     int64_t defined = (int64_t)b->num_verts;
     size_t first = b->num_indices;
     size_t start, len;
-    while (line_token(d, n, pos, &start, &len)) {
-        const unsigned char *tok = d + start;
+    while (line_token(src, pos, &start, &len)) {
+        const unsigned char *tok = src->data + start;
         const unsigned char *slash = memchr(tok, '/', len);
         size_t ilen = slash ? (size_t)(slash - tok) : len;
         int64_t index;
@@ -182,47 +208,56 @@ static mt_status read_face_line(const mt__io_src *src, size_t *pos, size_t line_
         else
             stored = (uint32_t)(defined + index); /* two's complement when before vertex 0 */
         if (b->num_indices - first >= UINT32_MAX)
-            return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_LINE, line_start, f,
+            return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_LINE, src->mark, f,
                                "face %u: more than %u vertices", f, UINT32_MAX);
-        if (!mt__builder_add_index(b, stored)) return mt__io_fail_nomem(diag, src);
+        if (!mt__builder_add_index(b, stored)) return mt__builder_fail(b, src, diag);
     }
     if (!mt__builder_add_face(b, (uint32_t)(b->num_indices - first)))
-        return mt__io_fail_nomem(diag, src);
+        return mt__builder_fail(b, src, diag);
     return MT_OK;
 }
 
-static mt_status read_obj(const mt__io_src *src, mt__builder *b, mt_diag *diag)
+static mt_status read_obj(mt__io_src *src, mt__builder *b, mt_diag *diag)
 {
-    const unsigned char *d = src->data;
-    size_t n = src->size;
+    /* A first guess from the size (at most a million of each), refined by
+     * doubling. */
+    uint64_t length = mt__src_length(src);
+    uint64_t guess = length != MT__UNKNOWN ? length : src->size;
+    if (guess > ((uint64_t)64 << 20)) guess = (uint64_t)64 << 20;
+    if (!mt__builder_reserve_verts(b, (size_t)guess / 64) ||
+        !mt__builder_reserve_faces(b, (size_t)guess / 64) ||
+        !mt__builder_reserve_indices(b, (size_t)guess / 16))
+        return mt__builder_fail(b, src, diag);
     size_t i = 0;
-    /* A first guess from the size, refined by doubling. */
-    if (!mt__builder_reserve_verts(b, n / 64) || !mt__builder_reserve_faces(b, n / 64) ||
-        !mt__builder_reserve_indices(b, n / 16))
-        return mt__io_fail_nomem(diag, src);
-    while (i < n) {
+    for (;;) {
+        const unsigned char *d = src->data;
+        size_t n = src->size;
         i = skip_hspace(d, n, i);
-        if (i >= n) break;
+        if (i >= n) {
+            if (!mt__src_more(src, &i)) break;
+            continue;
+        }
         if (d[i] == '\n') {
             i++;
             continue;
         }
-        size_t line_start = i;
         mt_status status = MT_OK;
         if (keyword_is(d, n, i, 'v')) {
+            src->mark = src->base + i;
             i++;
-            status = read_vertex_line(src, &i, line_start, b, diag);
+            status = read_vertex_line(src, &i, b, diag);
         } else if (keyword_is(d, n, i, 'f')) {
+            src->mark = src->base + i;
             i++;
-            status = read_face_line(src, &i, line_start, b, diag);
+            status = read_face_line(src, &i, b, diag);
         }
         if (status != MT_OK) return status;
-        i = skip_line(d, n, i); /* the rest: w, colours, comments, other keywords */
+        i = skip_line(src, i); /* the rest: w, colours, comments, other keywords */
     }
     return MT_OK;
 }
 
-mt_status mt__read_obj(const mt__io_src *src, mt_face_list *out, mt_diag *diag)
+mt_status mt__read_obj(mt__io_src *src, mt_face_list *out, mt_diag *diag)
 {
     mt__builder b;
     memset(&b, 0, sizeof b);
@@ -256,7 +291,7 @@ mt_status mt__obj_check_writable(const mt_face_list *list, const char *path, mt_
         for (uint32_t j = 0; j < list->face_sizes[f]; j++, k++) {
             int64_t token;
             if (!obj_index(list->face_indices[k], list->num_verts, &token)) {
-                mt__io_src src = {path, NULL, 0};
+                mt__io_src src = {.name = path};
                 return mt__io_fail(diag, MT_ERR_UNSUPPORTED, &src, MT__POS_NONE, 0, f,
                                    "face %u: index %lld has no OBJ form (a relative index "
                                    "past 2^31 vertices back)",

@@ -3,41 +3,77 @@
  * colours, normals and texture coordinates after x y z are skipped to the
  * end of the line); '#' comments anywhere; a face record "n i0 ... i(n-1)"
  * of any n, possibly over several lines, with any colour values after its
- * indices skipped to the end of the line. Counts are checked against the
- * bytes that follow before anything is allocated. */
+ * indices skipped to the end of the line. The counts are checked against
+ * the bytes that follow (as soon as their number is known), arrays grow as
+ * records are read, and after the last face reading stops: only
+ * MT_READ_MAX_TRAILING_BYTES of whitespace and comments may follow. */
 #include <stdio.h>
 
 #include "io_internal.h"
 
-/* Next token: skips whitespace and comments. Returns 0 at the end. */
-static inline int next_token(const unsigned char *d, size_t n, size_t *pos, size_t *start,
-                             size_t *len)
+/* Next token: skips whitespace and comments, moving the window on. Returns
+ * 0 at the end of the input. */
+static int next_token(mt__io_src *src, size_t *pos, size_t *start, size_t *len)
 {
     size_t i = *pos;
+    int in_comment = 0;
     for (;;) {
-        while (i < n && mt__is_space(d[i])) i++;
-        if (i < n && d[i] == '#') {
-            i = mt__line_end(d, n, i);
-            continue;
+        const unsigned char *d = src->data;
+        size_t n = src->size;
+        for (;;) {
+            if (in_comment) {
+                const unsigned char *nl = i < n ? memchr(d + i, '\n', n - i) : NULL;
+                if (!nl) {
+                    i = n;
+                    break;
+                }
+                i = (size_t)(nl - d);
+                in_comment = 0;
+            }
+            while (i < n && mt__is_space(d[i])) i++;
+            if (i < n && d[i] == '#') {
+                in_comment = 1;
+                i++;
+                continue;
+            }
+            break;
         }
-        break;
+        if (i < n) {
+            size_t s = i;
+            while (i < n && !mt__is_space(d[i]) && d[i] != '#') i++;
+            *start = s;
+            *len = i - s;
+            *pos = i;
+            return 1;
+        }
+        if (!mt__src_more(src, &i)) {
+            *pos = i;
+            return 0;
+        }
     }
-    *pos = i;
-    if (i >= n) return 0;
-    size_t s = i;
-    while (i < n && !mt__is_space(d[i]) && d[i] != '#') i++;
-    *start = s;
-    *len = i - s;
-    *pos = i;
-    return 1;
+}
+
+/* Whitespace from i on (not comments), moving the window on. */
+static size_t skip_space(mt__io_src *src, size_t i)
+{
+    for (;;) {
+        const unsigned char *d = src->data;
+        size_t n = src->size;
+        while (i < n && mt__is_space(d[i])) i++;
+        if (i < n || !mt__src_more(src, &i)) return i;
+    }
 }
 
 /* The end of the line at i: its '\n' or '\r' (so that files with '\r'
- * line ends read too), or n. */
-static inline size_t rest_of_line(const unsigned char *d, size_t n, size_t i)
+ * line ends read too), or the end of the input. */
+static size_t rest_of_line(mt__io_src *src, size_t i)
 {
-    while (i < n && d[i] != '\n' && d[i] != '\r') i++;
-    return i;
+    for (;;) {
+        const unsigned char *d = src->data;
+        size_t n = src->size;
+        while (i < n && d[i] != '\n' && d[i] != '\r') i++;
+        if (i < n || !mt__src_more(src, &i)) return i;
+    }
 }
 
 /* Recognises [ST][C][N]OFF; *extras is set when per-vertex values follow
@@ -62,36 +98,57 @@ static off_header parse_header(const unsigned char *t, size_t len, int *extras)
 
 int mt__looks_like_off(const mt__io_src *src)
 {
-    size_t pos = 0, start, len;
+    const unsigned char *d = src->data;
+    size_t n = src->size, i = 0;
+    for (;;) {
+        while (i < n && mt__is_space(d[i])) i++;
+        if (i < n && d[i] == '#') {
+            i = mt__line_end(d, n, i);
+            if (i == n && !src->eof) return -1;
+            continue;
+        }
+        break;
+    }
+    if (i >= n) return src->eof ? 0 : -1;
+    size_t s = i;
+    while (i < n && !mt__is_space(d[i]) && d[i] != '#') i++;
     int extras;
-    if (!next_token(src->data, src->size, &pos, &start, &len)) return 0;
-    return parse_header(src->data + start, len, &extras) != OFF_NOT;
+    return parse_header(d + s, i - s, &extras) != OFF_NOT;
 }
 
-/* Fails with the token at [start, start + len) quoted. */
+/* Fails with the token at window index [start, start + len) quoted. */
 static mt_status fail_token(mt_diag *diag, const mt__io_src *src, size_t start, size_t len,
                             uint32_t element, const char *what)
 {
     char excerpt[64];
     mt__io_excerpt(excerpt, sizeof excerpt, src->data + start, len);
-    return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, start, element, "%s, found '%s'",
-                       what, excerpt);
+    return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->base + start, element,
+                       "%s, found '%s'", what, excerpt);
 }
 
-/* Reads "V F [E]": *pos ends past the counts line, *at is where V is. */
-static mt_status read_counts(const mt__io_src *src, size_t *pos, size_t *at, uint64_t *counts,
-                             mt_diag *diag)
+/* The counts line "V F [E]". */
+typedef struct off_counts {
+    uint64_t verts, faces;
+    uint64_t at, line; /* input offset and line of V */
+    uint64_t after;    /* input offset just past the counts line */
+} off_counts;
+
+/* Reads "V F [E]": *pos ends past the counts line. */
+static mt_status read_counts(mt__io_src *src, size_t *pos, off_counts *c, mt_diag *diag)
 {
     static const char *const what[2] = {"vertex count", "face count"};
-    const unsigned char *d = src->data;
-    *at = *pos;
+    uint64_t counts[2];
     for (int k = 0; k < 2; k++) {
         size_t start, len;
-        if (!next_token(d, src->size, pos, &start, &len))
-            return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->size, MT_NONE,
-                               "missing the %s after the OFF header (end of file)", what[k]);
-        if (k == 0) *at = start;
-        mt__num r = mt__parse_count(d + start, len, &counts[k]);
+        if (!next_token(src, pos, &start, &len))
+            return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->base + src->size,
+                               MT_NONE, "missing the %s after the OFF header (end of file)",
+                               what[k]);
+        if (k == 0) {
+            c->at = src->base + start;
+            c->line = mt__src_line(src, c->at);
+        }
+        mt__num r = mt__parse_count(src->data + start, len, &counts[k]);
         if (r == MT__NUM_BAD) {
             char msg[64];
             snprintf(msg, sizeof msg, "expected the %s", what[k]);
@@ -103,20 +160,77 @@ static mt_status read_counts(const mt__io_src *src, size_t *pos, size_t *at, uin
             return fail_token(diag, src, start, len, MT_NONE, msg);
         }
     }
-    *pos = rest_of_line(d, src->size, *pos); /* the edge count and anything else */
+    c->verts = counts[0];
+    c->faces = counts[1];
+    *pos = rest_of_line(src, *pos); /* the edge count and anything else */
     if (*pos < src->size) (*pos)++;
+    c->after = src->base + *pos;
     return MT_OK;
 }
 
-static mt_status read_verts(const mt__io_src *src, size_t *pos, uint32_t num_verts, int extras,
+/* Every vertex is 3 tokens, every face at least 1, and tokens need a
+ * separator: 2 bytes each, bar the last. Checked as soon as the input's
+ * length is known: at once, or (gzip) when the input ends early. */
+static mt_status check_counts(const mt__io_src *src, const off_counts *c, mt_diag *diag)
+{
+    uint64_t length = mt__src_length(src);
+    if (length == MT__UNKNOWN) return MT_OK;
+    uint64_t follow = length > c->after ? length - c->after : 0;
+    uint64_t tokens = 3 * c->verts + c->faces;
+    if (tokens > (follow + 1) / 2)
+        return mt__io_fail_line(diag, MT_ERR_PARSE, src, c->at, c->line, MT_NONE,
+                                "the header declares %llu vertices and %llu faces but only %llu "
+                                "bytes follow",
+                                (unsigned long long)c->verts, (unsigned long long)c->faces,
+                                (unsigned long long)follow);
+    return MT_OK;
+}
+
+/* Before the face list of input whose length is unknown grows large: the
+ * length is learned (if it can be) and the counts checked against it. */
+typedef struct off_confirm {
+    mt__io_src *src;
+    const off_counts *counts;
+} off_confirm;
+
+static mt_status confirm_counts(void *ctx, mt_diag *diag)
+{
+    off_confirm *c = ctx;
+    mt__src_learn_length(c->src);
+    return check_counts(c->src, c->counts, diag);
+}
+
+/* Bytes of input after window index i: all of them when the length is
+ * known, else those in the window. */
+static uint64_t bytes_after(const mt__io_src *src, size_t i)
+{
+    uint64_t length = mt__src_length(src), at = src->base + i;
+    if (length == MT__UNKNOWN) return src->size - i;
+    return length > at ? length - at : 0;
+}
+
+static mt_status read_verts(mt__io_src *src, size_t *pos, const off_counts *c, int extras,
                             mt__builder *b, mt_diag *diag)
 {
+    uint32_t num_verts = (uint32_t)c->verts;
     const unsigned char *d = src->data;
     size_t n = src->size;
-    size_t i = *pos;
-    double *p = b->positions;
+    size_t i = *pos, cap = 0;
+    double *p = NULL;
     for (uint32_t v = 0; v < num_verts; v++) {
-        size_t first = i;
+        if (v == cap) {
+            cap = mt__builder_ahead(v, num_verts);
+            if (!mt__builder_reserve_verts(b, cap)) return mt__builder_fail(b, src, diag);
+            p = b->positions;
+        }
+        /* A vertex starts at its first non-space byte: messages point there. */
+        while (i < n && mt__is_space(d[i])) i++;
+        if (i == n) {
+            i = skip_space(src, i);
+            d = src->data;
+            n = src->size;
+        }
+        src->mark = src->base + i;
         for (int k = 0; k < 3; k++) {
             /* Fast path: a plain decimal after plain whitespace. */
             while (i < n && mt__is_space(d[i])) i++;
@@ -127,9 +241,13 @@ static mt_status read_verts(const mt__io_src *src, size_t *pos, uint32_t num_ver
                 continue;
             }
             size_t start, len;
-            if (!next_token(d, n, &i, &start, &len)) {
-                while (first < n && mt__is_space(d[first])) first++;
-                return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, first, v,
+            int found = next_token(src, &i, &start, &len);
+            d = src->data;
+            n = src->size;
+            if (!found) {
+                mt_status status = check_counts(src, c, diag);
+                if (status != MT_OK) return status;
+                return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->mark, v,
                                    "vertex %u: expected 3 coordinates, found %d (end of file; "
                                    "the header declares %u vertices)",
                                    v, k, num_verts);
@@ -140,27 +258,42 @@ static mt_status read_verts(const mt__io_src *src, size_t *pos, uint32_t num_ver
                 return fail_token(diag, src, start, len, v, msg);
             }
         }
-        if (extras) i = rest_of_line(d, n, i);
+        if (extras) {
+            i = rest_of_line(src, i);
+            d = src->data;
+            n = src->size;
+        }
     }
     b->num_verts = num_verts;
     *pos = i;
     return MT_OK;
 }
 
-static mt_status read_faces(const mt__io_src *src, size_t *pos, uint32_t num_faces, mt__builder *b,
+static mt_status read_faces(mt__io_src *src, size_t *pos, const off_counts *c, mt__builder *b,
                             mt_diag *diag)
 {
-    const unsigned char *d = src->data;
-    size_t n = src->size;
-    size_t i = *pos;
+    uint32_t num_faces = (uint32_t)c->faces;
+    size_t i = *pos, cap = 0;
     for (uint32_t f = 0; f < num_faces; f++) {
+        if (f == cap) {
+            cap = mt__builder_ahead(f, num_faces);
+            if (!mt__builder_reserve_faces(b, cap) ||
+                !mt__builder_reserve_indices(b, b->num_indices + 3 * (cap - f)))
+                return mt__builder_fail(b, src, diag);
+        }
         size_t start, len;
-        if (!next_token(d, n, &i, &start, &len))
-            return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, n, f,
+        int found = next_token(src, &i, &start, &len);
+        const unsigned char *d = src->data;
+        size_t n = src->size;
+        if (!found) {
+            mt_status status = check_counts(src, c, diag);
+            if (status != MT_OK) return status;
+            return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->base + n, f,
                                "face %u: expected a face record, found the end of file (the "
                                "header declares %u faces)",
                                f, num_faces);
-        size_t face_start = start;
+        }
+        src->mark = src->base + start; /* the face's messages point at its count */
         uint64_t size;
         mt__num r = mt__parse_count(d + start, len, &size);
         if (r == MT__NUM_BAD) {
@@ -173,22 +306,33 @@ static mt_status read_faces(const mt__io_src *src, size_t *pos, uint32_t num_fac
             snprintf(msg, sizeof msg, "face %u: vertex count too large", f);
             return fail_token(diag, src, start, len, f, msg);
         }
-        /* Room for what the rest of the file can hold (2 bytes an index at
-         * least); a larger count runs into the end of the file below. */
-        uint64_t room = (uint64_t)(n - i) / 2 + 1;
-        if (!mt__builder_reserve_indices(b, b->num_indices + (size_t)(size < room ? size : room)))
-            return mt__io_fail_nomem(diag, src);
+        /* Every index needs 2 bytes at least. A record longer than the rest
+         * of the input can hold is read to its failure without being kept
+         * (a long one makes the reader learn the input's length first). */
+        if (size > MT__IO_BIG_LIST) mt__src_learn_length(src);
+        uint64_t room = bytes_after(src, i) / 2;
+        int keep = mt__src_length(src) == MT__UNKNOWN || size <= room;
+        if (keep && !mt__builder_reserve_indices(
+                        b, b->num_indices + (size_t)(size < room + 1 ? size : room + 1)))
+            return mt__builder_fail(b, src, diag);
         for (uint32_t j = 0; j < (uint32_t)size; j++) {
             int64_t index;
             while (i < n && mt__is_space(d[i])) i++;
             if (mt__scan_index(d, n, &i, '#', &index)) { /* fast path */
-                if (!mt__builder_add_index(b, (uint32_t)index)) return mt__io_fail_nomem(diag, src);
+                if (keep && !mt__builder_add_index(b, (uint32_t)index))
+                    return mt__builder_fail(b, src, diag);
                 continue;
             }
-            if (!next_token(d, n, &i, &start, &len))
-                return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, face_start, f,
+            found = next_token(src, &i, &start, &len);
+            d = src->data;
+            n = src->size;
+            if (!found) {
+                mt_status status = check_counts(src, c, diag);
+                if (status != MT_OK) return status;
+                return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->mark, f,
                                    "face %u: expected %u vertex indices, found %u", f,
                                    (uint32_t)size, j);
+            }
             r = mt__parse_index(d + start, len, &index);
             if (r != MT__NUM_OK) {
                 char msg[128];
@@ -197,69 +341,71 @@ static mt_status read_faces(const mt__io_src *src, size_t *pos, uint32_t num_fac
                     r == MT__NUM_BAD ? "is not an integer" : "does not fit in a 32-bit integer");
                 return fail_token(diag, src, start, len, f, msg);
             }
-            if (!mt__builder_add_index(b, (uint32_t)index)) return mt__io_fail_nomem(diag, src);
+            if (keep && !mt__builder_add_index(b, (uint32_t)index))
+                return mt__builder_fail(b, src, diag);
         }
+        if (!keep) /* cannot be: the input was too short for the record */
+            return mt__io_fail(diag, MT_ERR_IO, src, MT__POS_LINE, src->mark, f,
+                               "face %u: the input grew while it was read", f);
         b->sizes[f] = (uint32_t)size;
-        i = rest_of_line(d, n, i); /* colour values, if any */
+        i = rest_of_line(src, i); /* colour values, if any */
     }
     b->num_faces = num_faces;
     *pos = i;
     return MT_OK;
 }
 
-static mt_status read_off(const mt__io_src *src, mt__builder *b, mt_diag *diag)
+static mt_status read_off(mt__io_src *src, mt__builder *b, mt_diag *diag)
 {
-    const unsigned char *d = src->data;
-    size_t n = src->size;
     size_t pos = 0, start, len;
     int extras = 0;
-    if (!next_token(d, n, &pos, &start, &len))
-        return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, n, MT_NONE,
+    if (!next_token(src, &pos, &start, &len))
+        return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->base + src->size, MT_NONE,
                            "empty file: expected an OFF header");
-    off_header h = parse_header(d + start, len, &extras);
+    off_header h = parse_header(src->data + start, len, &extras);
     if (h == OFF_NOT) return fail_token(diag, src, start, len, MT_NONE, "expected an OFF header");
     if (h == OFF_OTHER_DIM)
-        return mt__io_fail(diag, MT_ERR_UNSUPPORTED, src, MT__POS_LINE, start, MT_NONE,
+        return mt__io_fail(diag, MT_ERR_UNSUPPORTED, src, MT__POS_LINE, src->base + start, MT_NONE,
                            "OFF files of other than 3 dimensions are not supported");
-    size_t rest = pos;
-    while (rest < n && (d[rest] == ' ' || d[rest] == '\t')) rest++;
-    if (n - rest >= 6 && memcmp(d + rest, "BINARY", 6) == 0)
-        return mt__io_fail(diag, MT_ERR_UNSUPPORTED, src, MT__POS_LINE, rest, MT_NONE,
+    /* "BINARY" on the header line: enough of the line must be in view. */
+    for (;;) {
+        while (pos < src->size && (src->data[pos] == ' ' || src->data[pos] == '\t')) pos++;
+        if (src->size - pos >= 6 || !mt__src_more(src, &pos)) break;
+    }
+    if (src->size - pos >= 6 && memcmp(src->data + pos, "BINARY", 6) == 0)
+        return mt__io_fail(diag, MT_ERR_UNSUPPORTED, src, MT__POS_LINE, src->base + pos, MT_NONE,
                            "binary OFF is not supported");
 
-    uint64_t counts[2];
-    size_t counts_at;
-    mt_status status = read_counts(src, &pos, &counts_at, counts, diag);
+    off_counts c;
+    mt_status status = read_counts(src, &pos, &c, diag);
+    if (status == MT_OK) status = check_counts(src, &c, diag);
+    off_confirm confirm = {src, &c};
+    b->confirm = confirm_counts;
+    b->confirm_ctx = &confirm;
+    if (status == MT_OK) status = read_verts(src, &pos, &c, extras, b, diag);
+    if (status == MT_OK) status = read_faces(src, &pos, &c, b, diag);
     if (status != MT_OK) return status;
-    /* Every vertex is 3 tokens, every face at least 1, and tokens need a
-     * separator: 2 bytes each, bar the last. */
-    uint64_t tokens = 3 * counts[0] + counts[1];
-    if (tokens > ((uint64_t)(n - pos) + 1) / 2)
-        return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, counts_at, MT_NONE,
-                           "the header declares %llu vertices and %llu faces but only %zu "
-                           "bytes follow",
-                           (unsigned long long)counts[0], (unsigned long long)counts[1], n - pos);
-    uint64_t index_guess = 3 * counts[1];
-    if (index_guess > ((uint64_t)(n - pos) + 1) / 2) index_guess = ((uint64_t)(n - pos) + 1) / 2;
-    if (!mt__builder_reserve_verts(b, (size_t)counts[0]) ||
-        !mt__builder_reserve_faces(b, (size_t)counts[1]) ||
-        !mt__builder_reserve_indices(b, (size_t)index_guess))
-        return mt__io_fail_nomem(diag, src);
-
-    status = read_verts(src, &pos, (uint32_t)counts[0], extras, b, diag);
-    if (status != MT_OK) return status;
-    status = read_faces(src, &pos, (uint32_t)counts[1], b, diag);
-    if (status != MT_OK) return status;
-    if (next_token(d, n, &pos, &start, &len)) {
-        char msg[128];
-        snprintf(msg, sizeof msg, "unexpected data after the last face (the header declares %u)",
-                 (uint32_t)counts[1]);
-        return fail_token(diag, src, start, len, MT_NONE, msg);
+    switch (mt__src_skip_trailer(src, &pos, 1)) {
+        case MT__TRAIL_END:
+            return MT_OK;
+        case MT__TRAIL_DATA: {
+            next_token(src, &pos, &start, &len);
+            char msg[128];
+            snprintf(msg, sizeof msg,
+                     "unexpected data after the last face (the header declares %u)",
+                     (uint32_t)c.faces);
+            return fail_token(diag, src, start, len, MT_NONE, msg);
+        }
+        case MT__TRAIL_LONG:
+            break;
     }
-    return MT_OK;
+    return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->base + pos, MT_NONE,
+                       "the input goes on for more than %llu bytes after the last face (the "
+                       "header declares %u)",
+                       (unsigned long long)MT_READ_MAX_TRAILING_BYTES, (uint32_t)c.faces);
 }
 
-mt_status mt__read_off(const mt__io_src *src, mt_face_list *out, mt_diag *diag)
+mt_status mt__read_off(mt__io_src *src, mt_face_list *out, mt_diag *diag)
 {
     mt__builder b;
     memset(&b, 0, sizeof b);

@@ -4,7 +4,9 @@
  * other properties skipped), the vertex_indices (or vertex_index) list of
  * the face element (integer count and index types), every other element
  * skipped. Element counts are checked against the bytes that follow the
- * header before anything is allocated; binary data is read bounds-checked. */
+ * header (as soon as their number is known), arrays grow as items are
+ * read, binary data is read bounds-checked, and after the last element
+ * reading stops: only MT_READ_MAX_TRAILING_BYTES of whitespace may follow. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -64,7 +66,9 @@ typedef struct ply_header {
     size_t num_elems, cap_elems;
     ply_prop *props;
     size_t num_props, cap_props;
-    size_t data_start;
+    size_t data_start;         /* input offset of the data (the header is read whole: base 0) */
+    uint64_t min_bytes;        /* the least data the element counts need */
+    uint64_t end_at, end_line; /* the end_header line, for the size check */
 } ply_header;
 
 static void header_free(ply_header *h)
@@ -102,7 +106,8 @@ static const char *type_name(ply_type t)
 static mt_status header_fail(mt_diag *diag, const mt__io_src *src, size_t offset, const char *fmt,
                              const char *arg)
 {
-    return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, offset, MT_NONE, fmt, arg);
+    return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->base + offset, MT_NONE, fmt,
+                       arg);
 }
 
 static mt_status fail_tok(mt_diag *diag, const mt__io_src *src, tok t, const char *fmt)
@@ -226,6 +231,22 @@ static mt_status parse_element(const mt__io_src *src, ply_header *h, const tok *
     return MT_OK;
 }
 
+/* The element counts against the bytes that follow the header, once their
+ * number is known: at once, or (gzip) when the input ends early. */
+static mt_status check_size(const mt__io_src *src, const ply_header *h, mt_diag *diag)
+{
+    uint64_t length = mt__src_length(src);
+    if (length == MT__UNKNOWN) return MT_OK;
+    uint64_t follow = length > h->data_start ? length - h->data_start : 0;
+    uint64_t rest = follow + (h->encoding != ENC_ASCII ? 0 : 1);
+    if (h->min_bytes > rest)
+        return mt__io_fail_line(diag, MT_ERR_PARSE, src, h->end_at, h->end_line, MT_NONE,
+                                "the header's element counts need at least %llu bytes of data "
+                                "but only %llu follow",
+                                (unsigned long long)h->min_bytes, (unsigned long long)follow);
+    return MT_OK;
+}
+
 /* Checks what the data parser relies on: encoding given, x y z present,
  * face indices present, counts the remaining bytes can hold. */
 static mt_status check_header(const mt__io_src *src, ply_header *h, size_t end_line, mt_diag *diag)
@@ -255,22 +276,26 @@ static mt_status check_header(const mt__io_src *src, ply_header *h, size_t end_l
         }
         min_bytes += e->count * item;
     }
-    uint64_t rest = (uint64_t)(src->size - h->data_start) + (binary ? 0 : 1);
-    if (min_bytes > rest)
-        return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, end_line, MT_NONE,
-                           "the header's element counts need at least %llu bytes of data but "
-                           "only %zu follow",
-                           (unsigned long long)min_bytes, src->size - h->data_start);
-    return MT_OK;
+    h->min_bytes = min_bytes;
+    h->end_at = src->base + end_line;
+    h->end_line = mt__src_line(src, h->end_at);
+    return check_size(src, h, diag);
 }
 
-static mt_status parse_header(const mt__io_src *src, ply_header *h, mt_diag *diag)
+/* Parses the header, which must be in the window whole: *need_more is set
+ * (and nothing reported) when the window ends before it does. */
+static mt_status parse_header(const mt__io_src *src, ply_header *h, int *need_more, mt_diag *diag)
 {
     const unsigned char *d = src->data;
     size_t n = src->size, i = 0;
     int first = 1;
+    *need_more = 0;
     while (i < n) {
         size_t line = i, e = mt__line_end(d, n, i);
+        if (e == n && !src->eof) {
+            *need_more = 1;
+            return MT_OK;
+        }
         tok t[6];
         size_t nt = 0;
         while (i < e) {
@@ -317,8 +342,18 @@ static mt_status parse_header(const mt__io_src *src, ply_header *h, mt_diag *dia
         }
         if (status != MT_OK) return status;
     }
+    if (!src->eof) {
+        *need_more = 1;
+        return MT_OK;
+    }
     if (first) return header_fail(diag, src, 0, "%s", "empty file: expected the 'ply' magic line");
     return header_fail(diag, src, n, "%s", "the header has no 'end_header' line");
+}
+
+int mt__looks_like_ply(const mt__io_src *src)
+{
+    if (src->size < 4) return src->eof ? 0 : -1;
+    return memcmp(src->data, "ply", 3) == 0 && (src->data[3] == '\n' || src->data[3] == '\r');
 }
 
 /* ---- Messages about data ----------------------------------------------- */
@@ -342,47 +377,104 @@ static uint32_t item_element(const ply_elem *e, uint64_t item)
 
 /* ---- ASCII data -------------------------------------------------------- */
 
-static inline int ascii_token(const unsigned char *d, size_t n, size_t *pos, size_t *start,
-                              size_t *len)
+/* Next whitespace-separated token, moving the window on; 0 at the end. */
+static int ascii_token(mt__io_src *src, size_t *pos, size_t *start, size_t *len)
 {
     size_t i = *pos;
-    while (i < n && mt__is_space(d[i])) i++;
-    if (i >= n) {
-        *pos = n;
-        return 0;
+    for (;;) {
+        const unsigned char *d = src->data;
+        size_t n = src->size;
+        while (i < n && mt__is_space(d[i])) i++;
+        if (i < n) {
+            size_t s = i;
+            while (i < n && !mt__is_space(d[i])) i++;
+            *start = s;
+            *len = i - s;
+            *pos = i;
+            return 1;
+        }
+        if (!mt__src_more(src, &i)) {
+            *pos = i;
+            return 0;
+        }
     }
-    size_t s = i;
-    while (i < n && !mt__is_space(d[i])) i++;
-    *start = s;
-    *len = i - s;
-    *pos = i;
-    return 1;
 }
 
+/* "LABEL: property 'NAME': WHAT: 'EXCERPT'" at an input offset (line 0:
+ * computed from it). */
+static mt_status ascii_fail_at(mt_diag *diag, const mt__io_src *src, const ply_elem *e,
+                               uint64_t item, const ply_prop *p, uint64_t offset, uint64_t line,
+                               const char *what, const char *excerpt)
+{
+    char label[96];
+    item_label(label, sizeof label, e, item);
+    if (!line) line = mt__src_line(src, offset);
+    return mt__io_fail_line(diag, MT_ERR_PARSE, src, offset, line, item_element(e, item),
+                            "%s: property '%s': %s: '%s'", label, p->name, what, excerpt);
+}
+
+/* The same for the token at window index [start, start + len). */
 static mt_status ascii_fail(mt_diag *diag, const mt__io_src *src, const ply_elem *e, uint64_t item,
                             const ply_prop *p, size_t start, size_t len, const char *what)
 {
-    char label[96], excerpt[64];
-    item_label(label, sizeof label, e, item);
-    if (start >= src->size)
-        return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->size, item_element(e, item),
-                           "%s: property '%s': unexpected end of file", label, p->name);
+    char excerpt[64];
     mt__io_excerpt(excerpt, sizeof excerpt, src->data + start, len);
-    return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, start, item_element(e, item),
-                       "%s: property '%s': %s: '%s'", label, p->name, what, excerpt);
+    return ascii_fail_at(diag, src, e, item, p, src->base + start, 0, what, excerpt);
 }
 
-static mt_status ascii_element(const mt__io_src *src, const ply_header *h, const ply_elem *e,
-                               size_t *pos, mt__builder *b, mt_diag *diag)
+/* A list count that could not be checked against the rest of the input
+ * when it was read (the length of gzip data is known at its end only). */
+typedef struct list_check {
+    int pending;
+    uint64_t count, after; /* the count, and the input offset just past it */
+    uint64_t at, line;     /* where the count is */
+    char excerpt[64];
+} list_check;
+
+/* The input ended inside item `item`, property p: the header's size check
+ * and a pending list check come first, as they would have with the input's
+ * length known from the start. */
+static mt_status ascii_end(mt_diag *diag, const mt__io_src *src, const ply_header *h,
+                           const ply_elem *e, uint64_t item, const ply_prop *p,
+                           const list_check *lc)
+{
+    mt_status status = check_size(src, h, diag);
+    if (status != MT_OK) return status;
+    uint64_t length = mt__src_length(src);
+    if (lc && lc->pending && length != MT__UNKNOWN &&
+        lc->count > (length > lc->after ? length - lc->after : 0) / 2)
+        return ascii_fail_at(diag, src, e, item, p, lc->at, lc->line,
+                             "list count larger than the rest of the file", lc->excerpt);
+    char label[96];
+    item_label(label, sizeof label, e, item);
+    return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, src->base + src->size,
+                       item_element(e, item), "%s: property '%s': unexpected end of file", label,
+                       p->name);
+}
+
+/* Room for the next items of a vertex or face element. */
+static int reserve_items(mt__builder *b, const ply_elem *e, uint64_t item, size_t *cap)
+{
+    if (e->kind == KIND_OTHER || item < *cap) return 1;
+    *cap = mt__builder_ahead((size_t)item, e->count);
+    return e->kind == KIND_VERTEX ? mt__builder_reserve_verts(b, *cap)
+                                  : mt__builder_reserve_faces(b, *cap);
+}
+
+static mt_status ascii_element(mt__io_src *src, const ply_header *h, const ply_elem *e, size_t *pos,
+                               mt__builder *b, mt_diag *diag)
 {
     const unsigned char *d = src->data;
-    size_t n = src->size, i = *pos;
+    size_t n = src->size, i = *pos, cap = 0;
     const ply_prop *props = h->props + e->first_prop;
+    list_check lc;
+    lc.pending = 0;
     for (uint64_t item = 0; item < e->count; item++) {
+        if (!reserve_items(b, e, item, &cap)) return mt__builder_fail(b, src, diag);
         double xyz[3] = {0, 0, 0};
         for (size_t k = 0; k < e->num_props; k++) {
             const ply_prop *p = &props[k];
-            size_t start = n, len = 0;
+            size_t start, len;
             if (p->role >= ROLE_X && p->role <= ROLE_Z) { /* fast path: a plain decimal */
                 while (i < n && mt__is_space(d[i])) i++;
                 size_t used = i < n ? mt__scan_decimal(d + i, d + n, &xyz[p->role - ROLE_X]) : 0;
@@ -391,8 +483,10 @@ static mt_status ascii_element(const mt__io_src *src, const ply_header *h, const
                     continue;
                 }
             }
-            if (!ascii_token(d, n, &i, &start, &len))
-                return ascii_fail(diag, src, e, item, p, n, 0, "");
+            int found = ascii_token(src, &i, &start, &len);
+            d = src->data;
+            n = src->size;
+            if (!found) return ascii_end(diag, src, h, e, item, p, NULL);
             if (p->count_type == PT_NONE) {
                 if (p->role >= ROLE_X && p->role <= ROLE_Z &&
                     !mt__parse_double(d + start, len, &xyz[p->role - ROLE_X]))
@@ -403,37 +497,53 @@ static mt_status ascii_element(const mt__io_src *src, const ply_header *h, const
             mt__num r = mt__parse_count(d + start, len, &count);
             if (r != MT__NUM_OK)
                 return ascii_fail(diag, src, e, item, p, start, len, "bad list count");
-            if (count > (uint64_t)(n - i) / 2 || count > UINT32_MAX)
+            if (count > MT__IO_BIG_LIST) mt__src_learn_length(src);
+            uint64_t length = mt__src_length(src), after = src->base + i;
+            int known = length != MT__UNKNOWN;
+            uint64_t rest = !known ? n - i : length > after ? length - after : 0;
+            if ((known && count > rest / 2) || count > UINT32_MAX)
                 return ascii_fail(diag, src, e, item, p, start, len,
                                   "list count larger than the rest of the file");
+            lc.pending = !known && count > rest / 2;
+            if (lc.pending) {
+                lc.count = count;
+                lc.after = after;
+                lc.at = src->base + start;
+                lc.line = mt__src_line(src, lc.at);
+                mt__io_excerpt(lc.excerpt, sizeof lc.excerpt, d + start, len);
+            }
             if (p->role == ROLE_INDICES) {
-                if (!mt__builder_reserve_indices(b, b->num_indices + (size_t)count))
-                    return mt__io_fail_nomem(diag, src);
-                uint32_t *out = b->indices + b->num_indices;
+                uint64_t room = count < rest / 2 + 1 ? count : rest / 2 + 1;
+                if (!mt__builder_reserve_indices(b, b->num_indices + (size_t)room))
+                    return mt__builder_fail(b, src, diag);
                 for (uint64_t j = 0; j < count; j++) {
                     int64_t index;
                     while (i < n && mt__is_space(d[i])) i++;
-                    if (mt__scan_index(d, n, &i, ' ', &index)) { /* fast path */
-                        out[j] = (uint32_t)index;
-                        continue;
+                    if (!mt__scan_index(d, n, &i, ' ', &index)) { /* not the fast path */
+                        found = ascii_token(src, &i, &start, &len);
+                        d = src->data;
+                        n = src->size;
+                        if (!found) return ascii_end(diag, src, h, e, item, p, &lc);
+                        r = mt__parse_index(d + start, len, &index);
+                        if (r != MT__NUM_OK)
+                            return ascii_fail(diag, src, e, item, p, start, len,
+                                              r == MT__NUM_BAD ? "vertex index is not an integer"
+                                                               : "vertex index does not fit in a "
+                                                                 "32-bit integer");
                     }
-                    if (!ascii_token(d, n, &i, &start, &len))
-                        return ascii_fail(diag, src, e, item, p, n, 0, "");
-                    r = mt__parse_index(d + start, len, &index);
-                    if (r != MT__NUM_OK)
-                        return ascii_fail(diag, src, e, item, p, start, len,
-                                          r == MT__NUM_BAD ? "vertex index is not an integer"
-                                                           : "vertex index does not fit in a "
-                                                             "32-bit integer");
-                    out[j] = (uint32_t)index;
+                    if (!mt__builder_add_index(b, (uint32_t)index))
+                        return mt__builder_fail(b, src, diag);
                 }
-                b->num_indices += (size_t)count;
                 b->sizes[item] = (uint32_t)count;
             } else {
-                for (uint64_t j = 0; j < count; j++)
-                    if (!ascii_token(d, n, &i, &start, &len))
-                        return ascii_fail(diag, src, e, item, p, n, 0, "");
+                for (uint64_t j = 0; j < count; j++) {
+                    found = ascii_token(src, &i, &start, &len);
+                    d = src->data;
+                    n = src->size;
+                    if (!found) return ascii_end(diag, src, h, e, item, p, &lc);
+                }
             }
+            lc.pending = 0;
         }
         if (e->kind == KIND_VERTEX) {
             double *q = b->positions + 3 * item;
@@ -541,7 +651,7 @@ static void load_indices(const unsigned char *p, ply_type t, int be, uint32_t co
 }
 
 static mt_status binary_fail(mt_diag *diag, const mt__io_src *src, const ply_elem *e, uint64_t item,
-                             const ply_prop *p, size_t offset, const char *what)
+                             const ply_prop *p, uint64_t offset, const char *what)
 {
     char label[96];
     item_label(label, sizeof label, e, item);
@@ -549,44 +659,76 @@ static mt_status binary_fail(mt_diag *diag, const mt__io_src *src, const ply_ele
                        "%s: property '%s': %s", label, p->name, what);
 }
 
-static mt_status binary_element(const mt__io_src *src, const ply_header *h, const ply_elem *e,
+/* The input ended early: the header's size check comes first (ascii_end). */
+static mt_status binary_end(mt_diag *diag, const mt__io_src *src, const ply_header *h,
+                            const ply_elem *e, uint64_t item, const ply_prop *p, uint64_t offset,
+                            const char *what)
+{
+    mt_status status = check_size(src, h, diag);
+    if (status != MT_OK) return status;
+    return binary_fail(diag, src, e, item, p, offset, what);
+}
+
+static mt_status binary_element(mt__io_src *src, const ply_header *h, const ply_elem *e,
                                 size_t *pos, mt__builder *b, mt_diag *diag)
 {
+    static const char *const past_end = "the list runs past the end of the data";
     const unsigned char *d = src->data;
-    size_t n = src->size, i = *pos;
+    size_t n = src->size, i = *pos, cap = 0;
     int be = h->encoding == ENC_BE;
     const ply_prop *props = h->props + e->first_prop;
     for (uint64_t item = 0; item < e->count; item++) {
+        if (!reserve_items(b, e, item, &cap)) return mt__builder_fail(b, src, diag);
         double xyz[3] = {0, 0, 0};
         for (size_t k = 0; k < e->num_props; k++) {
             const ply_prop *p = &props[k];
+            size_t size = type_size[p->count_type != PT_NONE ? p->count_type : p->type];
+            if (n - i < size) {
+                int ok = mt__src_need(src, &i, size);
+                d = src->data;
+                n = src->size;
+                if (!ok)
+                    return binary_end(diag, src, h, e, item, p, src->base + i,
+                                      "unexpected end of data");
+            }
             if (p->count_type == PT_NONE) {
-                size_t size = type_size[p->type];
-                if (n - i < size)
-                    return binary_fail(diag, src, e, item, p, i, "unexpected end of data");
                 if (p->role >= ROLE_X && p->role <= ROLE_Z)
                     xyz[p->role - ROLE_X] = load_double(d + i, p->type, be);
                 i += size;
                 continue;
             }
-            size_t csize = type_size[p->count_type];
-            if (n - i < csize)
-                return binary_fail(diag, src, e, item, p, i, "unexpected end of data");
             int64_t count = load_int(d + i, p->count_type, be);
-            if (count < 0) return binary_fail(diag, src, e, item, p, i, "negative list count");
-            i += csize;
+            if (count < 0)
+                return binary_fail(diag, src, e, item, p, src->base + i, "negative list count");
+            i += size;
+            if ((uint64_t)count > MT__IO_BIG_LIST) mt__src_learn_length(src);
+            uint64_t after = src->base + i, length = mt__src_length(src);
             size_t isize = type_size[p->type];
-            if ((uint64_t)count > (uint64_t)(n - i) / isize)
-                return binary_fail(diag, src, e, item, p, i,
-                                   "the list runs past the end of the data");
-            if (p->role == ROLE_INDICES) {
-                if (!mt__builder_reserve_indices(b, b->num_indices + (size_t)count))
-                    return mt__io_fail_nomem(diag, src);
-                load_indices(d + i, p->type, be, (uint32_t)count, b->indices + b->num_indices);
-                b->num_indices += (size_t)count;
-                b->sizes[item] = (uint32_t)count;
+            if (length != MT__UNKNOWN &&
+                (uint64_t)count > (length > after ? length - after : 0) / isize)
+                return binary_fail(diag, src, e, item, p, after, past_end);
+            /* The list, a window at a time: indices stored, anything else skipped. */
+            uint64_t left = (uint64_t)count;
+            while (left) {
+                size_t avail = (n - i) / isize;
+                if (avail == 0) {
+                    int ok = mt__src_need(src, &i, isize);
+                    d = src->data;
+                    n = src->size;
+                    if (!ok) return binary_end(diag, src, h, e, item, p, after, past_end);
+                    continue;
+                }
+                size_t take = avail < left ? avail : (size_t)left;
+                if (p->role == ROLE_INDICES) {
+                    if (!mt__builder_reserve_indices(b, b->num_indices + take))
+                        return mt__builder_fail(b, src, diag);
+                    load_indices(d + i, p->type, be, (uint32_t)take, b->indices + b->num_indices);
+                    b->num_indices += take;
+                }
+                i += take * isize;
+                left -= take;
             }
-            i += (size_t)count * isize;
+            if (p->role == ROLE_INDICES) b->sizes[item] = (uint32_t)count;
         }
         if (e->kind == KIND_VERTEX) {
             double *q = b->positions + 3 * item;
@@ -601,42 +743,65 @@ static mt_status binary_element(const mt__io_src *src, const ply_header *h, cons
 
 /* ---- The whole file ---------------------------------------------------- */
 
-static mt_status read_ply(const mt__io_src *src, ply_header *h, mt__builder *b, mt_diag *diag)
+/* Before the face list of input whose length is unknown grows large: the
+ * length is learned (if it can be) and the element counts checked. */
+typedef struct ply_confirm {
+    mt__io_src *src;
+    const ply_header *h;
+} ply_confirm;
+
+static mt_status confirm_size(void *ctx, mt_diag *diag)
 {
-    mt_status status = parse_header(src, h, diag);
-    if (status != MT_OK) return status;
-    const unsigned char *d = src->data;
-    size_t n = src->size, pos = h->data_start;
-    int binary = h->encoding != ENC_ASCII;
-    for (size_t k = 0; k < h->num_elems; k++) {
-        const ply_elem *e = &h->elems[k];
-        if (e->kind == KIND_VERTEX && !mt__builder_reserve_verts(b, (size_t)e->count))
-            return mt__io_fail_nomem(diag, src);
-        if (e->kind == KIND_FACE) {
-            uint64_t guess = 3 * e->count, room = (uint64_t)(n - pos) / (binary ? 1 : 2);
-            if (guess > room) guess = room;
-            if (!mt__builder_reserve_faces(b, (size_t)e->count) ||
-                !mt__builder_reserve_indices(b, (size_t)guess))
-                return mt__io_fail_nomem(diag, src);
-        }
+    ply_confirm *c = ctx;
+    mt__src_learn_length(c->src);
+    return check_size(c->src, c->h, diag);
+}
+
+static mt_status read_ply(mt__io_src *src, ply_header *h, mt__builder *b, mt_diag *diag)
+{
+    /* The header is read whole: the window widens (from the input's start)
+     * until it holds it. */
+    for (;;) {
+        int need_more;
+        mt_status status = parse_header(src, h, &need_more, diag);
+        if (status != MT_OK) return status;
+        if (!need_more) break;
+        header_free(h);
+        memset(h, 0, sizeof *h);
+        size_t keep = 0;
+        mt__src_more(src, &keep);
     }
+    size_t pos = h->data_start;
+    int binary = h->encoding != ENC_ASCII;
+    if (binary) mt__src_binary(src);
+    ply_confirm confirm = {src, h};
+    b->confirm = confirm_size;
+    b->confirm_ctx = &confirm;
     for (size_t k = 0; k < h->num_elems; k++) {
         const ply_elem *e = &h->elems[k];
         if (e->num_props == 0) continue; /* items without properties take no bytes */
-        status = binary ? binary_element(src, h, e, &pos, b, diag)
-                        : ascii_element(src, h, e, &pos, b, diag);
+        mt_status status = binary ? binary_element(src, h, e, &pos, b, diag)
+                                  : ascii_element(src, h, e, &pos, b, diag);
         if (status != MT_OK) return status;
         if (e->kind == KIND_VERTEX) b->num_verts = (size_t)e->count;
         if (e->kind == KIND_FACE) b->num_faces = (size_t)e->count;
     }
-    while (pos < n && mt__is_space(d[pos])) pos++;
-    if (pos < n)
-        return mt__io_fail(diag, MT_ERR_PARSE, src, binary ? MT__POS_BYTE : MT__POS_LINE, pos,
-                           MT_NONE, "unexpected data after the last element");
-    return MT_OK;
+    mt__io_pos where = binary ? MT__POS_BYTE : MT__POS_LINE;
+    switch (mt__src_skip_trailer(src, &pos, 0)) {
+        case MT__TRAIL_END:
+            return MT_OK;
+        case MT__TRAIL_DATA:
+            return mt__io_fail(diag, MT_ERR_PARSE, src, where, src->base + pos, MT_NONE,
+                               "unexpected data after the last element");
+        case MT__TRAIL_LONG:
+            break;
+    }
+    return mt__io_fail(diag, MT_ERR_PARSE, src, where, src->base + pos, MT_NONE,
+                       "the input goes on for more than %llu bytes after the last element",
+                       (unsigned long long)MT_READ_MAX_TRAILING_BYTES);
 }
 
-mt_status mt__read_ply(const mt__io_src *src, mt_face_list *out, mt_diag *diag)
+mt_status mt__read_ply(mt__io_src *src, mt_face_list *out, mt_diag *diag)
 {
     ply_header h;
     memset(&h, 0, sizeof h);

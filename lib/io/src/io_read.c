@@ -1,7 +1,12 @@
-/* Reading entry points: the whole file is read (or inflated, for gzip
- * recognised by its magic bytes) into memory, its format told from the
- * content or the name, and handed to one parser under the C locale. On any
- * failure *out is zeroed and everything allocated is released. */
+/* Reading entry points: a plain buffer is parsed where it is; a file, and
+ * gzip data (recognised by its magic bytes), are parsed through a window
+ * that moves on as the parser advances (io_source.c). The format is told
+ * from the content or the name and the input handed to one parser under
+ * the C locale. On any failure *out is zeroed and everything allocated is
+ * released; a failure of the input itself (unreadable, corrupt gzip, over
+ * the input limit) is reported rather than what the parser made of the
+ * input cut short. */
+#include <assert.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -12,45 +17,68 @@
 
 #include "io_internal.h"
 
-static int looks_like_ply(const mt__io_src *src)
+/* The content tells the format within this many bytes or not at all. */
+#define DETECT_BYTES ((size_t)64 << 10)
+
+/* Tells the format from the start of the input (widening the window, from
+ * the input's start, while the content cannot tell yet and the window
+ * holds less than DETECT_BYTES), else from the name. */
+static mt_status detect_format(mt__io_src *src, mt_format *format, mt_diag *diag)
 {
-    return src->size >= 4 && memcmp(src->data, "ply", 3) == 0 &&
-           (src->data[3] == '\n' || src->data[3] == '\r');
+    mt_format by_name = mt_format_from_path(src->name);
+    int off, ply, obj;
+    for (;;) {
+        off = mt__looks_like_off(src);
+        ply = off == 1 ? 0 : mt__looks_like_ply(src);
+        obj = off == 1 || ply == 1 || by_name != MT_FORMAT_AUTO ? 0 : mt__looks_like_obj(src);
+        if ((off >= 0 && ply >= 0 && obj >= 0) || src->size >= DETECT_BYTES) break;
+        size_t keep = 0;
+        mt__src_more(src, &keep); /* more in view, or the end reached: then all can tell */
+    }
+    if (off == 1)
+        *format = MT_FORMAT_OFF;
+    else if (ply == 1)
+        *format = MT_FORMAT_PLY_ASCII; /* the header tells the encoding */
+    else if (by_name != MT_FORMAT_AUTO)
+        *format = by_name;
+    else if (obj == 1)
+        *format = MT_FORMAT_OBJ;
+    else
+        return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, 0, MT_NONE,
+                           "cannot tell the format: no OFF or PLY header, no OBJ "
+                           "keyword, no known file suffix");
+    return MT_OK;
 }
 
-static mt_status read_decoded(const mt__io_src *src, mt_format format, mt_face_list *out,
-                              mt_diag *diag)
+/* Parses src (opened) with `format`; src is closed. */
+static mt_status read_source(mt__io_src *src, mt_format format, mt_face_list *out, mt_diag *diag)
 {
-    if (format == MT_FORMAT_AUTO) {
-        mt_format by_name = mt_format_from_path(src->name);
-        if (mt__looks_like_off(src))
-            format = MT_FORMAT_OFF;
-        else if (looks_like_ply(src))
-            format = MT_FORMAT_PLY_ASCII; /* the header tells the encoding */
-        else if (by_name != MT_FORMAT_AUTO)
-            format = by_name;
-        else if (mt__looks_like_obj(src))
-            format = MT_FORMAT_OBJ;
-        else
-            return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, 0, MT_NONE,
-                               "cannot tell the format: no OFF or PLY header, no OBJ "
-                               "keyword, no known file suffix");
+    mt_status status = MT_OK;
+    if (format == MT_FORMAT_AUTO) status = detect_format(src, &format, diag);
+    if (status == MT_OK) {
+        mt__locale_state locale;
+        mt__c_locale_enter(&locale);
+        switch (format) {
+            case MT_FORMAT_OFF:
+                status = mt__read_off(src, out, diag);
+                break;
+            case MT_FORMAT_OBJ:
+                status = mt__read_obj(src, out, diag);
+                break;
+            default: /* any PLY format: the header names the encoding */
+                status = mt__read_ply(src, out, diag);
+                break;
+        }
+        mt__c_locale_leave(&locale);
     }
-    mt__locale_state locale;
-    mt__c_locale_enter(&locale);
-    mt_status status;
-    switch (format) {
-        case MT_FORMAT_OFF:
-            status = mt__read_off(src, out, diag);
-            break;
-        case MT_FORMAT_OBJ:
-            status = mt__read_obj(src, out, diag);
-            break;
-        default: /* any PLY format: the header names the encoding */
-            status = mt__read_ply(src, out, diag);
-            break;
+    /* A parse that succeeded has read its input to the end. */
+    assert(status != MT_OK || src->eof);
+    mt_status input = mt__src_status(src, diag);
+    if (input != MT_OK) {
+        if (status == MT_OK) mt_face_list_free(out);
+        status = input;
     }
-    mt__c_locale_leave(&locale);
+    mt__src_close(src);
     if (status != MT_OK) memset(out, 0, sizeof *out);
     return status;
 }
@@ -59,7 +87,7 @@ static mt_status read_decoded(const mt__io_src *src, mt_format format, mt_face_l
 static mt_status check_args(mt_format format, mt_face_list *out, const char *name, mt_diag *diag)
 {
     mt_diag_clear(diag);
-    mt__io_src none = {name ? name : "<memory>", NULL, 0};
+    mt__io_src none = {.name = name ? name : "<memory>"};
     if (!out)
         return mt__io_fail(diag, MT_ERR_INVALID_ARG, &none, MT__POS_NONE, 0, MT_NONE,
                            "NULL output face list");
@@ -70,110 +98,78 @@ static mt_status check_args(mt_format format, mt_face_list *out, const char *nam
     return MT_OK;
 }
 
-/* Inflates src when it is gzip and parses it. *owned, when not NULL, is a
- * buffer holding src's bytes that may be freed as soon as it is inflated. */
-static mt_status read_any(mt__io_src *src, unsigned char **owned, mt_format format,
-                          mt_face_list *out, mt_diag *diag)
+static uint64_t max_input(const mt_read_options *options)
 {
-    if (!mt__is_gzip(src->data, src->size)) return read_decoded(src, format, out, diag);
-    unsigned char *inflated;
-    size_t inflated_size;
-    mt_status status = mt__inflate(src, &inflated, &inflated_size, diag);
-    if (owned) {
-        free(*owned);
-        *owned = NULL;
-    }
+    return options && options->max_input_bytes ? options->max_input_bytes
+                                               : MT_READ_DEFAULT_MAX_INPUT_BYTES;
+}
+
+mt_status mt_read_memory_with(const void *data, size_t size, mt_format format, const char *name,
+                              const mt_read_options *options, mt_face_list *out, mt_diag *diag)
+{
+    mt_status status = check_args(format, out, name, diag);
     if (status != MT_OK) return status;
-    mt__io_src plain = {src->name, inflated, inflated_size};
-    status = read_decoded(&plain, format, out, diag);
-    free(inflated);
-    return status;
+    mt__io_src src;
+    mt__src_init_buffer(&src, name ? name : "<memory>", data, size);
+    if (!data && size)
+        return mt__io_fail(diag, MT_ERR_INVALID_ARG, &src, MT__POS_NONE, 0, MT_NONE,
+                           "NULL data of %zu bytes", size);
+    int gzip = mt__is_gzip(src.data, size);
+    if (!gzip && size > max_input(options))
+        return mt__io_fail(diag, MT_ERR_TOO_LARGE, &src, MT__POS_NONE, 0, MT_NONE,
+                           "%zu bytes: more than the input limit of %llu bytes", size,
+                           (unsigned long long)max_input(options));
+    if (gzip || (options && options->window_bytes)) {
+        status = mt__src_open(&src, src.name, -1, data, size, size, options, diag);
+        if (status != MT_OK) return status;
+    }
+    return read_source(&src, format, out, diag);
 }
 
 mt_status mt_read_memory(const void *data, size_t size, mt_format format, const char *name,
                          mt_face_list *out, mt_diag *diag)
 {
-    mt_status status = check_args(format, out, name, diag);
-    if (status != MT_OK) return status;
-    mt__io_src src = {name ? name : "<memory>", data, size};
-    if (!data && size)
-        return mt__io_fail(diag, MT_ERR_INVALID_ARG, &src, MT__POS_NONE, 0, MT_NONE,
-                           "NULL data of %zu bytes", size);
-    if (!data) src.data = (const unsigned char *)"";
-    return read_any(&src, NULL, format, out, diag);
+    return mt_read_memory_with(data, size, format, name, NULL, out, diag);
 }
 
 static mt_status io_error(mt_diag *diag, const char *path, const char *what, int err)
 {
     char text[256];
     if (strerror_r(err, text, sizeof text) != 0) snprintf(text, sizeof text, "error %d", err);
-    mt__io_src src = {path, NULL, 0};
+    mt__io_src src = {.name = path};
     return mt__io_fail(diag, MT_ERR_IO, &src, MT__POS_NONE, 0, MT_NONE, "%s: %s", what, text);
 }
 
-/* Reads all of fd into a new buffer. Returns 0 or an errno value. */
-static int read_all(int fd, unsigned char **out, size_t *out_size)
-{
-    struct stat st;
-    if (fstat(fd, &st) != 0) return errno;
-    if (S_ISDIR(st.st_mode)) return EISDIR;
-    size_t cap = 65536;
-    if (S_ISREG(st.st_mode) && st.st_size > 0) {
-        if ((uint64_t)st.st_size >= (uint64_t)SIZE_MAX) return EFBIG;
-        cap = (size_t)st.st_size + 1; /* +1: end of file is seen without growing */
-    }
-    unsigned char *buf = malloc(cap);
-    if (!buf) return ENOMEM;
-    size_t len = 0;
-    for (;;) {
-        if (len == cap) {
-            if (cap > SIZE_MAX / 2) {
-                free(buf);
-                return EFBIG;
-            }
-            unsigned char *p = realloc(buf, cap * 2);
-            if (!p) {
-                free(buf);
-                return ENOMEM;
-            }
-            buf = p;
-            cap *= 2;
-        }
-        size_t want = cap - len < (1u << 30) ? cap - len : (1u << 30);
-        ssize_t got = read(fd, buf + len, want);
-        if (got < 0) {
-            if (errno == EINTR) continue;
-            int err = errno;
-            free(buf);
-            return err;
-        }
-        if (got == 0) break;
-        len += (size_t)got;
-    }
-    *out = buf;
-    *out_size = len;
-    return 0;
-}
-
-mt_status mt_read_file(const char *path, mt_format format, mt_face_list *out, mt_diag *diag)
+mt_status mt_read_file_with(const char *path, mt_format format, const mt_read_options *options,
+                            mt_face_list *out, mt_diag *diag)
 {
     mt_status status = check_args(format, out, path, diag);
     if (status != MT_OK) return status;
     if (!path) {
-        mt__io_src none = {"<null>", NULL, 0};
+        mt__io_src none = {.name = "<null>"};
         return mt__io_fail(diag, MT_ERR_INVALID_ARG, &none, MT__POS_NONE, 0, MT_NONE, "NULL path");
     }
     int fd;
     do fd = open(path, O_RDONLY | O_CLOEXEC);
     while (fd < 0 && errno == EINTR);
     if (fd < 0) return io_error(diag, path, "cannot open", errno);
-    unsigned char *buf = NULL;
-    size_t size = 0;
-    int err = read_all(fd, &buf, &size);
+    struct stat st;
+    int err = fstat(fd, &st) != 0 ? errno : S_ISDIR(st.st_mode) ? EISDIR : 0;
+    if (err) {
+        close(fd);
+        return io_error(diag, path, "cannot read", err);
+    }
+    /* A regular file's size is its length (used for the size checks) unless
+     * it is gzip; mt__src_open tells. */
+    uint64_t total = S_ISREG(st.st_mode) ? (uint64_t)st.st_size : MT__UNKNOWN;
+    mt__io_src src;
+    status = mt__src_open(&src, path, fd, NULL, 0, total, options, diag);
+    if (status == MT_OK) status = read_source(&src, format, out, diag);
     close(fd);
-    if (err) return io_error(diag, path, "cannot read", err);
-    mt__io_src src = {path, buf, size};
-    status = read_any(&src, &buf, format, out, diag);
-    free(buf);
     return status;
+}
+
+mt_status mt_read_file(const char *path, mt_format format, mt_face_list *out, mt_diag *diag)
+{
+    return mt_read_file_with(path, format, NULL, out, diag);
 }

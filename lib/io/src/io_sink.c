@@ -43,7 +43,7 @@ static mt_status sink_error(mt_diag *diag, const char *path, const char *what, i
 {
     char text[256];
     if (strerror_r(err, text, sizeof text) != 0) snprintf(text, sizeof text, "error %d", err);
-    mt__io_src src = {path, NULL, 0};
+    mt__io_src src = {.name = path};
     return mt__io_fail(diag, MT_ERR_IO, &src, MT__POS_NONE, 0, MT_NONE, "cannot %s: %s", what,
                        text);
 }
@@ -88,7 +88,7 @@ mt_status mt__sink_open(mt__sink **out, const char *path, int gzip, mt_diag *dia
 {
     *out = NULL;
     mt__sink *s = calloc(1, sizeof *s);
-    mt__io_src src = {path, NULL, 0};
+    mt__io_src src = {.name = path};
     if (!s) return mt__io_fail(diag, MT_ERR_NOMEM, &src, MT__POS_NONE, 0, MT_NONE, "out of memory");
     s->fd = -1;
     s->path = malloc(strlen(path) + 1);

@@ -7,7 +7,7 @@
 mt_status mt_write_file(const char *path, mt_format format, const mt_face_list *list, mt_diag *diag)
 {
     mt_diag_clear(diag);
-    mt__io_src none = {path ? path : "<null>", NULL, 0};
+    mt__io_src none = {.name = path ? path : "<null>"};
     if (!path || !*path || !list)
         return mt__io_fail(diag, MT_ERR_INVALID_ARG, &none, MT__POS_NONE, 0, MT_NONE,
                            "NULL or empty path, or NULL face list");

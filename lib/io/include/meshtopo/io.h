@@ -34,22 +34,80 @@ const char *mt_format_name(mt_format format);
  * when the suffix is unknown. */
 mt_format mt_format_from_path(const char *path);
 
+/* Reading options; a zeroed struct (or NULL) gives the defaults. */
+typedef struct mt_read_options {
+    /* The largest input read, in bytes after gzip inflation: a longer input
+     * fails with MT_ERR_TOO_LARGE naming the limit, as soon as it is known to
+     * be longer (at once for a plain file, else when inflation passes the
+     * limit). 0: MT_READ_DEFAULT_MAX_INPUT_BYTES. */
+    uint64_t max_input_bytes;
+    /* Bytes of input held at once while a file or gzip data is parsed
+     * (0: MT_READ_DEFAULT_WINDOW_BYTES); a token or PLY header longer than
+     * the window widens it, up to MT_READ_MAX_HELD_BYTES. Nonzero also makes
+     * mt_read_memory_with parse a plain buffer through such a window, as a
+     * file is (for tests: the result is the same). */
+    size_t window_bytes;
+} mt_read_options;
+
+/* 16 GiB: the default of mt_read_options.max_input_bytes. */
+#define MT_READ_DEFAULT_MAX_INPUT_BYTES ((uint64_t)16 << 30)
+/* 256 KiB: the default of mt_read_options.window_bytes. */
+#define MT_READ_DEFAULT_WINDOW_BYTES ((size_t)256 << 10)
+/* 4 MiB: the longest token (or PLY header) read from a file or gzip data;
+ * a longer one fails with MT_ERR_TOO_LARGE. */
+#define MT_READ_MAX_HELD_BYTES ((size_t)4 << 20)
+/* 1 MiB: how much whitespace (and, in OFF, comments) may follow the last
+ * element an OFF or PLY header declares. Reading stops there: more fails
+ * with MT_ERR_PARSE at the byte past the allowance. */
+#define MT_READ_MAX_TRAILING_BYTES ((uint64_t)1 << 20)
+
 /* Reads a mesh file into *out (free with mt_face_list_free). A gzip file is
  * recognised by its magic bytes whatever its name. With MT_FORMAT_AUTO the
- * format comes from the content ("OFF", "ply" headers) and otherwise the
- * name. OBJ: v and f lines (f entries a, a/b, a/b/c, a//c; negative indices
- * are relative; index 0 is stored as -1, i.e. out of range); other lines
- * ignored. PLY: x y z of the vertex element, vertex_indices (or
- * vertex_index) of the face element; other properties skipped.
- * Parse errors: MT_ERR_PARSE with diag naming the file, the line (text) or
- * byte offset (binary) and the problem; MT_ERR_IO when the file cannot be
- * read; *out is then left zeroed. */
+ * format comes from the content ("OFF", "ply" headers; for a file, in its
+ * first 64 KiB) and otherwise the name. OBJ: v and f lines (f entries a,
+ * a/b, a/b/c, a//c; negative indices are relative; index 0 is stored as
+ * -1, i.e. out of range); other lines ignored. PLY: x y z of the vertex
+ * element, vertex_indices (or vertex_index) of the face element; other
+ * properties skipped.
+ *
+ * Memory. The file is parsed as it is read (and inflated), through a window
+ * of mt_read_options.window_bytes, and the face list grows as elements are
+ * read, never by the counts a header declares: a read holds the mesh read
+ * so far and a fixed window, whatever the file's size or what it inflates
+ * to. OFF and PLY stop at the counts their header declares (see
+ * MT_READ_MAX_TRAILING_BYTES). Those counts are checked against the bytes
+ * that follow them: at once for a plain file or buffer; gzip data tells
+ * its length only at its end, so before the face list grows past 64 MiB
+ * the rest of the data is inflated once, not kept, to learn it (for gzip
+ * from a buffer or a regular file; from a pipe, max_input_bytes is the
+ * bound). A gzip file that inflates to gigabytes of plausible data under a
+ * header declaring more is so refused before memory is spent on it.
+ *
+ * Order of errors in gzip data: damage in the data (a bad checksum,
+ * truncation) is found when the parser reaches it, and a size check when
+ * the data's length is learned; an error met in the data before either is
+ * reported instead (a plain file reports the size check first).
+ *
+ * Errors: MT_ERR_PARSE with diag naming the file, the line (text) or byte
+ * offset (binary; in the compressed bytes for damaged gzip data) and the
+ * problem; MT_ERR_IO when the file cannot be read; MT_ERR_TOO_LARGE past
+ * the limits above or meshtopo's (2^31 - 1 vertices, 2^32 - 1 faces);
+ * *out is then left zeroed. */
 mt_status mt_read_file(const char *path, mt_format format, mt_face_list *out, mt_diag *diag);
 
+/* mt_read_file with options (NULL: the defaults). */
+mt_status mt_read_file_with(const char *path, mt_format format, const mt_read_options *options,
+                            mt_face_list *out, mt_diag *diag);
+
 /* The same from a buffer in memory (already decompressed, or gzip: it is
- * recognised and inflated). `name` is used in messages only (may be NULL). */
+ * recognised and inflated as it is parsed). `name` is used in messages only
+ * (may be NULL). */
 mt_status mt_read_memory(const void *data, size_t size, mt_format format, const char *name,
                          mt_face_list *out, mt_diag *diag);
+
+/* mt_read_memory with options (NULL: the defaults). */
+mt_status mt_read_memory_with(const void *data, size_t size, mt_format format, const char *name,
+                              const mt_read_options *options, mt_face_list *out, mt_diag *diag);
 
 /* Writes a face list. MT_FORMAT_AUTO takes the format from the path's
  * suffix; a path ending in ".gz" is gzip-compressed. Positions are written
