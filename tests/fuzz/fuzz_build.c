@@ -643,6 +643,33 @@ static void check_queries(const model *m, const mt_mesh *mesh, byte_reader *r)
     check_edge_probes(m, mesh, r);
 }
 
+/* Face shapes (the sweep line over every polygon face): the size query and
+ * the fill agree, each face listed is valid and not simple, named sides are
+ * two distinct sides of it; without positions, MT_ERR_NO_GEOMETRY. */
+static void check_face_shapes(const model *m, const mt_mesh *mesh)
+{
+    size_t count = 0;
+    mt_status s = mt_mesh_nonsimple_faces(mesh, NULL, 0, &count, NULL);
+    if (!m->list.positions) {
+        REQUIRE(s == MT_ERR_NO_GEOMETRY);
+        return;
+    }
+    REQUIRE(s == MT_OK);
+    mt_face_shape *shapes = count ? calloc(count, sizeof *shapes) : NULL;
+    size_t again = 0;
+    REQUIRE(mt_mesh_nonsimple_faces(mesh, shapes, count, &again, NULL) == MT_OK && again == count);
+    for (size_t i = 0; i < count; i++) {
+        const mt_face_shape *f = &shapes[i];
+        size_t n = 0;
+        REQUIRE(mt_face_verts(mesh, f->face, NULL, 0, &n) != MT_ERR_NOT_FOUND);
+        REQUIRE(n >= 4 && f->kind != MT_FACE_SIMPLE);
+        if (f->kind == MT_FACE_SELF_CROSSING) REQUIRE(f->side_a < f->side_b && f->side_b < n);
+        mt_face_shape one;
+        REQUIRE(mt_face_shape_of(mesh, f->face, &one, NULL) == MT_OK && one.kind == f->kind);
+    }
+    free(shapes);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static model m;
@@ -668,6 +695,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     check_report(&m, mesh);
     check_positions(&m, mesh);
     check_queries(&m, mesh, &r);
+    check_face_shapes(&m, mesh);
 
     /* The report does not depend on how many threads built the mesh. */
     if (options.threads != 1) {

@@ -2,12 +2,15 @@
  * Clipping", 2002) in the plane of the face's Newell normal. Ear clipping is
  * chosen over a fan because a fan from one corner overlaps itself on a
  * non-convex polygon, and because skipping ears lets it avoid diagonals that
- * are already edges of the mesh. Without positions any corner is an ear.
+ * are already edges of the mesh. Without positions any corner is an ear. A
+ * face that crosses itself in its plane (mt_face_shape_of) is refused: no
+ * set of triangles covers it without folding.
  * O(n^3) in the face size at worst; faces are small. */
 #include <math.h>
 
 #include "edit_internal.h"
 #include "meshtopo/edit.h"
+#include "meshtopo/geometry.h"
 
 /* 2D coordinates of a corner: the position with the normal's largest axis dropped. */
 static void project(const mt_mesh *m, uint32_t v, int drop, double out[2])
@@ -50,6 +53,13 @@ static mt_status triangulate_one(mt__edit *e, uint32_t f, uint32_t *out_new)
     const uint32_t n = mt__face_collect(m, f, work);
     if (n == 0) return MT_ERR_NOMEM;
     if (n == 3) return MT_OK;
+    mt_face_shape shape;
+    if (m->positions && mt_face_shape_of(m, f, &shape, NULL) == MT_OK &&
+        shape.kind == MT_FACE_SELF_CROSSING)
+        return mt__fail(e->diag, MT_ERR_REFUSED, f,
+                        "triangulate refused: face %u crosses itself in its plane (sides %u and "
+                        "%u): its triangles would fold over each other",
+                        f, shape.side_a, shape.side_b);
     /* work: corners [0, n), remaining [n, 2n), triangles from 2n. */
     for (uint32_t i = 0; i < n; i++) {
         const uint32_t w = ((const uint32_t *)work->data)[i];

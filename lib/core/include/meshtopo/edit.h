@@ -132,7 +132,9 @@ mt_status mt_face_split(mt_mesh *mesh, uint32_t face, uint32_t a, uint32_t b, ui
  * already an edge of the mesh. The face keeps its id for its first triangle,
  * the others get new ids; *out_new_faces (when not NULL) gets how many.
  * A triangle is left alone. Refused when every remaining diagonal is already
- * an edge.
+ * an edge, and, with positions, when the face crosses itself in its
+ * best-fit plane (a pentagram, a crossed quad: mt_face_shape_of), naming the
+ * two sides; its triangles would fold over each other.
  *
  *      d-----c               d-----c
  *      |     |               | \   |

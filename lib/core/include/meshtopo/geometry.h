@@ -65,6 +65,50 @@ mt_status mt_face_centroid(const mt_mesh *mesh, uint32_t face, double out_centro
 mt_status mt_mesh_face_normals(const mt_mesh *mesh, double *out_normals, double *out_areas,
                                size_t capacity, size_t *out_count, mt_diag *diag);
 
+/* ---- face shape ----------------------------------------------------------- */
+
+/* What a polygon face's boundary looks like in its best-fit plane (the
+ * least-squares plane of its corners; Newell's normal would be zero for a
+ * bowtie). A triangle is always simple. */
+typedef enum mt_face_shape_kind {
+    MT_FACE_SIMPLE = 0,        /* its sides neither cross nor touch, its corners are on the plane */
+    MT_FACE_SELF_CROSSING = 1, /* two sides cross or touch (a pentagram, a crossed quad); sides
+                                  that fold back over each other count; corners at one position
+                                  count as touching */
+    MT_FACE_WARPED = 2,        /* simple, but a corner lies off the plane by more than
+                                  MT_FACE_WARP_TOLERANCE of the face's size (a warped quad) */
+} mt_face_shape_kind;
+
+/* Corners farther from the best-fit plane than this fraction of the
+ * diagonal of the corners' bounding box make a face warped. */
+#define MT_FACE_WARP_TOLERANCE 1e-3
+
+typedef struct mt_face_shape {
+    uint32_t face;
+    mt_face_shape_kind kind;
+    /* MT_FACE_SELF_CROSSING: two sides that cross or touch, side_a < side_b;
+     * side i runs from the face's vertex i to vertex i+1 (mt_face_verts
+     * order). MT_NONE otherwise. */
+    uint32_t side_a, side_b;
+    /* The largest distance of a corner from the best-fit plane over the
+     * diagonal of the corners' bounding box (0 for a triangle). */
+    double warp;
+} mt_face_shape;
+
+/* The shape of one face, found by a sweep line over its sides (Shamos and
+ * Hoey) in its best-fit plane: O(n log n) for n sides. A face with a corner
+ * at NaN or infinity is not judged (reported simple; the report lists the
+ * vertex as a nonfinite_coordinate). MT_ERR_OUT_OF_RANGE,
+ * MT_ERR_NOT_FOUND (a rejected or deleted face), MT_ERR_NO_GEOMETRY. */
+mt_status mt_face_shape_of(const mt_mesh *mesh, uint32_t face, mt_face_shape *out, mt_diag *diag);
+
+/* Every face that is not simple (self-crossing or warped), in face order:
+ * out gets up to capacity of them (NULL or 0 to learn how many), *out_count
+ * how many there are; MT_ERR_BUFFER_TOO_SMALL when they do not fit. Rejected
+ * and deleted face records are skipped. */
+mt_status mt_mesh_nonsimple_faces(const mt_mesh *mesh, mt_face_shape *out, size_t capacity,
+                                  size_t *out_count, mt_diag *diag);
+
 /* ---- vertices ------------------------------------------------------------- */
 
 /* Angle-weighted vertex normal (Thuermer and Wuethrich 1998): the sum of the
