@@ -437,7 +437,8 @@ static void test_format_names(void)
     CHECK_EQ(mt_format_from_path("mesh.obj.gz"), MT_FORMAT_OBJ);
     CHECK_EQ(mt_format_from_path("scan.ply"), MT_FORMAT_PLY_BINARY_LE);
     CHECK_EQ(mt_format_from_path("scan.ply.gz"), MT_FORMAT_PLY_BINARY_LE);
-    CHECK_EQ(mt_format_from_path("scan.stl"), MT_FORMAT_AUTO);
+    CHECK_EQ(mt_format_from_path("scan.stl"), MT_FORMAT_STL_BINARY);
+    CHECK_EQ(mt_format_from_path("scan.vtk"), MT_FORMAT_AUTO);
     CHECK_EQ(mt_format_from_path("scan.gz"), MT_FORMAT_AUTO);
     CHECK_EQ(mt_format_from_path("off"), MT_FORMAT_AUTO);
     CHECK_EQ(mt_format_from_path(NULL), MT_FORMAT_AUTO);

@@ -111,11 +111,27 @@ bool mt_id_list_parse(const char *text, uint32_t limit, size_t max_count, mt_id_
                       char *err, size_t err_size);
 void mt_id_list_free(mt_id_list *list);
 
-/* A mesh file read and built, with the timings of both steps. */
+/* What `--weld` did to a mesh file before it was built (mt_face_list_weld). */
+typedef struct mt_cli_weld {
+    bool enabled;
+    double eps; /* 0: exact */
+    uint32_t vertices_before, vertices_after, merged;
+    /* Vertices (welded ids, ascending) that are non-manifold in the welded
+     * mesh although no vertex merged into them was in the unwelded one:
+     * those the weld made non-manifold. malloc'd. */
+    uint32_t *nonmanifold;
+    size_t num_nonmanifold;
+} mt_cli_weld;
+
+/* Parses a --weld value: "exact" (eps 0) or a positive finite distance. */
+bool mt_cli_weld_parse(const char *text, double *out_eps);
+
+/* A mesh file read (welded with --weld) and built, with the timings. */
 typedef struct mt_cli_mesh {
     mt_face_list list;
     mt_mesh *mesh;
     double read_ms, build_ms;
+    mt_cli_weld weld;
 } mt_cli_mesh;
 
 /* Reads `path` (format auto-detected unless `format_name` names one) into
@@ -127,12 +143,15 @@ int mt_cli_face_list_read(const char *command, const char *path, const char *for
 
 /* Reads `path` (format auto-detected unless `format_name` names one) and
  * builds it. max_input_bytes: the largest input read, after gzip inflation
- * (0: the library's default; set by --max-input-bytes). Returns
- * MT_CLI_EXIT_OK, MT_CLI_EXIT_USAGE (unknown format name), MT_CLI_EXIT_READ
- * or MT_CLI_EXIT_BUILD after printing the reason, naming the file, to
- * stderr. */
+ * (0: the library's default; set by --max-input-bytes). weld_eps (NULL: no
+ * weld): the vertices are welded before the build (0: exact), and the
+ * unwelded list is built first, without options, to tell which vertices
+ * the weld made non-manifold (out->weld). Returns MT_CLI_EXIT_OK,
+ * MT_CLI_EXIT_USAGE (unknown format name), MT_CLI_EXIT_READ or
+ * MT_CLI_EXIT_BUILD after printing the reason, naming the file, to stderr. */
 int mt_cli_mesh_load(const char *command, const char *path, const char *format_name,
-                     uint64_t max_input_bytes, const mt_build_options *options, mt_cli_mesh *out);
+                     uint64_t max_input_bytes, const double *weld_eps,
+                     const mt_build_options *options, mt_cli_mesh *out);
 void mt_cli_mesh_free(mt_cli_mesh *m);
 
 /* Environment variable giving the default of --max-input-bytes. */

@@ -18,7 +18,11 @@ static const mt_cli_option options[] = {
     {"faces", "LIST", "query these faces (e.g. 0,158), in this order"},
     {"strict", NULL, "refuse any defect: the build fails (exit 4) and names the first one"},
     {"fail-on-defect", NULL, "exit 1 after printing when the report lists any defect"},
-    {"format", "NAME", "file format: auto (default), off, obj, ply-ascii, ply-le, ply-be"},
+    {"format", "NAME",
+     "file format: auto (default), off, obj, ply-ascii, ply-le, ply-be, stl-ascii, stl-binary"},
+    {"weld", "MODE",
+     "merge vertices before building: exact (identical coordinates) or EPS (within distance "
+     "EPS, e.g. 1e-6)"},
     {"limit", "N", "items per list in the readable output (default 5, 0 = all)"},
     {"max-input-bytes", "N",
      "refuse FILE past N bytes inflated (e.g. 512M; default $" MT_CLI_ENV_MAX_INPUT_BYTES
@@ -75,12 +79,22 @@ static int run_inspect(const mt_cli_args *args)
     uint64_t max_input;
     if (!parse_max_input(args, &max_input)) return MT_CLI_EXIT_USAGE;
 
+    double weld_eps = 0;
+    const char *weld_text = mt_cli_arg(args, "weld");
+    if (weld_text && !mt_cli_weld_parse(weld_text, &weld_eps)) {
+        mt_cli_error("inspect",
+                     "--weld: expected 'exact' or a positive distance such as 1e-6, "
+                     "got '%s'",
+                     weld_text);
+        return MT_CLI_EXIT_USAGE;
+    }
+
     mt_build_options build;
     memset(&build, 0, sizeof build);
     build.strict = mt_cli_flag(args, "strict");
     mt_cli_mesh mesh;
-    int code =
-        mt_cli_mesh_load("inspect", path, mt_cli_arg(args, "format"), max_input, &build, &mesh);
+    int code = mt_cli_mesh_load("inspect", path, mt_cli_arg(args, "format"), max_input,
+                                weld_text ? &weld_eps : NULL, &build, &mesh);
     if (code != MT_CLI_EXIT_OK) return code;
 
     mt_inspect_request req;
@@ -121,10 +135,12 @@ static int run_inspect(const mt_cli_args *args)
 const mt_cli_command mt_cli_cmd_inspect = {
     .name = "inspect",
     .summary = "read a mesh file, build it and print its topology report",
-    .synopsis = "FILE [--json] [--vertices LIST] [--faces LIST] [--strict] [--fail-on-defect]",
+    .synopsis =
+        "FILE [--json] [--vertices LIST] [--faces LIST] [--weld exact|EPS] [--strict] "
+        "[--fail-on-defect]",
     .description =
-        "Reads FILE (OFF, OBJ or PLY, gzip-compressed too; the format is detected from the\n"
-        "content), builds the half-edge mesh and prints counts, boundary loops, components,\n"
+        "Reads FILE (OFF, OBJ, PLY or STL, gzip-compressed too; the format is detected from\n"
+        "the content), builds the half-edge mesh and prints counts, boundary loops, components,\n"
         "Euler characteristic, genus, the closed/manifold/orientable flags and every defect\n"
         "with the ids of the elements involved. Nothing is welded or dropped silently.\n"
         "FILE is parsed as it is read and inflated, so memory follows the mesh, not the\n"
@@ -136,6 +152,13 @@ const mt_cli_command mt_cli_cmd_inspect = {
         "of the corpus reference answers (shared/corpus/DEFINITIONS.md); vertices and faces\n"
         "not named with --vertices/--faces are then chosen as DEFINITIONS.md \"Queries\"\n"
         "says. A queried face that was left out of the mesh has \"adjacent_faces\": null.\n"
+        "\n"
+        "An STL file gives a soup (3 new vertices per triangle). --weld merges vertices\n"
+        "before the build, in any format: `exact` those with identical coordinates, EPS those\n"
+        "within distance EPS of an earlier kept vertex (ids then refer to the welded mesh).\n"
+        "The report adds how many vertices were merged and the vertices the weld made\n"
+        "non-manifold: non-manifold in the welded mesh, while no vertex merged into them was\n"
+        "in the unwelded one (JSON key \"weld\").\n"
         "\n"
         "exit codes: 0 report printed (whatever its defects), 1 --fail-on-defect and a\n"
         "defect was found, 2 usage error (also an id out of range), 3 FILE could not be\n"

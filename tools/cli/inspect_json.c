@@ -2,7 +2,7 @@
  * corpus answers (shared/corpus/DEFINITIONS.md) in their order, so it diffs
  * cleanly against NAME.expected.json (which adds only "oracle_version");
  * undefined genera are null (the summary is cli_report_json.c's, shared with
- * the daemon's reports); --json-defects appends "defects". Built in memory and
+ * the daemon's reports); --weld appends "weld", --json-defects "defects". Built in memory and
  * written only when every query succeeded: never half a document. */
 #include <stdlib.h>
 #include <string.h>
@@ -82,6 +82,25 @@ static mt_status write_face_queries(mt_json *j, const mt_mesh *mesh, const mt_id
     mt_json_array_end(j);
     mt_inspect_face_adjacency_free(&adj);
     return st;
+}
+
+/* "weld": what --weld did (README, inspect's JSON keys). */
+static void write_weld(mt_json *j, const mt_cli_weld *w)
+{
+    mt_json_object_begin(j);
+    mt_json_key(j, "mode");
+    mt_json_string(j, w->eps == 0 ? "exact" : "distance");
+    mt_json_key(j, "eps");
+    mt_json_double(j, w->eps);
+    mt_json_key(j, "vertices_before");
+    mt_json_uint(j, w->vertices_before);
+    mt_json_key(j, "vertices_after");
+    mt_json_uint(j, w->vertices_after);
+    mt_json_key(j, "merged");
+    mt_json_uint(j, w->merged);
+    mt_json_key(j, "nonmanifold_after_weld");
+    write_ids(j, w->nonmanifold, w->num_nonmanifold);
+    mt_json_object_end(j);
 }
 
 static void write_defect(mt_json *j, const mt_defect *d)
@@ -195,6 +214,10 @@ int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
     if (ok && st == MT_OK) {
         mt_json_key(&j, "file");
         mt_json_string(&j, mt_cli_basename(req->path));
+        if (req->mesh->weld.enabled) {
+            mt_json_key(&j, "weld");
+            write_weld(&j, &req->mesh->weld);
+        }
         if (req->json_defects) {
             mt_json_key(&j, "defects");
             mt_json_array_begin(&j);

@@ -389,6 +389,28 @@ static int print_queries(FILE *out, const mt_inspect_request *req)
     return MT_CLI_EXIT_OK;
 }
 
+/* --weld: what was merged and which vertices the weld made non-manifold. */
+static void print_weld(FILE *out, const mt_inspect_request *req)
+{
+    const mt_cli_weld *w = &req->mesh->weld;
+    if (!w->enabled) return;
+    if (w->eps == 0)
+        fprintf(out, "weld: exact (identical coordinates): ");
+    else
+        fprintf(out, "weld: within %.17g: ", w->eps);
+    fprintf(out, "%u of %u %s merged, %u left; ", (unsigned)w->merged, (unsigned)w->vertices_before,
+            plural(w->vertices_before, "vertex", "vertices"), (unsigned)w->vertices_after);
+    if (w->num_nonmanifold == 0) {
+        fprintf(out, "no vertex made non-manifold by the weld\n");
+        return;
+    }
+    fprintf(out, "%zu made non-manifold by the weld:", w->num_nonmanifold);
+    size_t n = shown(req, w->num_nonmanifold);
+    for (size_t i = 0; i < n; i++) fprintf(out, "%s %u", i ? "," : "", (unsigned)w->nonmanifold[i]);
+    print_more(out, w->num_nonmanifold, n);
+    fputc('\n', out);
+}
+
 int mt_inspect_print_text(const mt_inspect_request *req, FILE *out)
 {
     const mt_mesh *mesh = req->mesh->mesh;
@@ -399,6 +421,7 @@ int mt_inspect_print_text(const mt_inspect_request *req, FILE *out)
     fprintf(out, ", report ");
     print_bytes(out, mt_mesh_report_memory_bytes(mesh));
     fprintf(out, ")\n");
+    print_weld(out, req);
     fprintf(out, "counts: %u %s, %u face %s (%u valid), %" PRIu64 " %s, %" PRIu64 " half-edges\n",
             (unsigned)r->num_verts, plural(r->num_verts, "vertex", "vertices"),
             (unsigned)r->num_faces, plural(r->num_faces, "record", "records"),

@@ -1,5 +1,5 @@
 /* Format names and the format a path's suffix names (.off, .obj, .ply,
- * each optionally followed by .gz; letters in any case). */
+ * .stl, each optionally followed by .gz; letters in any case). */
 #include <stddef.h>
 
 #include "io_internal.h"
@@ -19,6 +19,10 @@ const char *mt_format_name(mt_format format)
             return "ply-le";
         case MT_FORMAT_PLY_BINARY_BE:
             return "ply-be";
+        case MT_FORMAT_STL_ASCII:
+            return "stl-ascii";
+        case MT_FORMAT_STL_BINARY:
+            return "stl-binary";
     }
     return "unknown";
 }
@@ -43,6 +47,7 @@ mt_format mt_format_from_path(const char *path)
     if (ends_with(path, n, ".off", 4)) return MT_FORMAT_OFF;
     if (ends_with(path, n, ".obj", 4)) return MT_FORMAT_OBJ;
     if (ends_with(path, n, ".ply", 4)) return MT_FORMAT_PLY_BINARY_LE;
+    if (ends_with(path, n, ".stl", 4)) return MT_FORMAT_STL_BINARY;
     return MT_FORMAT_AUTO;
 }
 

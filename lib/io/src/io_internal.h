@@ -372,6 +372,8 @@ mt_status mt__read_off(mt__io_src *src, mt_face_list *out, mt_diag *diag);
 mt_status mt__read_obj(mt__io_src *src, mt_face_list *out, mt_diag *diag);
 /* Any PLY encoding: the header says which. */
 mt_status mt__read_ply(mt__io_src *src, mt_face_list *out, mt_diag *diag);
+mt_status mt__read_stl_ascii(mt__io_src *src, mt_face_list *out, mt_diag *diag);
+mt_status mt__read_stl_binary(mt__io_src *src, mt_face_list *out, mt_diag *diag);
 
 /* Format detection on the start of the window: 1 yes, 0 no, -1 cannot tell
  * before the window shows more of the input. */
@@ -381,6 +383,12 @@ int mt__looks_like_obj(const mt__io_src *src);
 int mt__looks_like_off(const mt__io_src *src);
 /* src starts with the PLY magic line */
 int mt__looks_like_ply(const mt__io_src *src);
+/* src is STL: *format set to MT_FORMAT_STL_BINARY (its length is 84 + 50 *
+ * the count at byte 80, or it starts with "solid" but is not text) or
+ * MT_FORMAT_STL_ASCII (it starts with "solid" and its first 256 bytes are
+ * text), else MT_FORMAT_AUTO. The length of gzip data is learned first when
+ * `learn` (it inflates the data once) or the input starts with "solid". */
+int mt__looks_like_stl(mt__io_src *src, int learn, mt_format *format);
 
 /* 1 when path ends in ".gz" (any case). */
 int mt__path_is_gzip(const char *path);
@@ -411,5 +419,10 @@ mt_status mt__write_obj(mt__sink *s, const mt_face_list *list, mt_diag *diag);
 mt_status mt__write_ply(mt__sink *s, const mt_face_list *list, mt_format format, mt_diag *diag);
 /* OBJ cannot express every negative index; checked before a file is created. */
 mt_status mt__obj_check_writable(const mt_face_list *list, const char *path, mt_diag *diag);
+/* STL needs faces of 3 entries or more with indices in range (and, in
+ * binary, at most 2^32 - 1 triangles); checked before a file is created. */
+mt_status mt__stl_check_writable(const mt_face_list *list, mt_format format, const char *path,
+                                 mt_diag *diag);
+mt_status mt__write_stl(mt__sink *s, const mt_face_list *list, mt_format format, mt_diag *diag);
 
 #endif

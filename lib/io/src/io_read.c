@@ -22,16 +22,24 @@
 
 /* Tells the format from the start of the input (widening the window, from
  * the input's start, while the content cannot tell yet and the window
- * holds less than DETECT_BYTES), else from the name. */
+ * holds less than DETECT_BYTES), else from the name. STL comes after the
+ * OFF and PLY headers (so that their binary data never needs a window
+ * that shows 256 bytes), a binary STL file by its length first: its
+ * 80-byte header may start with "solid". */
 static mt_status detect_format(mt__io_src *src, mt_format *format, mt_diag *diag)
 {
     mt_format by_name = mt_format_from_path(src->name);
-    int off, ply, obj;
+    int by_name_stl = by_name == MT_FORMAT_STL_BINARY;
+    int off, ply, obj, stl;
+    mt_format stl_format = MT_FORMAT_AUTO;
     for (;;) {
         off = mt__looks_like_off(src);
         ply = off == 1 ? 0 : mt__looks_like_ply(src);
-        obj = off == 1 || ply == 1 || by_name != MT_FORMAT_AUTO ? 0 : mt__looks_like_obj(src);
-        if ((off >= 0 && ply >= 0 && obj >= 0) || src->size >= DETECT_BYTES) break;
+        stl = off == 1 || ply == 1 ? 0 : mt__looks_like_stl(src, by_name_stl, &stl_format);
+        obj = off == 1 || ply == 1 || stl == 1 || by_name != MT_FORMAT_AUTO
+                  ? 0
+                  : mt__looks_like_obj(src);
+        if ((off >= 0 && ply >= 0 && obj >= 0 && stl >= 0) || src->size >= DETECT_BYTES) break;
         size_t keep = 0;
         mt__src_more(src, &keep); /* more in view, or the end reached: then all can tell */
     }
@@ -39,13 +47,17 @@ static mt_status detect_format(mt__io_src *src, mt_format *format, mt_diag *diag
         *format = MT_FORMAT_OFF;
     else if (ply == 1)
         *format = MT_FORMAT_PLY_ASCII; /* the header tells the encoding */
+    else if (stl == 1)
+        *format = stl_format;
     else if (by_name != MT_FORMAT_AUTO)
         *format = by_name;
     else if (obj == 1)
         *format = MT_FORMAT_OBJ;
+    else if (mt__looks_like_stl(src, 1, &stl_format) == 1) /* gzip'd binary STL, unnamed */
+        *format = stl_format;
     else
         return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_LINE, 0, MT_NONE,
-                           "cannot tell the format: no OFF or PLY header, no OBJ "
+                           "cannot tell the format: no OFF, PLY or STL header, no OBJ "
                            "keyword, no known file suffix");
     return MT_OK;
 }
@@ -64,6 +76,12 @@ static mt_status read_source(mt__io_src *src, mt_format format, mt_face_list *ou
                 break;
             case MT_FORMAT_OBJ:
                 status = mt__read_obj(src, out, diag);
+                break;
+            case MT_FORMAT_STL_ASCII:
+                status = mt__read_stl_ascii(src, out, diag);
+                break;
+            case MT_FORMAT_STL_BINARY:
+                status = mt__read_stl_binary(src, out, diag);
                 break;
             default: /* any PLY format: the header names the encoding */
                 status = mt__read_ply(src, out, diag);
@@ -92,7 +110,7 @@ static mt_status check_args(mt_format format, mt_face_list *out, const char *nam
         return mt__io_fail(diag, MT_ERR_INVALID_ARG, &none, MT__POS_NONE, 0, MT_NONE,
                            "NULL output face list");
     memset(out, 0, sizeof *out);
-    if ((unsigned)format > (unsigned)MT_FORMAT_PLY_BINARY_BE)
+    if ((unsigned)format > (unsigned)MT_FORMAT_STL_BINARY)
         return mt__io_fail(diag, MT_ERR_INVALID_ARG, &none, MT__POS_NONE, 0, MT_NONE,
                            "unknown format %d", (int)format);
     return MT_OK;

@@ -11,7 +11,7 @@ mt_status mt_write_file(const char *path, mt_format format, const mt_face_list *
     if (!path || !*path || !list)
         return mt__io_fail(diag, MT_ERR_INVALID_ARG, &none, MT__POS_NONE, 0, MT_NONE,
                            "NULL or empty path, or NULL face list");
-    if ((unsigned)format > (unsigned)MT_FORMAT_PLY_BINARY_BE)
+    if ((unsigned)format > (unsigned)MT_FORMAT_STL_BINARY)
         return mt__io_fail(diag, MT_ERR_INVALID_ARG, &none, MT__POS_NONE, 0, MT_NONE,
                            "unknown format %d", (int)format);
     mt_status status = mt_face_list_check(list, diag);
@@ -23,10 +23,14 @@ mt_status mt_write_file(const char *path, mt_format format, const mt_face_list *
     if (format == MT_FORMAT_AUTO) format = mt_format_from_path(path);
     if (format == MT_FORMAT_AUTO)
         return mt__io_fail(diag, MT_ERR_INVALID_ARG, &none, MT__POS_NONE, 0, MT_NONE,
-                           "cannot tell the format from the name (use .off, .obj or .ply, "
-                           "optionally with .gz)");
+                           "cannot tell the format from the name (use .off, .obj, .ply or "
+                           ".stl, optionally with .gz)");
     if (format == MT_FORMAT_OBJ) {
         status = mt__obj_check_writable(list, path, diag);
+        if (status != MT_OK) return status;
+    }
+    if (format == MT_FORMAT_STL_ASCII || format == MT_FORMAT_STL_BINARY) {
+        status = mt__stl_check_writable(list, format, path, diag);
         if (status != MT_OK) return status;
     }
 
@@ -41,6 +45,10 @@ mt_status mt_write_file(const char *path, mt_format format, const mt_face_list *
             break;
         case MT_FORMAT_OBJ:
             status = mt__write_obj(sink, list, diag);
+            break;
+        case MT_FORMAT_STL_ASCII:
+        case MT_FORMAT_STL_BINARY:
+            status = mt__write_stl(sink, list, format, diag);
             break;
         default:
             status = mt__write_ply(sink, list, format, diag);

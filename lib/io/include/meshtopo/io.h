@@ -1,9 +1,12 @@
-/* Mesh files: OFF, OBJ and PLY (ASCII, binary little and big endian) to and
- * from face lists, gzip-compressed files included. Nothing is welded,
- * reordered or dropped: vertex order, face order and every face record,
- * degenerate and out-of-range ones too, come through as they are in the
- * file. This is its own library (meshtopo::io) because reading .gz needs
- * zlib, and the core library depends on libc and libm only. */
+/* Mesh files: OFF, OBJ, PLY (ASCII, binary little and big endian) and STL
+ * (ASCII and binary) to and from face lists, gzip-compressed files
+ * included. Nothing is welded, reordered or dropped by reading: vertex
+ * order, face order and every face record, degenerate and out-of-range ones
+ * too, come through as they are in the file (an STL file gives a soup:
+ * three new vertices per triangle). Welding is a separate, explicit step
+ * (mt_face_list_weld). This is its own library (meshtopo::io) because
+ * reading .gz needs zlib, and the core library depends on libc and libm
+ * only. */
 #ifndef MESHTOPO_IO_H
 #define MESHTOPO_IO_H
 
@@ -23,15 +26,18 @@ typedef enum mt_format {
     MT_FORMAT_OBJ,
     MT_FORMAT_PLY_ASCII,
     MT_FORMAT_PLY_BINARY_LE,
-    MT_FORMAT_PLY_BINARY_BE
+    MT_FORMAT_PLY_BINARY_BE,
+    MT_FORMAT_STL_ASCII,
+    MT_FORMAT_STL_BINARY /* little endian, as every binary STL file is */
 } mt_format;
 
-/* Short name: "off", "obj", "ply-ascii", "ply-le", "ply-be", "auto". */
+/* Short name: "off", "obj", "ply-ascii", "ply-le", "ply-be", "stl-ascii",
+ * "stl-binary", "auto". */
 const char *mt_format_name(mt_format format);
 
-/* Format named by a path's suffix (".off", ".obj", ".ply", each optionally
- * followed by ".gz"); ".ply" gives MT_FORMAT_PLY_BINARY_LE. MT_FORMAT_AUTO
- * when the suffix is unknown. */
+/* Format named by a path's suffix (".off", ".obj", ".ply", ".stl", each
+ * optionally followed by ".gz"); ".ply" gives MT_FORMAT_PLY_BINARY_LE and
+ * ".stl" MT_FORMAT_STL_BINARY. MT_FORMAT_AUTO when the suffix is unknown. */
 mt_format mt_format_from_path(const char *path);
 
 /* Reading options; a zeroed struct (or NULL) gives the defaults. */
@@ -69,6 +75,20 @@ typedef struct mt_read_options {
  * -1, i.e. out of range); other lines ignored. PLY: x y z of the vertex
  * element, vertex_indices (or vertex_index) of the face element; other
  * properties skipped.
+ *
+ * STL: every facet becomes a face of new vertices, in file order (facet f
+ * has vertices 3f, 3f+1, 3f+2); normals and attribute byte counts are
+ * skipped. Binary STL (80-byte header, uint32 little-endian triangle
+ * count, 50 bytes per triangle, float32 little-endian coordinates stored
+ * exactly as doubles) is recognised by its length being 84 + 50 * count,
+ * even when its header starts with "solid"; otherwise a file starting with
+ * "solid" and text-like in its first 256 bytes is ASCII STL ("solid",
+ * facets of "facet normal n n n / outer loop / vertex x y z ... / endloop /
+ * endfacet", "endsolid"; keywords in any case; several solids in a row;
+ * a loop of more than 3 vertices gives a polygon), one that is not is
+ * binary, and an unrecognised ".stl" file is read as binary (so that a
+ * truncated one says how many triangles it lacks). For gzip data the
+ * length is learned first (inflating it once) when it decides.
  *
  * Memory. The file is parsed as it is read (and inflated), through a window
  * of mt_read_options.window_bytes, and the face list grows as elements are
@@ -114,9 +134,50 @@ mt_status mt_read_memory_with(const void *data, size_t size, mt_format format, c
  * as the shortest decimal that reads back to the same double (text formats)
  * or as float64 (binary PLY); a list without positions gets zeros. Face
  * records are written as they are, out-of-range indices as their signed
- * value. The file is written to a temporary name and renamed into place. */
+ * value. The file is written to a temporary name and renamed into place.
+ *
+ * STL stores triangles by their corners' positions: a face of n > 3
+ * entries is written as the fan (0, k, k+1), k = 1 .. n-2, each triangle
+ * with the unit normal of its corners (zero for a degenerate one) and an
+ * attribute byte count of 0. Binary STL rounds positions to float32 (ASCII
+ * STL keeps every double). Faces of fewer than 3 entries and out-of-range
+ * indices cannot be written: MT_ERR_UNSUPPORTED naming the face, before a
+ * file is created; so is more than 2^32 - 1 triangles in binary STL. */
 mt_status mt_write_file(const char *path, mt_format format, const mt_face_list *list,
                         mt_diag *diag);
+
+/* ---- Welding ------------------------------------------------------------ */
+
+/* What mt_face_list_weld did. */
+typedef struct mt_weld_stats {
+    uint32_t vertices_before; /* list->num_verts before */
+    uint32_t vertices_after;  /* list->num_verts after */
+    uint32_t merged;          /* vertices_before - vertices_after */
+} mt_weld_stats;
+
+/* Merges vertices of a face list by position, in place: with eps == 0
+ * those with identical coordinates (compared as values: -0.0 equals 0.0),
+ * with eps > 0 those within Euclidean distance eps (a spatial hash of cells
+ * of side eps, the 27 cells around a vertex searched: linear expected
+ * time). A vertex with a NaN or infinite coordinate is never merged.
+ *
+ * Vertices are taken in id order; each merges into the lowest-numbered
+ * earlier survivor within eps of it, else survives. Survivors keep their
+ * own positions and their order (new ids ascend with the old ones); face
+ * indices are remapped, out-of-range ones kept as they are, no face is
+ * dropped (faces that lose corners to the weld stay, as degenerate
+ * records the build reports). Merging is not transitive: a vertex is
+ * compared with survivors only, so every merged vertex lies within eps of
+ * the survivor it merged into, and a chain of points eps/2 apart does not
+ * collapse into one. The result does not depend on hashing.
+ *
+ * out_map (may be NULL): list->num_verts entries (the count before) that
+ * receive each old vertex's new id. out_stats may be NULL. Errors:
+ * MT_ERR_INVALID_ARG (NULL list, inconsistent list, a list with vertices
+ * but no positions, eps negative or not finite), MT_ERR_NOMEM; the list is
+ * then unchanged. */
+mt_status mt_face_list_weld(mt_face_list *list, double eps, uint32_t *out_map,
+                            mt_weld_stats *out_stats, mt_diag *diag);
 
 #ifdef __cplusplus
 }
