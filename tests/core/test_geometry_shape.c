@@ -4,7 +4,8 @@
  * are self-crossing with the right sides named; a warped quad is warped and
  * a barely bent one is not; a regular 1000-gon is simple until one corner is
  * pulled across it; on random polygons the sweep line agrees with a check of
- * every pair of sides written here; triangulating a crossing face is refused. */
+ * every pair of sides written here; triangulating a crossing face is refused;
+ * boundary loops that cross themselves are found the same way. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -292,7 +293,75 @@ static void test_shape_triangulate_refused(void)
     mt_mesh_destroy(mesh);
 }
 
+/* Whether {a0, a1} is the undirected edge {b0, b1}. */
+static int same_edge(const uint32_t *a, uint32_t b0, uint32_t b1)
+{
+    return (a[0] == b0 && a[1] == b1) || (a[0] == b1 && a[1] == b0);
+}
+
+/* Boundary loops: a fan whose rim is a pentagram has one loop that crosses
+ * itself; a crossed quad's loop is its own sides; a grid's is simple. */
+static void test_shape_boundary_loops(void)
+{
+    double p[3 * 6] = {0, 0, 0.1};
+    for (int i = 0; i < 5; i++) {
+        double a = 2 * 3.14159265358979323846 * (2 * i % 5) / 5;
+        p[3 * (i + 1)] = cos(a);
+        p[3 * (i + 1) + 1] = sin(a);
+        p[3 * (i + 1) + 2] = 0;
+    }
+    uint32_t sizes[5] = {3, 3, 3, 3, 3}, idx[15];
+    for (uint32_t i = 0; i < 5; i++) {
+        idx[3 * i] = 0;
+        idx[3 * i + 1] = 1 + i;
+        idx[3 * i + 2] = 1 + (i + 1) % 5;
+    }
+    mt_face_list fan = {6, 5, 15, p, sizes, idx};
+    mt_mesh *mesh = NULL;
+    mt_diag diag;
+    CHECK_OK(mt_mesh_build(&fan, NULL, &mesh, &diag));
+    if (!mesh) return;
+    size_t count = 0;
+    CHECK_STATUS(mt_mesh_boundary_loop_crossings(mesh, NULL, 0, &count, &diag), MT_OK);
+    CHECK_EQ(count, 1);
+    mt_loop_crossing c;
+    CHECK_OK(mt_mesh_boundary_loop_crossings(mesh, &c, 1, &count, &diag));
+    CHECK_EQ(c.loop, 0);
+    /* Rim edges i: (1 + i, 1 + (i + 1) % 5); two that are not neighbours. */
+    int a = -1, b = -1;
+    for (int i = 0; i < 5; i++) {
+        if (same_edge(c.edge_a, 1 + i, 1 + (i + 1) % 5)) a = i;
+        if (same_edge(c.edge_b, 1 + i, 1 + (i + 1) % 5)) b = i;
+    }
+    CHECK(a >= 0 && b >= 0 && a != b && (a + 1) % 5 != b && (b + 1) % 5 != a);
+    mt_mesh_destroy(mesh);
+
+    const double bowtie[] = {0, 0, 0, 1, 1, 0, 1, 0, 0, 0, 1, 0};
+    mesh = polygon_mesh(bowtie, 4);
+    if (!mesh) return;
+    CHECK_OK(mt_mesh_boundary_loop_crossings(mesh, &c, 1, &count, &diag));
+    CHECK_EQ(count, 1);
+    CHECK((same_edge(c.edge_a, 0, 1) && same_edge(c.edge_b, 2, 3)) ||
+          (same_edge(c.edge_a, 2, 3) && same_edge(c.edge_b, 0, 1)));
+    mt_mesh_destroy(mesh);
+
+    mt_face_list grid;
+    CHECK_OK(mt_gen_grid(20, 10, true, &grid));
+    CHECK_OK(mt_mesh_build(&grid, NULL, &mesh, &diag));
+    CHECK_OK(mt_mesh_boundary_loop_crossings(mesh, NULL, 0, &count, &diag));
+    CHECK_EQ(count, 0);
+    mt_mesh_destroy(mesh);
+    double *positions = grid.positions;
+    grid.positions = NULL;
+    CHECK_OK(mt_mesh_build(&grid, NULL, &mesh, &diag));
+    CHECK_STATUS(mt_mesh_boundary_loop_crossings(mesh, NULL, 0, &count, &diag), MT_ERR_NO_GEOMETRY);
+    mt_mesh_destroy(mesh);
+    grid.positions = positions;
+    mt_face_list_free(&grid);
+}
+
 static const mt_test_case cases[] = {
+    {"shape_boundary_loops", test_shape_boundary_loops},
     {"shape_triangulate_refused", test_shape_triangulate_refused},
     {"shape_simple", test_shape_simple},
     {"shape_crossing", test_shape_crossing},

@@ -643,9 +643,10 @@ static void check_queries(const model *m, const mt_mesh *mesh, byte_reader *r)
     check_edge_probes(m, mesh, r);
 }
 
-/* Face shapes (the sweep line over every polygon face): the size query and
- * the fill agree, each face listed is valid and not simple, named sides are
- * two distinct sides of it; without positions, MT_ERR_NO_GEOMETRY. */
+/* Face shapes (the sweep line over every polygon face and boundary loop):
+ * the size query and the fill agree, each face listed is valid and not
+ * simple, named sides are two distinct sides of it, loop ids are in range;
+ * without positions, MT_ERR_NO_GEOMETRY. */
 static void check_face_shapes(const model *m, const mt_mesh *mesh)
 {
     size_t count = 0;
@@ -668,6 +669,16 @@ static void check_face_shapes(const model *m, const mt_mesh *mesh)
         REQUIRE(mt_face_shape_of(mesh, f->face, &one, NULL) == MT_OK && one.kind == f->kind);
     }
     free(shapes);
+    /* Boundary loops crossing themselves: the same rules, loop ids in range. */
+    size_t loops = 0, loop_verts = 0;
+    mt_boundary_loops(mesh, NULL, 0, NULL, 0, &loop_verts, &loops);
+    REQUIRE(mt_mesh_boundary_loop_crossings(mesh, NULL, 0, &count, NULL) == MT_OK);
+    REQUIRE(count <= loops);
+    mt_loop_crossing *crossings = count ? calloc(count, sizeof *crossings) : NULL;
+    REQUIRE(mt_mesh_boundary_loop_crossings(mesh, crossings, count, &again, NULL) == MT_OK &&
+            again == count);
+    for (size_t i = 0; i < count; i++) REQUIRE(crossings[i].loop < loops);
+    free(crossings);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -239,6 +239,26 @@ static mt_status shape_of(const double *const *corner, uint32_t n, mt_face_shape
     return MT_OK;
 }
 
+/* The shape of the closed polyline through `verts` (caller ids, n >= 4;
+ * fewer cannot cross): out->kind and sides as for a face. Corners at NaN or
+ * infinity leave it unjudged (simple). MT_OK or MT_ERR_NOMEM. */
+static mt_status polyline_shape(const mt_mesh *m, const uint32_t *verts, size_t n,
+                                mt_face_shape *out)
+{
+    if (n < 4) return MT_OK;
+    const double **corner = malloc(n * sizeof *corner);
+    if (!corner) return MT_ERR_NOMEM;
+    bool finite = true;
+    for (size_t i = 0; i < n; i++) {
+        corner[i] = m->positions + 3 * (size_t)verts[i];
+        finite =
+            finite && isfinite(corner[i][0]) && isfinite(corner[i][1]) && isfinite(corner[i][2]);
+    }
+    mt_status s = finite ? shape_of(corner, (uint32_t)n, out) : MT_OK;
+    free(corner);
+    return s;
+}
+
 /* The shape of valid face f (its corners in mt_face_verts order). */
 static mt_status face_shape(const mt_mesh *m, uint32_t f, mt_face_shape *out, mt_diag *diag,
                             const char *what)
@@ -255,26 +275,14 @@ static mt_status face_shape(const mt_mesh *m, uint32_t f, mt_face_shape *out, mt
         return mt_diag_set(diag, s, "%s: face %u", what, f);
     if (n < 4) return MT_OK; /* a triangle is simple and planar */
     uint32_t *verts = malloc(n * sizeof *verts);
-    const double **corner = malloc(n * sizeof *corner);
-    if (!verts || !corner) {
-        free(verts);
-        free(corner);
-        return mt_diag_set(diag, MT_ERR_NOMEM, "%s: no memory for face %u", what, f);
-    }
+    if (!verts) return mt_diag_set(diag, MT_ERR_NOMEM, "%s: no memory for face %u", what, f);
     s = mt_face_verts(m, f, verts, n, &n);
     if (s != MT_OK) mt_diag_set(diag, s, "%s: face %u", what, f);
-    bool finite = true;
-    for (size_t i = 0; s == MT_OK && i < n; i++) {
-        corner[i] = m->positions + 3 * (size_t)verts[i];
-        finite =
-            finite && isfinite(corner[i][0]) && isfinite(corner[i][1]) && isfinite(corner[i][2]);
-    }
     /* A corner at NaN or infinity has no place in a plane: the face is not
      * judged (the report lists the vertex as a nonfinite_coordinate). */
-    if (s == MT_OK && finite) s = shape_of(corner, (uint32_t)n, out);
+    if (s == MT_OK) s = polyline_shape(m, verts, n, out);
     if (s == MT_ERR_NOMEM) mt_diag_set(diag, s, "%s: no memory for face %u", what, f);
     free(verts);
-    free(corner);
     return s;
 }
 
@@ -315,5 +323,56 @@ mt_status mt_mesh_nonsimple_faces(const mt_mesh *mesh, mt_face_shape *out, size_
     if (out && count > capacity)
         return mt_diag_set(diag, MT_ERR_BUFFER_TOO_SMALL,
                            "mt_mesh_nonsimple_faces: %zu faces, room for %zu", count, capacity);
+    return MT_OK;
+}
+
+mt_status mt_mesh_boundary_loop_crossings(const mt_mesh *mesh, mt_loop_crossing *out,
+                                          size_t capacity, size_t *out_count, mt_diag *diag)
+{
+    static const char what[] = "mt_mesh_boundary_loop_crossings";
+    mt_diag_clear(diag);
+    if (out_count) *out_count = 0;
+    if (!out_count) return mt_diag_set(diag, MT_ERR_INVALID_ARG, "%s: out_count is NULL", what);
+    mt_status s = mt__geom_ready(mesh, what, diag);
+    if (s != MT_OK) return s;
+    size_t num_verts = 0, num_loops = 0;
+    s = mt_boundary_loops(mesh, NULL, 0, NULL, 0, &num_verts, &num_loops);
+    if (s != MT_OK && s != MT_ERR_BUFFER_TOO_SMALL)
+        return mt_diag_set(diag, s, "%s: reading the boundary loops", what);
+    uint32_t *verts = malloc((num_verts ? num_verts : 1) * sizeof *verts);
+    uint32_t *offsets = malloc((num_loops + 1) * sizeof *offsets);
+    if (!verts || !offsets) {
+        free(verts);
+        free(offsets);
+        return mt_diag_set(diag, MT_ERR_NOMEM, "%s: no memory for %zu loop vertices", what,
+                           num_verts);
+    }
+    s = mt_boundary_loops(mesh, verts, num_verts, offsets, num_loops + 1, &num_verts, &num_loops);
+    size_t count = 0;
+    for (size_t l = 0; s == MT_OK && l < num_loops; l++) {
+        const uint32_t *loop = verts + offsets[l];
+        const size_t n = offsets[l + 1] - offsets[l];
+        mt_face_shape shape;
+        memset(&shape, 0, sizeof shape);
+        s = polyline_shape(mesh, loop, n, &shape);
+        if (s != MT_OK || shape.kind != MT_FACE_SELF_CROSSING) continue;
+        if (out && count < capacity) {
+            mt_loop_crossing *c = &out[count];
+            c->loop = (uint32_t)l;
+            c->edge_a[0] = loop[shape.side_a];
+            c->edge_a[1] = loop[(shape.side_a + 1) % n];
+            c->edge_b[0] = loop[shape.side_b];
+            c->edge_b[1] = loop[(shape.side_b + 1) % n];
+        }
+        count++;
+    }
+    free(verts);
+    free(offsets);
+    if (s == MT_ERR_NOMEM) return mt_diag_set(diag, s, "%s: out of memory", what);
+    if (s != MT_OK) return mt_diag_set(diag, s, "%s: reading the boundary loops", what);
+    *out_count = count;
+    if (out && count > capacity)
+        return mt_diag_set(diag, MT_ERR_BUFFER_TOO_SMALL, "%s: %zu loops cross, room for %zu", what,
+                           count, capacity);
     return MT_OK;
 }

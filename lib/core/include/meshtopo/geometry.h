@@ -109,6 +109,22 @@ mt_status mt_face_shape_of(const mt_mesh *mesh, uint32_t face, mt_face_shape *ou
 mt_status mt_mesh_nonsimple_faces(const mt_mesh *mesh, mt_face_shape *out, size_t capacity,
                                   size_t *out_count, mt_diag *diag);
 
+/* A boundary loop (mt_boundary_loops) that crosses or touches itself in its
+ * best-fit plane, and two of its edges that do (caller vertex pairs, in
+ * the loop's order; edge_a comes first along the loop). */
+typedef struct mt_loop_crossing {
+    uint32_t loop; /* its index in mt_boundary_loops' order */
+    uint32_t edge_a[2], edge_b[2];
+} mt_loop_crossing;
+
+/* Every boundary loop of four or more edges that crosses itself in its
+ * best-fit plane (the sweep of mt_face_shape_of over the loop), in loop
+ * order: out gets up to capacity (NULL or 0 to learn how many), *out_count
+ * how many; MT_ERR_BUFFER_TOO_SMALL when they do not fit. A loop with a
+ * corner at NaN or infinity is not judged. */
+mt_status mt_mesh_boundary_loop_crossings(const mt_mesh *mesh, mt_loop_crossing *out,
+                                          size_t capacity, size_t *out_count, mt_diag *diag);
+
 /* ---- vertices ------------------------------------------------------------- */
 
 /* Angle-weighted vertex normal (Thuermer and Wuethrich 1998): the sum of the
