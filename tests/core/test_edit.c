@@ -638,7 +638,47 @@ static void compact_maps(void)
     mt_mesh_destroy(m);
 }
 
+/* The report's V, E, F and Euler characteristic agree after every collapse,
+ * deletion and undo, before compaction: V leaves out deleted vertices while
+ * mt_mesh_num_verts keeps the id range. */
+static void test_edit_report_counts_agree(void)
+{
+    mt_face_list list;
+    CHECK_OK(mt_gen_icosphere(2, &list));
+    mt_mesh *m = NULL;
+    mt_diag diag;
+    CHECK_OK(mt_mesh_build(&list, NULL, &m, &diag));
+    mt_face_list_free(&list);
+    if (!m) return;
+    const uint32_t ids = mt_mesh_num_verts(m);
+    int collapses = 0;
+    for (uint32_t f = 0; f < mt_mesh_num_faces(m) && collapses < 20; f += 7) {
+        uint32_t verts[3];
+        size_t n = 0;
+        if (mt_face_verts(m, f, verts, 3, &n) != MT_OK || n != 3) continue;
+        if (mt_edge_collapse(m, verts[0], verts[1], NULL, &diag) != MT_OK) continue;
+        collapses++;
+        const mt_report *r = mt_mesh_report(m);
+        CHECK_EQ((int64_t)r->num_verts - (int64_t)r->num_edges + (int64_t)r->num_faces_valid,
+                 r->euler_characteristic);
+        CHECK_EQ(r->euler_characteristic, 2);
+        CHECK_EQ(mt_mesh_num_verts(m), ids);
+        CHECK_OK(mt_mesh_validate(m, &diag));
+    }
+    CHECK(collapses > 10);
+    /* A refused edit leaves the counts as they were. */
+    const uint32_t v_before = mt_mesh_report(m)->num_verts;
+    CHECK(mt_vert_delete(m, ids + 5, &diag) != MT_OK);
+    CHECK_EQ(mt_mesh_report(m)->num_verts, v_before);
+    /* Compaction keeps V and renumbers the ids to it. */
+    CHECK_OK(mt_mesh_compact(m, NULL, 0, NULL, 0, &diag));
+    CHECK_EQ(mt_mesh_report(m)->num_verts, v_before);
+    CHECK_EQ(mt_mesh_num_verts(m), v_before);
+    mt_mesh_destroy(m);
+}
+
 static const mt_test_case cases[] = {
+    {"edit_report_counts_agree", test_edit_report_counts_agree},
     {"edit_rectangle_flip", rectangle_flip},
     {"edit_rectangle_every_edit", rectangle_every_edit},
     {"edit_platonic", platonic_splits_flips_collapses},

@@ -37,6 +37,7 @@ typedef struct mt__edit {
     mt_status status; /* MT_ERR_NOMEM once a write could not be logged */
     /* Counts at the start, restored by a rollback. */
     uint32_t num_verts, num_faces, num_half_edges, num_faces_valid, num_deleted_verts;
+    uint32_t report_verts; /* the report's V: live vertices */
     uint64_t num_edges;
     int64_t euler;
     /* One vertex position an edit may move (MT_NONE: none moved). */

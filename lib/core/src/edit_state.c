@@ -126,6 +126,7 @@ mt_status mt__edit_begin(mt__edit *e, mt_mesh *m, mt_diag *diag, const char *wha
     e->s->undo.len = e->s->freed.len = e->s->touched.len = 0;
     e->s->prim.len = e->s->work.len = 0;
     e->num_verts = m->num_verts;
+    e->report_verts = m->report.num_verts;
     e->num_faces = m->num_faces;
     e->num_half_edges = m->num_half_edges;
     e->num_faces_valid = m->report.num_faces_valid;
@@ -200,7 +201,7 @@ mt_status mt__edit_abort(mt__edit *e, mt_status status)
     m->num_verts = m->num_verts_internal = e->num_verts;
     m->num_faces = e->num_faces;
     m->num_half_edges = e->num_half_edges;
-    m->report.num_verts = e->num_verts;
+    m->report.num_verts = e->report_verts;
     m->report.num_faces = e->num_faces;
     m->report.num_faces_valid = e->num_faces_valid;
     m->report.num_edges = e->num_edges;
@@ -239,7 +240,7 @@ mt_status mt__edit_new_vert(mt__edit *e, const double *pos, uint32_t *out_vert)
     if (m->vert_component) m->vert_component[v] = MT_NONE;
     if (e->s->vert_deleted) e->s->vert_deleted[v] = 0;
     m->num_verts = m->num_verts_internal = v + 1;
-    m->report.num_verts = v + 1;
+    m->report.num_verts++;
     m->report.euler_characteristic++;
     *out_vert = v;
     return MT_OK;
@@ -312,6 +313,7 @@ mt_status mt__edit_delete_vert(mt__edit *e, uint32_t v)
     if (m->vert_component && m->vert_component[v] != MT_NONE)
         mt__edit_set(e, MT__A_COMP, v, MT_NONE);
     s->num_deleted_verts++;
+    m->report.num_verts--; /* V - E + F stays the Euler characteristic */
     m->report.euler_characteristic--;
     return e->status;
 }

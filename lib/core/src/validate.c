@@ -6,6 +6,7 @@
  * half-edges, a counter per internal vertex and a stamp per caller vertex. */
 #include <string.h>
 
+#include "edit_internal.h"
 #include "mesh_internal.h"
 #include "meshtopo/validate.h"
 
@@ -75,10 +76,15 @@ static mt_status check_sizes(const mt_mesh *m, mt_diag *diag)
                             "mesh has %u bundled edges but a bundle array is missing", total);
     }
     const mt_report *r = &m->report;
-    if (r->num_verts != m->num_verts || r->num_faces != m->num_faces)
+    /* The report's V leaves out the vertices an edit deleted. */
+    const uint32_t deleted = m->edit ? m->edit->num_deleted_verts : 0;
+    if (deleted > m->num_verts)
+        return mt__fail(diag, MT_ERR_CORRUPT, MT_NONE, "%u vertices deleted of %u", deleted,
+                        m->num_verts);
+    if (r->num_verts != m->num_verts - deleted || r->num_faces != m->num_faces)
         return mt__fail(diag, MT_ERR_CORRUPT, MT_NONE,
                         "report counts %u vertices and %u faces but the mesh has %u and %u",
-                        r->num_verts, r->num_faces, m->num_verts, m->num_faces);
+                        r->num_verts, r->num_faces, m->num_verts - deleted, m->num_faces);
     return MT_OK;
 }
 

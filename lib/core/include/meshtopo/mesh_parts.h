@@ -28,7 +28,10 @@ typedef struct mt_mesh_parts {
     uint32_t num_half_edges;     /* even: 2 * internal edges */
 
     const uint32_t *he_head; /* [num_half_edges] internal vertex it points to */
-    const uint32_t *he_next; /* [num_half_edges] next in its face or boundary ring */
+    const uint32_t *he_next; /* [num_half_edges] next in its face or boundary ring. Walking
+                                the outgoing half-edges of a vertex by h = he_next[h ^ 1]
+                                turns clockwise for counter-clockwise faces: the opposite
+                                of mt_vert_ring's order */
     const uint32_t *he_face; /* [num_half_edges] face, MT_NONE on a boundary */
     const uint32_t *face_he; /* [num_faces] first side, MT_NONE for a rejected record */
     const uint32_t *vert_he; /* [num_verts_internal] outgoing, MT_NONE when isolated */

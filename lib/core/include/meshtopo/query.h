@@ -48,7 +48,11 @@ typedef struct mt_ring {
  * fan after another. Within an open fan, neighbors[i] and neighbors[i+1]
  * bound faces[i]; in a closed fan neighbors[i] and neighbors[i+1 mod n] do.
  * A neighbour reached through two fans (a non-manifold edge) appears in
- * each. An isolated vertex has no fans. MT_ERR_OUT_OF_RANGE for a bad id. */
+ * each. An edge two faces cross in the same direction (a flipped face) is a
+ * seam: the half-edge structure opens there, so the vertex's faces on either
+ * side of it fall in separate fans (or one open fan), each with that
+ * neighbour at an end. An isolated vertex has no fans. MT_ERR_OUT_OF_RANGE
+ * for a bad id. */
 mt_status mt_vert_ring(const mt_mesh *mesh, uint32_t vert, mt_ring *ring);
 
 /* Number of distinct neighbours (edges at the vertex). */

@@ -76,7 +76,9 @@ typedef struct mt_component_info {
 } mt_component_info;
 
 typedef struct mt_report {
-    uint32_t num_verts;       /* V: every listed vertex */
+    uint32_t num_verts;       /* V: every listed vertex, less those an edit deleted (so
+                                 V - E + F_valid is the Euler characteristic before
+                                 compaction too; mt_mesh_num_verts keeps the id range) */
     uint32_t num_faces;       /* F: every face record */
     uint32_t num_faces_valid; /* records kept in the mesh */
     uint64_t num_edges;       /* distinct undirected edges of valid faces */
