@@ -1,6 +1,6 @@
 /* Test and demo meshes as face lists: the Platonic solids, the seed
- * rectangle, grids, tori, spheres, a genus-2 surface and the classic
- * defective shapes. Every generator allocates *out (free it with
+ * rectangle, grids, tori, spheres, a genus-2 surface, the classic defective
+ * shapes, and the dual of a built mesh. Every generator allocates *out (free it with
  * mt_face_list_free) and returns MT_OK, MT_ERR_INVALID_ARG for sizes out of
  * its documented range, MT_ERR_TOO_LARGE when the counts would not fit in
  * 32 bits, or MT_ERR_NOMEM; on failure *out is zeroed. All faces are consistently oriented
@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "meshtopo/face_list.h"
+#include "meshtopo/mesh.h"
 #include "meshtopo/status.h"
 
 #ifdef __cplusplus
@@ -59,6 +60,19 @@ mt_status mt_gen_bowtie(mt_face_list *out);
 
 /* Three triangles sharing edge 0-1: a fin (non-manifold edge). */
 mt_status mt_gen_fin(mt_face_list *out);
+
+/* The dual of a built mesh (Platonic duality): dual vertex f for each face
+ * record f, at the face's centroid (mt_face_centroid; the origin for a
+ * record the build rejected, or without positions when the mesh has none);
+ * a dual face for each closed fan of faces around a vertex, its corners the
+ * fan's faces in ring order (counter-clockwise: orientation is kept), in
+ * vertex order, a non-manifold vertex giving one per closed fan. On a
+ * boundary the rule is: an open fan gives no face, so the dual of a mesh
+ * with boundary covers only its interior vertices. For a closed manifold
+ * mesh dual face v is vertex v, and the dual of the dual has the original's
+ * faces (each face's corners up to rotation). MT_ERR_INVALID_ARG,
+ * MT_ERR_NOMEM. */
+mt_status mt_gen_dual(const mt_mesh *mesh, mt_face_list *out, mt_diag *diag);
 
 #ifdef __cplusplus
 }
