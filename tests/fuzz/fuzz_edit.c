@@ -9,7 +9,7 @@
  * Input layout (missing bytes read as 0):
  *   byte 0    mesh: % 6 = icosahedron, octahedron, cube, 3x3 triangle grid,
  *             3x3 quad grid, 4x3 torus
- *   then      triples (op, x, y): op % 11 picks the edit, x and y pick a
+ *   then      triples (op, x, y): op % 12 picks the edit, x and y pick a
  *             vertex, an edge (by half-edge) or a face modulo the live counts.
  */
 #include <stdint.h>
@@ -92,7 +92,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const bool edge = pick_edge(m, x, &a, &b);
         bool keeps_chi = true;
         mt_status s = MT_ERR_NOT_FOUND;
-        switch (op % 11) {
+        switch (op % 12) {
             case 0:
                 if (edge) s = mt_edge_split(m, a, b, NULL, NULL, &d);
                 break;
@@ -124,6 +124,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 keeps_chi = false;
                 s = mt_vert_delete(m, x % (nv ? nv : 1), &d);
                 break;
+            case 10:
+                if (edge) s = mt_face_join(m, a, b, NULL, &d);
+                if (s == MT_OK && r->num_faces_valid != faces - 1)
+                    fail("a join did not remove one face", &d);
+                break;
             case 9: {
                 keeps_chi = false;
                 uint32_t tri[3] = {x % nv, y % nv, (uint32_t)(x + y + 1) % nv};
@@ -145,6 +150,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             s != MT_ERR_OUT_OF_RANGE && s != MT_ERR_INVALID_ARG)
             fail(mt_strerror(s), &d);
         if (mt_mesh_validate(m, &d) != MT_OK) fail("validate after edit", &d);
+        if ((int64_t)r->num_verts - (int64_t)r->num_edges + r->num_faces_valid !=
+            r->euler_characteristic)
+            fail("V - E + F differs from the Euler characteristic", &d);
     }
     const int64_t chi = mt_mesh_report(m)->euler_characteristic;
     if (mt_mesh_compact(m, NULL, 0, NULL, 0, &d) != MT_OK) fail("compact", &d);

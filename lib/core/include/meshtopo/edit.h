@@ -143,6 +143,25 @@ mt_status mt_face_split(mt_mesh *mesh, uint32_t face, uint32_t a, uint32_t b, ui
  */
 mt_status mt_face_triangulate(mt_mesh *mesh, uint32_t face, uint32_t *out_new_faces, mt_diag *diag);
 
+/* Joins the two faces on either side of edge a-b into one polygon (the
+ * face merge of the proof of Euler's formula): the face holding a -> b keeps
+ * its id (*out_face, when not NULL) and gets the corners of both around the
+ * edge, the other face's record is deleted, and the edge disappears, so V -
+ * E + F is unchanged.
+ *
+ *      d-----c               d-----c
+ *      |  f1 |               |     |
+ *      a-----b      ->       a     b      (a quad: f1 and f2 become a hexagon)
+ *      |  f2 |               |     |
+ *      f-----e               f-----e
+ *
+ * Refused (MT_ERR_REFUSED, nothing changed) with the reason when the edge is
+ * on a boundary (used by other than two faces), when one face is on both
+ * sides, and when the faces share more than that edge (the joined face would
+ * repeat a vertex); like every edit, MT_ERR_UNSUPPORTED on a non-manifold
+ * mesh. */
+mt_status mt_face_join(mt_mesh *mesh, uint32_t a, uint32_t b, uint32_t *out_face, mt_diag *diag);
+
 /* Triangulates every face with more than three sides (as mt_face_triangulate),
  * all or nothing: a refusal on any face leaves the whole mesh unchanged. */
 mt_status mt_mesh_triangulate(mt_mesh *mesh, mt_diag *diag);
