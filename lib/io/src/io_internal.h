@@ -128,6 +128,32 @@ static inline int mt__is_space(unsigned char c)
     return c == ' ' || (c >= '\t' && c <= '\r');
 }
 
+/* The next whitespace-separated token from *pos on, moving the window on:
+ * 1 with [*start, *start + *len) in the window and *pos past it, 0 at the
+ * end of the input (*pos then at the end). Inline: the ASCII parsers call
+ * it once per number. */
+static inline int mt__src_token(mt__io_src *src, size_t *pos, size_t *start, size_t *len)
+{
+    size_t i = *pos;
+    for (;;) {
+        const unsigned char *d = src->data;
+        size_t n = src->size;
+        while (i < n && mt__is_space(d[i])) i++;
+        if (i < n) {
+            size_t s = i;
+            while (i < n && !mt__is_space(d[i])) i++;
+            *start = s;
+            *len = i - s;
+            *pos = i;
+            return 1;
+        }
+        if (!mt__src_more(src, &i)) {
+            *pos = i;
+            return 0;
+        }
+    }
+}
+
 /* Index of the first '\n' at or after i, or n. */
 static inline size_t mt__line_end(const unsigned char *d, size_t n, size_t i)
 {

@@ -377,29 +377,6 @@ static uint32_t item_element(const ply_elem *e, uint64_t item)
 
 /* ---- ASCII data -------------------------------------------------------- */
 
-/* Next whitespace-separated token, moving the window on; 0 at the end. */
-static int ascii_token(mt__io_src *src, size_t *pos, size_t *start, size_t *len)
-{
-    size_t i = *pos;
-    for (;;) {
-        const unsigned char *d = src->data;
-        size_t n = src->size;
-        while (i < n && mt__is_space(d[i])) i++;
-        if (i < n) {
-            size_t s = i;
-            while (i < n && !mt__is_space(d[i])) i++;
-            *start = s;
-            *len = i - s;
-            *pos = i;
-            return 1;
-        }
-        if (!mt__src_more(src, &i)) {
-            *pos = i;
-            return 0;
-        }
-    }
-}
-
 /* "LABEL: property 'NAME': WHAT: 'EXCERPT'" at an input offset (line 0:
  * computed from it). */
 static mt_status ascii_fail_at(mt_diag *diag, const mt__io_src *src, const ply_elem *e,
@@ -483,7 +460,7 @@ static mt_status ascii_element(mt__io_src *src, const ply_header *h, const ply_e
                     continue;
                 }
             }
-            int found = ascii_token(src, &i, &start, &len);
+            int found = mt__src_token(src, &i, &start, &len);
             d = src->data;
             n = src->size;
             if (!found) return ascii_end(diag, src, h, e, item, p, NULL);
@@ -520,7 +497,7 @@ static mt_status ascii_element(mt__io_src *src, const ply_header *h, const ply_e
                     int64_t index;
                     while (i < n && mt__is_space(d[i])) i++;
                     if (!mt__scan_index(d, n, &i, ' ', &index)) { /* not the fast path */
-                        found = ascii_token(src, &i, &start, &len);
+                        found = mt__src_token(src, &i, &start, &len);
                         d = src->data;
                         n = src->size;
                         if (!found) return ascii_end(diag, src, h, e, item, p, &lc);
@@ -537,7 +514,7 @@ static mt_status ascii_element(mt__io_src *src, const ply_header *h, const ply_e
                 b->sizes[item] = (uint32_t)count;
             } else {
                 for (uint64_t j = 0; j < count; j++) {
-                    found = ascii_token(src, &i, &start, &len);
+                    found = mt__src_token(src, &i, &start, &len);
                     d = src->data;
                     n = src->size;
                     if (!found) return ascii_end(diag, src, h, e, item, p, &lc);

@@ -178,29 +178,6 @@ mt_status mt__read_stl_binary(mt__io_src *src, mt_face_list *out, mt_diag *diag)
 
 /* ---- ASCII -------------------------------------------------------------- */
 
-/* Next whitespace-separated token, moving the window on; 0 at the end. */
-static int next_token(mt__io_src *src, size_t *pos, size_t *start, size_t *len)
-{
-    size_t i = *pos;
-    for (;;) {
-        const unsigned char *d = src->data;
-        size_t n = src->size;
-        while (i < n && mt__is_space(d[i])) i++;
-        if (i < n) {
-            size_t s = i;
-            while (i < n && !mt__is_space(d[i])) i++;
-            *start = s;
-            *len = i - s;
-            *pos = i;
-            return 1;
-        }
-        if (!mt__src_more(src, &i)) {
-            *pos = i;
-            return 0;
-        }
-    }
-}
-
 /* Skips to the end of the line (a solid's name). */
 static size_t rest_of_line(mt__io_src *src, size_t i)
 {
@@ -238,7 +215,7 @@ static mt_status expect(mt__io_src *src, size_t *pos, const char *kw, uint32_t f
         snprintf(what, sizeof what, "expected '%s'", kw);
     else
         snprintf(what, sizeof what, "facet %u: expected '%s'", facet, kw);
-    if (!next_token(src, pos, &start, &len)) return fail_end(diag, src, facet, what);
+    if (!mt__src_token(src, pos, &start, &len)) return fail_end(diag, src, facet, what);
     if (!keyword(src->data + start, len, kw, 0))
         return fail_token(diag, src, start, len, facet, what);
     return MT_OK;
@@ -252,7 +229,7 @@ static mt_status read_xyz(mt__io_src *src, size_t *pos, uint32_t facet, const ch
         size_t start, len;
         char msg[96];
         snprintf(msg, sizeof msg, "facet %u: %s: expected coordinate %d", facet, what, k);
-        if (!next_token(src, pos, &start, &len)) return fail_end(diag, src, facet, msg);
+        if (!mt__src_token(src, pos, &start, &len)) return fail_end(diag, src, facet, msg);
         if (!mt__parse_double(src->data + start, len, &xyz[k])) {
             snprintf(msg, sizeof msg, "facet %u: %s: coordinate %d is not a number", facet, what,
                      k);
@@ -270,11 +247,11 @@ static mt_status read_facet(mt__io_src *src, size_t *pos, uint32_t f, mt__builde
     double xyz[3];
     char what[96];
     snprintf(what, sizeof what, "facet %u: expected 'normal' or 'outer'", f);
-    if (!next_token(src, pos, &start, &len)) return fail_end(diag, src, f, what);
+    if (!mt__src_token(src, pos, &start, &len)) return fail_end(diag, src, f, what);
     if (keyword(src->data + start, len, "normal", 0)) {
         mt_status status = read_xyz(src, pos, f, "normal", xyz, diag);
         if (status != MT_OK) return status;
-        if (!next_token(src, pos, &start, &len)) return fail_end(diag, src, f, what);
+        if (!mt__src_token(src, pos, &start, &len)) return fail_end(diag, src, f, what);
     }
     if (!keyword(src->data + start, len, "outer", 0))
         return fail_token(diag, src, start, len, f, what);
@@ -283,7 +260,7 @@ static mt_status read_facet(mt__io_src *src, size_t *pos, uint32_t f, mt__builde
     size_t first = b->num_verts;
     snprintf(what, sizeof what, "facet %u: expected 'vertex' or 'endloop'", f);
     for (;;) {
-        if (!next_token(src, pos, &start, &len)) return fail_end(diag, src, f, what);
+        if (!mt__src_token(src, pos, &start, &len)) return fail_end(diag, src, f, what);
         if (keyword(src->data + start, len, "endloop", 0)) break;
         if (!keyword(src->data + start, len, "vertex", 0))
             return fail_token(diag, src, start, len, f, what);
@@ -312,7 +289,7 @@ static mt_status read_facet(mt__io_src *src, size_t *pos, uint32_t f, mt__builde
 static mt_status read_ascii(mt__io_src *src, mt__builder *b, mt_diag *diag)
 {
     size_t pos = 0, start, len;
-    if (!next_token(src, &pos, &start, &len))
+    if (!mt__src_token(src, &pos, &start, &len))
         return fail_end(diag, src, MT_NONE, "expected 'solid' (ASCII STL)");
     if (!keyword(src->data + start, len, "solid", 1))
         return fail_token(diag, src, start, len, MT_NONE, "expected 'solid' (ASCII STL)");
@@ -320,7 +297,7 @@ static mt_status read_ascii(mt__io_src *src, mt__builder *b, mt_diag *diag)
     uint32_t f = 0;
     for (;;) {
         static const char *const what = "expected 'facet' or 'endsolid'";
-        if (!next_token(src, &pos, &start, &len)) return fail_end(diag, src, f, what);
+        if (!mt__src_token(src, &pos, &start, &len)) return fail_end(diag, src, f, what);
         if (keyword(src->data + start, len, "facet", 0)) {
             if (f == UINT32_MAX)
                 return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_LINE, src->base + start, f,
@@ -335,7 +312,7 @@ static mt_status read_ascii(mt__io_src *src, mt__builder *b, mt_diag *diag)
             return fail_token(diag, src, start, len, f, what);
         pos = rest_of_line(src, pos);
         /* the end, or another solid */
-        if (!next_token(src, &pos, &start, &len)) return MT_OK;
+        if (!mt__src_token(src, &pos, &start, &len)) return MT_OK;
         if (!keyword(src->data + start, len, "solid", 1))
             return fail_token(diag, src, start, len, MT_NONE,
                               "expected 'solid' or the end of file after 'endsolid'");
