@@ -140,6 +140,7 @@ uint64_t mt__bench_rand_u64(uint64_t *state);
 /* bench_clock.c; mt__bench_elapsed_us: microseconds from a to b
  * (CLOCK_MONOTONIC readings). */
 double mt__bench_now_ms(void);
+void mt__bench_sleep_ms(double ms);
 double mt__bench_elapsed_us(const struct timespec *a, const struct timespec *b);
 int64_t mt__bench_heap_bytes(void);
 

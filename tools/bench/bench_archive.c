@@ -1,5 +1,6 @@
 /* `meshtopo-bench archive`: a triangle grid archived with
- * mt_archive_write_with and reloaded with mt_archive_load_mesh_file, each
+ * mt_archive_write_with (with the daemon's content hash) and reloaded with
+ * mt_archive_load_mesh_file, checking it as the daemon does, each
  * timed (medians) next to bare HDF5 writes and reads of the same datasets in
  * the same layout (archive_bare.c) and next to a rebuild from the face list,
  * for contiguous storage and for shuffle + deflate level 1. Options: --faces
@@ -133,6 +134,11 @@ static bool run_layout(const options *o, mt_archive *archive, const mt_face_list
     mt_archive_meta meta = {id, 0, 1700000000000000, "meshtopo-bench", 0};
     char err[512], bare_path[4096 + 64];
     mt_diag diag;
+    /* The hash the daemon acknowledges with: reloads check it, as the daemon's do. */
+    if (mt_archive_content_hash(NULL, list, &meta.content_hash, &diag) != MT_OK) {
+        fprintf(stderr, "meshtopo-bench archive: content hash: %s\n", diag.message);
+        return false;
+    }
     for (uint32_t r = 0; r < o->reps; r++) {
         meta.version = r + 1;
         snprintf(bare_path, sizeof bare_path, "%s/bare-%s-%u.h5", o->dir, id, r);
@@ -327,6 +333,7 @@ int mt__bench_archive_command(int argc, char **argv)
     mt_archive *archive = NULL;
     mt_archive_options ao = {false, false};
     if (set) st = mt_archive_open(o.dir, &ao, &archive, &diag);
+    if (archive) mt_archive_set_content_hash(archive, mt_archive_content_hash, NULL);
     layout_result *res = calloc(2, sizeof *res);
     bool ok = st == MT_OK && set && archive && res;
     if (!ok) fprintf(stderr, "meshtopo-bench archive: setup failed: %s\n", diag.message);

@@ -1,5 +1,5 @@
-/* The two meters of meshtopo-bench: a monotonic clock (milliseconds, and the
- * microseconds between two readings) and the bytes the heap has handed out
+/* The two meters of meshtopo-bench: a monotonic clock (milliseconds, the
+ * microseconds between two readings, and a pause) and the bytes the heap has handed out
  * (mallinfo2: all arenas plus mmapped blocks, so a difference taken around a
  * build is the memory the build keeps). Without glibc 2.33+ the heap meter
  * answers -1 (unknown). */
@@ -32,4 +32,10 @@ int64_t mt__bench_heap_bytes(void)
 #else
     return -1;
 #endif
+}
+
+void mt__bench_sleep_ms(double ms)
+{
+    struct timespec ts = {(time_t)(ms / 1000), (long)((ms - 1000.0 * (time_t)(ms / 1000)) * 1e6)};
+    nanosleep(&ts, NULL);
 }

@@ -19,7 +19,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "bench.h"
@@ -117,12 +116,6 @@ static int parse_options(int argc, char **argv, options *o)
     return 0;
 }
 
-static void sleep_ms(double ms)
-{
-    struct timespec ts = {(time_t)(ms / 1000), (long)((ms - 1000 * (time_t)(ms / 1000)) * 1e6)};
-    nanosleep(&ts, NULL);
-}
-
 static void push(samples *s, double v)
 {
     if (s->n == s->cap) {
@@ -157,7 +150,7 @@ static void *sample_rss(void *arg)
             if (atomic_load(&s->phase) != BASELINE && kb > atomic_load(&s->peak_kb))
                 atomic_store(&s->peak_kb, kb);
         }
-        sleep_ms(100);
+        mt__bench_sleep_ms(100);
     }
     return NULL;
 }
@@ -210,7 +203,7 @@ static void *run_worker(void *arg)
         else
             w->failed[phase]++;
         mt_client_reply_free(&reply);
-        sleep_ms(QUERY_PAUSE_MS);
+        mt__bench_sleep_ms(QUERY_PAUSE_MS);
     }
     mt_face_list_free(&small);
     mt_client_destroy(client);
@@ -298,18 +291,18 @@ static bool run_phases(soak *s, const options *o, const char *archive, char *err
     }
     fprintf(stderr, "meshtopo-bench soak: baseline %.0f s, attack %.0f s, quiet %.0f s\n",
             baseline_s, attack_s, quiet_s);
-    sleep_ms(baseline_s * 1000);
+    mt__bench_sleep_ms(baseline_s * 1000);
     *rss_start = atomic_load(&s->rss_kb);
     atomic_store(&s->peak_kb, *rss_start);
     atomic_store(&s->phase, ATTACK);
     mt__soak_hostile *h =
         mt__soak_hostile_start(MT__RTT_LCM_URL, GRID_ID, FLOOD_IDS, err, err_size);
     if (h) {
-        sleep_ms(attack_s * 1000);
+        mt__bench_sleep_ms(attack_s * 1000);
         mt__soak_hostile_stop(h, hostile_counts);
     }
     atomic_store(&s->phase, QUIET);
-    sleep_ms(quiet_s * 1000);
+    mt__bench_sleep_ms(quiet_s * 1000);
     *rss_end = atomic_load(&s->rss_kb);
     atomic_store(&s->phase, STOPPED);
     for (uint32_t c = 0; c < o->clients; c++) pthread_join(s->workers[c].thread, NULL);

@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bench.h"
 #include "meshtopo/channels.h"
@@ -177,12 +176,6 @@ static void send_garbage(mt__soak_hostile *h, uint64_t *rng)
     count(h, &h->counts.garbage);
 }
 
-static void sleep_ms(int ms)
-{
-    struct timespec ts = {ms / 1000, (long)(ms % 1000) * 1000000L};
-    nanosleep(&ts, NULL);
-}
-
 /* The schedule, every TICK_MS: one-byte scattered chunks and garbage each
  * tick; a claim and a request on an own channel every 100 ms; a flood
  * query every 50 ms; a new 1 GiB transfer every second (LIVE_TRICKLES of
@@ -228,7 +221,7 @@ static void *run(void *arg)
             }
         }
         lcm_handle_timeout(h->lcm, 0);
-        sleep_ms(TICK_MS);
+        mt__bench_sleep_ms(TICK_MS);
         tick++;
     }
     free(ids);
