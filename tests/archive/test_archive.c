@@ -282,6 +282,64 @@ static void test_versions_and_listing(void)
     at_rmdir(dir);
 }
 
+/* Accepts names that do not hold "scan" (the filter of the test below). */
+static bool not_scan(void *ctx, const char *file_name)
+{
+    (*(int *)ctx)++;
+    return strstr(file_name, "scan") == NULL;
+}
+
+/* Numbering shared by writers of one directory: the highest version by file
+ * name, the write of a taken number refused, and a listing that reads only
+ * the files a filter accepts. */
+static void test_highest_version_and_filtered_listing(void)
+{
+    char dir[512];
+    mt_archive *archive = open_fresh(dir, sizeof dir);
+    if (!archive) return;
+    mt_face_list a;
+    CHECK_OK(mt_gen_platonic(MT_TETRAHEDRON, &a));
+    uint32_t highest = 99;
+    CHECK_OK(mt_archive_highest_version(archive, "scan", &highest, NULL));
+    CHECK_EQ(highest, 0);
+    CHECK_OK(at_archive_list(archive, "scan", 1, &a, 1, NULL));
+    CHECK_OK(at_archive_list(archive, "scan", 7, &a, 1, NULL));
+    CHECK_OK(at_archive_list(archive, "scan.v9", 12, &a, 1, NULL)); /* '.' escaped: not "scan" */
+    CHECK_OK(at_archive_list(archive, "sca", 30, &a, 1, NULL));
+    CHECK_OK(mt_archive_highest_version(archive, "scan", &highest, NULL));
+    CHECK_EQ(highest, 7);
+    CHECK_OK(mt_archive_highest_version(archive, "sca", &highest, NULL));
+    CHECK_EQ(highest, 30);
+    CHECK_OK(mt_archive_highest_version(archive, "scan.v9", &highest, NULL));
+    CHECK_EQ(highest, 12);
+    /* A second writer that believed 7 was free is refused, naming the version. */
+    mt_diag diag;
+    mt_mesh *mesh = NULL;
+    CHECK_OK(mt_mesh_build(&a, NULL, &mesh, NULL));
+    mt_archive_meta meta = {.mesh_id = "scan", .version = 7, .utime = 1, .source = "b"};
+    CHECK_STATUS(mt_archive_write(archive, &meta, &a, mesh, NULL, &diag), MT_ERR_INVALID_ARG);
+    CHECK(strstr(diag.message, "version 7 of mesh 'scan' is already archived") != NULL);
+    mt_mesh_destroy(mesh);
+    CHECK_STATUS(mt_archive_highest_version(archive, "bad/id", &highest, &diag),
+                 MT_ERR_INVALID_ARG);
+
+    int asked = 0;
+    mt_archive_listing l;
+    CHECK_OK(mt_archive_list_filtered(archive, not_scan, &asked, &l, NULL));
+    CHECK_EQ(asked, 4);
+    CHECK_EQ(l.count, 1);
+    if (l.count == 1) CHECK(strcmp(l.entries[0].mesh_id, "sca") == 0);
+    mt_archive_listing_free(&l);
+    mt_face_list_free(&a);
+    mt_archive_close(archive);
+    CHECK_STATUS(mt_archive_open(dir, &(mt_archive_options){.read_only = true}, &archive, NULL),
+                 MT_OK);
+    at_rmdir(dir);
+    CHECK_STATUS(mt_archive_highest_version(archive, "scan", &highest, &diag), MT_ERR_IO);
+    CHECK(strstr(diag.message, "No such file or directory") != NULL);
+    mt_archive_close(archive);
+}
+
 static void test_never_overwritten(void)
 {
     char dir[512];
@@ -470,6 +528,7 @@ static const mt_test_case cases[] = {
     {"round_trip_corpus", test_round_trip_corpus},
     {"id_escaping", test_id_escaping},
     {"versions_and_listing", test_versions_and_listing},
+    {"highest_version_and_filtered_listing", test_highest_version_and_filtered_listing},
     {"never_overwritten", test_never_overwritten},
     {"leftovers_cleaned", test_leftovers_cleaned},
     {"killed_while_writing", test_killed_while_writing},

@@ -166,6 +166,12 @@ static bool is_archive_name(const char *name)
 
 mt_status mt_archive_list(const mt_archive *archive, mt_archive_listing *out, mt_diag *diag)
 {
+    return mt_archive_list_filtered(archive, NULL, NULL, out, diag);
+}
+
+mt_status mt_archive_list_filtered(const mt_archive *archive, mt_archive_name_filter wanted,
+                                   void *ctx, mt_archive_listing *out, mt_diag *diag)
+{
     mt_diag_clear(diag);
     if (!out) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_list: NULL");
     memset(out, 0, sizeof *out);
@@ -179,7 +185,7 @@ mt_status mt_archive_list(const mt_archive *archive, mt_archive_listing *out, mt
     mt_status st = MT_OK;
     struct dirent *ent;
     while (st == MT_OK && (ent = readdir(d)) != NULL) {
-        if (!is_archive_name(ent->d_name)) continue;
+        if (!is_archive_name(ent->d_name) || (wanted && !wanted(ctx, ent->d_name))) continue;
         if (l.count == capacity) {
             size_t grown = capacity ? 2 * capacity : 16;
             mt_archive_entry *bigger = realloc(l.entries, grown * sizeof *bigger);
@@ -225,16 +231,25 @@ void mt_archive_listing_free(mt_archive_listing *listing)
     memset(listing, 0, sizeof *listing);
 }
 
-/* Highest version of mesh_id present, by file name (0 when none). */
-static uint32_t latest_version(const mt_archive *archive, const char *mesh_id)
+mt_status mt_archive_highest_version(const mt_archive *archive, const char *mesh_id,
+                                     uint32_t *out_version, mt_diag *diag)
 {
+    mt_diag_clear(diag);
+    if (!archive || !out_version)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_highest_version: NULL");
+    *out_version = 0;
+    mt_status st = mt_msgs_mesh_id_check(mesh_id, diag);
+    if (st != MT_OK) return st;
     char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
     mt_archive_file_name(mesh_id, 1, name, sizeof name);
     size_t stem_len = 0;
     uint32_t v = 0, best = 0;
-    if (!mt__archive_name_parse(name, &stem_len, &v)) return 0;
+    if (!mt__archive_name_parse(name, &stem_len, &v))
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh '%s': no archive name", mesh_id);
     DIR *d = opendir(archive->dir);
-    if (!d) return 0;
+    if (!d)
+        return mt__archive_fail_os(diag, MT_ERR_IO, errno, NULL, "%s: cannot read the directory",
+                                   archive->dir);
     struct dirent *ent;
     while ((ent = readdir(d)) != NULL) {
         size_t len = 0;
@@ -243,7 +258,17 @@ static uint32_t latest_version(const mt_archive *archive, const char *mesh_id)
             best = v;
     }
     closedir(d);
-    return best;
+    *out_version = best;
+    return MT_OK;
+}
+
+/* Highest version of mesh_id present, by file name (0 when none or the
+ * directory cannot be read: the look-up that follows says which). */
+static uint32_t latest_version(const mt_archive *archive, const char *mesh_id)
+{
+    uint32_t best = 0;
+    mt_diag ignored;
+    return mt_archive_highest_version(archive, mesh_id, &best, &ignored) == MT_OK ? best : 0;
 }
 
 mt_status mt__archive_resolve(const mt_archive *archive, const char *mesh_id, uint32_t version,

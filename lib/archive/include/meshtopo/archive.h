@@ -284,6 +284,26 @@ typedef struct mt_archive_listing {
 mt_status mt_archive_list(const mt_archive *archive, mt_archive_listing *out, mt_diag *diag);
 void mt_archive_listing_free(mt_archive_listing *listing);
 
+/* The highest version of mesh_id with a file in the archive, found from
+ * the directory's file names alone (no file is opened): 0 when there is
+ * none. Several writers sharing one directory number versions with it: the
+ * next one tries the highest plus one, and mt_archive_write refuses a taken
+ * number ("already archived"), so the one that loses the race takes the
+ * next. MT_ERR_INVALID_ARG for a bad id, MT_ERR_IO when the directory
+ * cannot be read (diag with the errno text). Costs one pass over the
+ * directory's entries. */
+mt_status mt_archive_highest_version(const mt_archive *archive, const char *mesh_id,
+                                     uint32_t *out_version, mt_diag *diag);
+
+/* Which files mt_archive_list_filtered reads: true to read file_name. */
+typedef bool (*mt_archive_name_filter)(void *ctx, const char *file_name);
+
+/* mt_archive_list for the archive files whose name `wanted` accepts: the
+ * others are not opened (a writer sharing the directory lists only the
+ * files it does not know yet). wanted NULL lists every file. */
+mt_status mt_archive_list_filtered(const mt_archive *archive, mt_archive_name_filter wanted,
+                                   void *ctx, mt_archive_listing *out, mt_diag *diag);
+
 /* One archived version read back. Owns everything; free with
  * mt_archive_record_free. */
 typedef struct mt_archive_record {
