@@ -47,6 +47,7 @@ struct mtd_archiver {
     mt_archive *archive;      /* NULL without --archive */
     mtd_archive_mode mode;
     uint64_t budget;
+    bool shared; /* --cluster: other members write the same directory */
 
     pthread_mutex_t lock; /* the catalog and the clock */
     cat_entry *entries;   /* [count], by id then version */
@@ -216,6 +217,9 @@ static void touch(mtd_archiver *a, const char *id, uint32_t version)
 
 /* Version numbers tried when the archive's names for them are taken. */
 #define NAME_TAKEN_ATTEMPTS 8
+/* In a shared directory: version numbers tried when other members take
+ * them first (each loss means another member just wrote this id). */
+#define SHARED_TAKEN_ATTEMPTS 64
 
 /* Archives one stored version and adds it to the catalog. */
 static mt_status write_version(mtd_archiver *a, const mtd_mesh_info *info, const mt_face_list *list,
@@ -319,6 +323,48 @@ static mt_status enqueue_write(mtd_archiver *a, mtd_mesh_entry *entry, const mt_
     return MT_OK;
 }
 
+/* The next version number of id in a directory other members write too:
+ * one above every version there and every one catalogued (the archive's
+ * link decides between members that pick the same). */
+static mt_status shared_next_version(mtd_archiver *a, const char *id, uint32_t *out_version,
+                                     mt_diag *diag)
+{
+    uint32_t highest = 0;
+    mt_status s = mt_archive_highest_version(a->archive, id, &highest, diag);
+    if (s != MT_OK) return s;
+    pthread_mutex_lock(&a->lock);
+    uint32_t catalogued = cat_highest(a, id);
+    pthread_mutex_unlock(&a->lock);
+    if (catalogued > highest) highest = catalogued;
+    if (highest == UINT32_MAX)
+        return mt_diag_set(diag, MT_ERR_TOO_LARGE, "mesh '%s' has used every version number", id);
+    *out_version = highest + 1;
+    return mtd_store_reserve_version(a->store, id, *out_version, NULL, diag);
+}
+
+/* Archives a built version under the next number free in a shared
+ * directory: numbers other members took meanwhile are skipped. MT_OK with
+ * meta->version set, or the last write's failure. */
+static mt_status write_shared(mtd_archiver *a, const meshtopo_mesh_t *m, const mt_face_list *list,
+                              const mt_mesh *mesh, mtd_mesh_meta *meta, mt_diag *diag)
+{
+    mt_status s = MT_OK;
+    for (int attempt = 0; attempt < SHARED_TAKEN_ATTEMPTS; attempt++) {
+        s = shared_next_version(a, m->mesh_id, &meta->version, diag);
+        if (s != MT_OK) return s;
+        mtd_mesh_info info = {.id = m->mesh_id,
+                              .version = meta->version,
+                              .source = m->source,
+                              .utime = m->utime,
+                              .content_hash = meta->content_hash};
+        s = write_version(a, &info, list, mesh, false, diag);
+        if (s != MT_ERR_INVALID_ARG) return s;
+        mtd_log(MTD_LOG_INFO, "archive_version_taken", "mesh_id=%s version=%" PRIu32 ": %s",
+                m->mesh_id, meta->version, diag->message);
+    }
+    return s;
+}
+
 int32_t mtd_archiver_store(mtd_archiver *a, const meshtopo_mesh_t *m, const mt_face_list *list,
                            mt_mesh *mesh, uint64_t content_hash, uint32_t *out_version,
                            mtd_mesh_entry **out_entry, char *error, size_t size)
@@ -326,7 +372,16 @@ int32_t mtd_archiver_store(mtd_archiver *a, const meshtopo_mesh_t *m, const mt_f
     mtd_mesh_meta meta = {.source = m->source, .utime = m->utime, .content_hash = content_hash};
     mt_diag diag;
     bool sync = a->archive && a->mode == MTD_ARCHIVE_SYNC;
-    if (sync) {
+    if (sync && a->shared) {
+        mt_status s = write_shared(a, m, list, mesh, &meta, &diag);
+        meta.reserved = true;
+        if (s != MT_OK) {
+            snprintf(error, size, "not archived, so not stored: %.400s", diag.message);
+            count_error(a, "archive_write", error);
+            return s == MT_ERR_TOO_LARGE ? MESHTOPO_STATUS_CODE_T_TOO_LARGE
+                                         : MESHTOPO_STATUS_CODE_T_ARCHIVE_FAILED;
+        }
+    } else if (sync) {
         /* Write first, under a reserved number: the store sees the version
          * only once it is durable. A failed write leaves a gap; a number
          * whose name is taken in the directory (a file the catalog could
@@ -612,6 +667,114 @@ void mtd_archiver_stats(mtd_archiver *a, meshtopo_status_t *st)
     st->archive_evictions = atomic_load(&a->evictions);
 }
 
+/* ---- what other members wrote --------------------------------------------- */
+
+/* The file names of the catalog, sorted, for the rescan's filter. */
+typedef struct known_names {
+    char (*names)[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    size_t count;
+} known_names;
+
+static int name_cmp(const void *x, const void *y)
+{
+    return strcmp(x, y);
+}
+
+static bool not_known(void *ctx, const char *file_name)
+{
+    const known_names *k = ctx;
+    return !bsearch(file_name, k->names, k->count, sizeof *k->names, name_cmp);
+}
+
+/* Adds a readable listed file to the catalog and reserves its number in
+ * the store. false when out of memory. */
+static bool catalog_entry(mtd_archiver *a, const mt_archive_entry *e)
+{
+    cat_entry ce = {.id = e->mesh_id,
+                    .source = e->source,
+                    .version = e->version,
+                    .utime = e->utime,
+                    .content_hash = e->content_hash,
+                    .file_bytes = e->file_bytes,
+                    .num_verts = (int32_t)e->summary.num_verts,
+                    .num_faces = (int32_t)e->summary.num_faces,
+                    .num_defects = (int64_t)e->summary.num_defects};
+    pthread_mutex_lock(&a->lock);
+    bool ok = cat_insert(a, &ce);
+    pthread_mutex_unlock(&a->lock);
+    return ok && mtd_store_reserve_version(a->store, e->mesh_id, e->version, NULL, NULL) == MT_OK;
+}
+
+/* Adds readable entries of a listing to the catalog; returns how many were
+ * added. Unreadable ones are counted in *out_bad and noted when `note` is
+ * set. */
+static size_t catalog_listing(mtd_archiver *a, const mt_archive_listing *listing, bool note,
+                              size_t *out_bad)
+{
+    size_t added = 0;
+    for (size_t i = 0; i < listing->count; i++) {
+        const mt_archive_entry *e = &listing->entries[i];
+        if (e->status != MT_OK) {
+            (*out_bad)++;
+            if (note) {
+                char text[MTD_ERROR_MAX];
+                snprintf(text, sizeof text, "%.440s (%s)", e->diag.message,
+                         mt_archive_fault_name(e->fault));
+                note_error(a, "archive_list", text);
+            }
+            continue;
+        }
+        if (!catalog_entry(a, e)) break; /* out of memory: the next rescan tries again */
+        added++;
+    }
+    return added;
+}
+
+bool mtd_archiver_learn(mtd_archiver *a, const char *id, uint32_t version)
+{
+    if (!a->archive) return false;
+    pthread_mutex_lock(&a->lock);
+    bool known = cat_find(a, id, version) != NULL;
+    pthread_mutex_unlock(&a->lock);
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    if (known || mt_archive_file_name(id, version, name, sizeof name) == 0) return false;
+    mt_archive_entry e;
+    mt_diag diag;
+    bool added = mt_archive_list_file(a->archive, name, &e, &diag) == MT_OK &&
+                 strcmp(e.mesh_id, id) == 0 && e.version == version && catalog_entry(a, &e);
+    mt_archive_entry_free(&e);
+    if (added)
+        mtd_log(MTD_LOG_DEBUG, "archive_learned", "mesh_id=%s version=%" PRIu32, id, version);
+    return added;
+}
+
+size_t mtd_archiver_rescan(mtd_archiver *a)
+{
+    if (!a->archive) return 0;
+    known_names known = {NULL, 0};
+    pthread_mutex_lock(&a->lock);
+    const size_t catalogued = a->count;
+    known.names = catalogued ? malloc(catalogued * sizeof *known.names) : NULL;
+    for (size_t i = 0; known.names && i < catalogued; i++)
+        mt_archive_file_name(a->entries[i].id, a->entries[i].version, known.names[known.count++],
+                             sizeof *known.names);
+    pthread_mutex_unlock(&a->lock);
+    if (catalogued && !known.names) return 0;
+    qsort(known.names, known.count, sizeof *known.names, name_cmp);
+    mt_archive_listing listing;
+    mt_diag diag;
+    size_t added = 0, bad = 0;
+    if (mt_archive_list_filtered(a->archive, not_known, &known, &listing, &diag) != MT_OK) {
+        note_error(a, "archive_rescan", diag.message);
+    } else {
+        added = catalog_listing(a, &listing, false, &bad);
+        mt_archive_listing_free(&listing);
+    }
+    free(known.names);
+    mtd_log(MTD_LOG_INFO, "archive_rescan", "new_versions=%zu unreadable=%zu", added, bad);
+    return added;
+}
+
 /* ---- open and close ------------------------------------------------------ */
 
 /* Lists the archive into the catalog, reserves every archived version number
@@ -627,36 +790,11 @@ static mt_status open_archive(mtd_archiver *a, const mtd_config *c, mt_diag *dia
     mt_archive_listing listing;
     s = mt_archive_list(a->archive, &listing, diag);
     if (s != MT_OK) return s;
-    size_t bad = 0;
-    for (size_t i = 0; i < listing.count; i++) {
-        const mt_archive_entry *e = &listing.entries[i];
-        if (e->status != MT_OK) {
-            bad++;
-            char text[MTD_ERROR_MAX];
-            snprintf(text, sizeof text, "%.440s (%s)", e->diag.message,
-                     mt_archive_fault_name(e->fault));
-            note_error(a, "archive_list", text);
-            continue;
-        }
-        cat_entry ce = {.id = e->mesh_id,
-                        .source = e->source,
-                        .version = e->version,
-                        .utime = e->utime,
-                        .content_hash = e->content_hash,
-                        .file_bytes = e->file_bytes,
-                        .num_verts = (int32_t)e->summary.num_verts,
-                        .num_faces = (int32_t)e->summary.num_faces,
-                        .num_defects = (int64_t)e->summary.num_defects};
-        pthread_mutex_lock(&a->lock);
-        bool ok = cat_insert(a, &ce);
-        pthread_mutex_unlock(&a->lock);
-        if (!ok ||
-            mtd_store_reserve_version(a->store, e->mesh_id, e->version, NULL, diag) != MT_OK) {
-            mt_archive_listing_free(&listing);
-            return MT_ERR_NOMEM;
-        }
-    }
+    size_t bad = 0, readable = listing.count;
+    size_t added = catalog_listing(a, &listing, true, &bad);
     mt_archive_listing_free(&listing);
+    if (added + bad < readable)
+        return mt_diag_set(diag, MT_ERR_NOMEM, "out of memory cataloguing %s", c->archive_dir);
     mtd_log(MTD_LOG_INFO, "archive",
             "dir=%s mode=%s versions=%zu unreadable=%zu leftovers_removed=%zu bytes=%" PRIu64,
             c->archive_dir, mtd_archive_mode_name(a->mode), a->count, bad,
@@ -702,6 +840,7 @@ mt_status mtd_archiver_open(const mtd_config *config, mtd_store *store, mtd_erro
     a->error_log = errors;
     a->mode = config->archive_mode;
     a->budget = config->memory_budget;
+    a->shared = config->cluster[0] != '\0';
     a->capacity = config->archive_queue ? config->archive_queue : 1;
     pthread_mutex_init(&a->lock, NULL);
     pthread_mutex_init(&a->queue_lock, NULL);

@@ -5,10 +5,13 @@
  * restarts serve every archived version by id and version, loaded on the
  * worker that fetches it, or all at start with --preload), and keeps the
  * store within --memory-budget by dropping the least recently queried
- * archived versions. Without --archive it only adds built meshes to the
- * store. Calls down into the store only; nothing here answers requests.
- * Threads: build workers (stores, loads), the async writer, the LCM thread
- * (catalog look-ups through the backing, stats for the heartbeat). */
+ * archived versions. In a cluster the directory is shared: a version's
+ * number is one above the highest there, and the atomic link of the
+ * archive decides between members that pick the same (the loser takes the
+ * next); rescans catalog what the other members wrote. Without --archive it only adds built meshes
+ * to the store. Calls down into the store only; nothing here answers requests. Threads: build
+ * workers (stores, loads), the async writer, the LCM thread (catalog look-ups through the backing,
+ * stats for the heartbeat). */
 #ifndef MESHTOPOD_ARCHIVER_H
 #define MESHTOPOD_ARCHIVER_H
 
@@ -53,6 +56,20 @@ int32_t mtd_archiver_store(mtd_archiver *archiver, const meshtopo_mesh_t *m,
                            const mt_face_list *list, mt_mesh *mesh, uint64_t content_hash,
                            uint32_t *out_version, mtd_mesh_entry **out_entry, char *error,
                            size_t size);
+
+/* Catalogs the archive's files it does not know yet: versions other members
+ * of a cluster wrote into the shared directory, so that they are served
+ * (loaded on their first query) and numbered after. Reads the directory's
+ * names and the attributes of the new files only. Returns how many
+ * versions were added. The daemon calls it when the cluster's view changes. */
+size_t mtd_archiver_rescan(mtd_archiver *archiver);
+
+/* Another member of the cluster announced version `version` of id (its
+ * topology broadcast): catalogs that file when it is not known yet, so a
+ * query of the id's latest version here sees it. Reads the one file's
+ * attributes. Returns whether it was added (false also when the file is
+ * not there or not that version: the next rescan looks again). */
+bool mtd_archiver_learn(mtd_archiver *archiver, const char *id, uint32_t version);
 
 /* Fills the heartbeat's archive_* fields and memory_budget. */
 void mtd_archiver_stats(mtd_archiver *archiver, meshtopo_status_t *st);

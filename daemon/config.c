@@ -88,6 +88,12 @@ static const setting settings[] = {
     {"memory-budget", "MESHTOPOD_MEMORY_BUDGET", KIND_BYTES, FIELD(memory_budget), 0, UINT64_MAX,
      "memory for meshes: least recently queried archived ones beyond it are dropped and "
      "reloaded on demand, 0 = none (k, M, G)"},
+    {"cluster", "MESHTOPOD_CLUSTER", KIND_CHANNEL, TEXT_FIELD(cluster), 0, 0,
+     "cluster name: daemons of one prefix with the same name and one shared --archive "
+     "(sync) split the mesh ids between them (default: none, one daemon per prefix)"},
+    {"test-ignore-member", "MESHTOPOD_TEST_IGNORE_MEMBER", KIND_CHANNEL,
+     TEXT_FIELD(test_ignore_member), 0, 0,
+     "testing only: ignore the heartbeats of the cluster member with this --name"},
 };
 
 #define NUM_SETTINGS (sizeof settings / sizeof settings[0])
@@ -319,6 +325,13 @@ mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_ac
         mt_status st = apply(s, value, origin, out, diag);
         if (st != MT_OK) return st;
     }
+    if (out->cluster[0] && !out->archive_dir[0])
+        return fail(diag, "option --cluster", out->cluster,
+                    "needs --archive DIR, the directory all members share");
+    if (out->cluster[0] && out->archive_mode != MTD_ARCHIVE_SYNC)
+        return fail(diag, "option --cluster", out->cluster,
+                    "needs --archive-mode sync: another member serves a mesh from the archive "
+                    "once its builder is gone");
     if (out->max_archive_bytes == DERIVED_FROM_ARCHIVE)
         out->max_archive_bytes = out->archive_dir[0] ? half_free_space(out->archive_dir) : 0;
     return MT_OK;
@@ -379,7 +392,7 @@ void mtd_config_log(const mtd_config *c)
             "max_versions=%u heartbeat_ms=%u "
             "max_transfer_bytes=%llu "
             "transfer_timeout_ms=%u log_level=%s archive=%s archive_mode=%s archive_queue=%u "
-            "preload=%u memory_budget=%llu",
+            "preload=%u memory_budget=%llu cluster=%s",
             c->lcm_url[0] ? c->lcm_url : "(lcm default)", c->channel_prefix, c->name, c->workers,
             c->max_verts, c->max_faces, (unsigned long long)c->max_indices,
             (unsigned long long)c->max_store_bytes, (unsigned long long)c->max_archive_bytes,
@@ -387,5 +400,5 @@ void mtd_config_log(const mtd_config *c)
             (unsigned long long)c->max_transfer_bytes, c->transfer_timeout_ms,
             mtd_log_level_name(c->log_level), c->archive_dir[0] ? c->archive_dir : "(none)",
             mtd_archive_mode_name(c->archive_mode), c->archive_queue, c->preload,
-            (unsigned long long)c->memory_budget);
+            (unsigned long long)c->memory_budget, c->cluster[0] ? c->cluster : "(none)");
 }

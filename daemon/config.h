@@ -39,9 +39,11 @@ typedef struct mtd_config {
     mtd_log_level log_level;
     char archive_dir[MTD_CONFIG_TEXT_MAX]; /* "" = no archive */
     mtd_archive_mode archive_mode;
-    uint32_t archive_queue; /* versions the async writer may have waiting */
-    uint32_t preload;       /* 1: load every archived version at start */
-    uint64_t memory_budget; /* evict archived meshes beyond this, 0 = no budget */
+    uint32_t archive_queue;      /* versions the async writer may have waiting */
+    uint32_t preload;            /* 1: load every archived version at start */
+    uint64_t memory_budget;      /* evict archived meshes beyond this, 0 = no budget */
+    char cluster[64];            /* cluster name, "" = none (one daemon per prefix) */
+    char test_ignore_member[64]; /* testing: heartbeats of this member name are ignored */
 } mtd_config;
 
 /* What the command line asks for. */
@@ -57,7 +59,9 @@ typedef enum mtd_config_action {
  * cgroup's memory.max when lower), --max-transfer-bytes an eighth of that
  * (at most 1 GiB), --max-archive-bytes half the free space of the archive's
  * file system. On error returns
- * MT_ERR_INVALID_ARG with diag naming the flag or variable and the value. */
+ * MT_ERR_INVALID_ARG with diag naming the flag or variable and the value;
+ * --cluster without --archive, or with --archive-mode other than sync, is
+ * such an error (a member's acknowledged meshes must survive it). */
 mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_action *out_action,
                            mt_diag *diag);
 

@@ -49,6 +49,8 @@ struct mtd_daemon {
     mtd_queries *queries;
     mtd_handlers *handlers;
     mtd_peers *peers;
+    mtd_cluster *cluster;     /* NULL without --cluster */
+    int64_t second_rescan_us; /* monotonic time of the rescan after a view change, 0 = none */
 };
 
 /* Names every channel; MT_ERR_INVALID_ARG when the prefix makes one too long. */
@@ -118,39 +120,67 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
                               .workspaces = d->workspaces,
                               .contents = d->contents};
     if (mtd_submitter_create(&submit, &d->submitter) != MT_OK) return fail_nomem(diag, "submitter");
-    mtd_transfer_deps transfer = {
-        .config = c, .replies = d->replies, .submitter = d->submitter, .contents = d->contents};
+    mtd_transfer_deps transfer = {.config = c,
+                                  .replies = d->replies,
+                                  .submitter = d->submitter,
+                                  .contents = d->contents,
+                                  .cluster = d->cluster};
     if (mtd_transfers_create(&transfer, &d->transfers) != MT_OK)
         return fail_nomem(diag, "transfer table");
-    if (mtd_queries_create(d->store, d->pool, d->replies, &d->queries) != MT_OK)
+    if (mtd_queries_create(d->store, d->pool, d->replies, d->cluster, &d->queries) != MT_OK)
         return fail_nomem(diag, "query handler");
     mtd_handler_deps handlers = {.lcm = d->lcm,
                                  .prefix = c->channel_prefix,
                                  .replies = d->replies,
                                  .submitter = d->submitter,
                                  .transfers = d->transfers,
-                                 .queries = d->queries};
+                                 .queries = d->queries,
+                                 .cluster = d->cluster,
+                                 .archiver = d->archiver};
     if (mtd_handlers_subscribe(&handlers, &d->handlers) != MT_OK)
         return fail_nomem(diag, "LCM subscriptions");
     if (mtd_peers_create(d->lcm, d->channels[MT_MSGS_CHANNEL_STATUS], d->instance, d->start_utime,
-                         d->errors, &d->peers) != MT_OK)
+                         d->errors, d->cluster, &d->peers) != MT_OK)
         return fail_nomem(diag, "watch for other daemons");
     return MT_OK;
 }
 
-mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **out_daemon,
-                            mt_diag *diag)
+void mtd_daemon_instance_name(int64_t start_utime, char *out, size_t size)
+{
+    char host[64] = "";
+    gethostname(host, sizeof host - 1);
+    snprintf(out, size, "%s:%d:%" PRId64, host, (int)getpid(), start_utime);
+}
+
+mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_cluster *cluster,
+                            mtd_daemon **out_daemon, mt_diag *diag)
 {
     *out_daemon = NULL;
     mtd_daemon *d = calloc(1, sizeof *d);
-    if (!d) return fail_nomem(diag, "daemon");
+    if (!d) {
+        mtd_cluster_destroy(cluster);
+        return fail_nomem(diag, "daemon");
+    }
     d->config = *config;
     d->lcm = lcm;
     d->start_utime = mtd_now_utime();
-    char host[64] = "";
-    gethostname(host, sizeof host - 1);
-    snprintf(d->instance, sizeof d->instance, "%s:%d:%" PRId64, host, (int)getpid(),
-             d->start_utime);
+    d->cluster = config->cluster[0] ? cluster : NULL;
+    if (cluster && !d->cluster) mtd_cluster_destroy(cluster);
+    if (d->cluster)
+        snprintf(d->instance, sizeof d->instance, "%s", mtd_cluster_instance(d->cluster));
+    else
+        mtd_daemon_instance_name(d->start_utime, d->instance, sizeof d->instance);
+    if (config->cluster[0] && !d->cluster) {
+        mtd_cluster_options members = {.name = config->cluster,
+                                       .instance = d->instance,
+                                       .member_name = config->name,
+                                       .expiry_us = mtd_cluster_expiry_us(config->heartbeat_ms),
+                                       .ignored_name = config->test_ignore_member};
+        if (mtd_cluster_create(&members, &d->cluster) != MT_OK) {
+            free(d);
+            return fail_nomem(diag, "cluster membership");
+        }
+    }
     /* lcm-gen's fingerprints are computed lazily without a lock: do it now,
      * before any worker thread encodes. */
     mt_msgs_type_of(NULL, 0);
@@ -178,8 +208,38 @@ void mtd_daemon_heartbeat(mtd_daemon *d)
                                      .handlers = d->handlers,
                                      .submitter = d->submitter,
                                      .transfers = d->transfers,
-                                     .archiver = d->archiver};
+                                     .archiver = d->archiver,
+                                     .cluster = d->cluster};
     mtd_heartbeat_publish(&sources);
+}
+
+static bool owned(void *cluster, const char *id)
+{
+    return mtd_cluster_owns(cluster, id);
+}
+
+void mtd_daemon_watch_cluster(mtd_daemon *d)
+{
+    if (!d->cluster || d->stopped) return;
+    const int64_t now = mtd_monotonic_us();
+    if (mtd_cluster_refresh(d->cluster, now)) {
+        /* Ids gained are served from what their former owner archived; the
+         * rescan runs before this thread handles another request. */
+        size_t found = mtd_archiver_rescan(d->archiver);
+        size_t dropped = mtd_store_remove_unless(d->store, owned, d->cluster);
+        mtd_cluster_view view;
+        mtd_cluster_get_view(d->cluster, &view);
+        mtd_log(MTD_LOG_INFO, "cluster_view",
+                "cluster=%s members=%" PRId32 " share=%.3f view=%016" PRIx64
+                " archived_versions_found=%zu dropped_from_memory=%zu members_seen=[%s]",
+                mtd_cluster_name(d->cluster), view.members, view.share, view.hash, found, dropped,
+                view.names);
+        /* Versions the former owners wrote before they too saw the change. */
+        d->second_rescan_us = now + mtd_cluster_expiry_us(d->config.heartbeat_ms);
+    } else if (d->second_rescan_us && now >= d->second_rescan_us) {
+        d->second_rescan_us = 0;
+        mtd_archiver_rescan(d->archiver);
+    }
 }
 
 void mtd_daemon_tick(mtd_daemon *d)
@@ -222,6 +282,7 @@ void mtd_daemon_destroy(mtd_daemon *d)
     mtd_workspace_pool_destroy(d->workspaces);
     mtd_content_pool_destroy(d->contents);
     mtd_error_log_destroy(d->errors);
+    mtd_cluster_destroy(d->cluster);
     free(d);
 }
 

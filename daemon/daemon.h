@@ -10,6 +10,7 @@
 #include <lcm/lcm.h>
 #include <stdint.h>
 
+#include "cluster.h"
 #include "config.h"
 #include "content_pool.h"
 #include "heartbeat.h"
@@ -21,11 +22,24 @@
 typedef struct mtd_daemon mtd_daemon;
 
 /* Creates every module from config and subscribes to the request channels
- * on lcm (not owned). MT_OK, MT_ERR_INVALID_ARG (prefix too
+ * on lcm (not owned). With config->cluster, `cluster` is the membership the
+ * start-up probe filled (taken over, its instance is the daemon's; NULL:
+ * the daemon makes its own, empty). MT_OK, MT_ERR_INVALID_ARG (prefix too
  * long for LCM channel names), MT_ERR_IO (the archive), MT_ERR_NOMEM; diag
- * says which. */
-mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_daemon **out_daemon,
-                            mt_diag *diag);
+ * says which (a given cluster is destroyed on failure). */
+mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_cluster *cluster,
+                            mtd_daemon **out_daemon, mt_diag *diag);
+
+/* Formats the instance id a daemon started at start_utime has:
+ * "host:pid:start_utime". */
+void mtd_daemon_instance_name(int64_t start_utime, char *out, size_t size);
+
+/* In a cluster, acts on changes of its view: drops members gone silent and,
+ * when the view changed, catalogs what other members archived and drops
+ * from memory the meshes this member no longer owns; rescans the archive
+ * once more when the members have had time to agree. The main loop calls it
+ * four times per heartbeat period; nothing without a cluster. */
+void mtd_daemon_watch_cluster(mtd_daemon *daemon);
 
 /* The periodic work, every heartbeat_ms: drops stalled transfers and old
  * remembered answers, gives freed heap memory back to the system, then

@@ -13,13 +13,14 @@
 /* LCM drops messages beyond this many waiting per subscription (default 30). */
 #define QUEUE_CAPACITY 10000
 
-/* The request channels, in the order of mtd_handlers.subs. */
-enum { SUB_SUBMIT, SUB_CHUNK, SUB_QUERY, SUB_PULL, SUB_COUNT };
+/* The request channels, in the order of mtd_handlers.subs, then the
+ * cluster's TOPOLOGY. */
+enum { SUB_SUBMIT, SUB_CHUNK, SUB_QUERY, SUB_PULL, SUB_TOPOLOGY, SUB_COUNT };
 
 struct mtd_handlers {
     mtd_handler_deps deps;
     lcm_subscription_t *subs[SUB_COUNT];
-    atomic_int_fast64_t submissions, queries;
+    atomic_int_fast64_t submissions, queries, not_owned;
 };
 
 /* Why bytes on a channel of `type` are not a message of it, before decoding. */
@@ -49,6 +50,12 @@ static void on_submit(const lcm_recv_buf_t *rbuf, const char *channel, void *use
     if (mt_msgs_decode(&mt_msgs_type_mesh, rbuf->data, size, msg, why, sizeof why) != 0) {
         free(msg);
         mtd_reply_undecodable(h->deps.replies, &mt_msgs_type_mesh, rbuf->data, size, why);
+        return;
+    }
+    if (!mtd_cluster_owns(h->deps.cluster, msg->mesh_id)) {
+        atomic_fetch_add(&h->not_owned, 1);
+        meshtopo_mesh_t_decode_cleanup(msg);
+        free(msg);
         return;
     }
     if (mtd_reply_begin(h->deps.replies, msg->reply_channel, msg->request_id, &mt_msgs_type_ack)) {
@@ -83,9 +90,31 @@ static void on_query(const lcm_recv_buf_t *rbuf, const char *channel, void *user
         mtd_reply_undecodable(h->deps.replies, &mt_msgs_type_query, rbuf->data, size, why);
         return;
     }
+    /* A listing of every mesh is answered by each member for what it owns. */
+    bool every_mesh = msg.kind == MESHTOPO_QUERY_T_LIST_MESHES && !msg.mesh_id[0];
+    if (!every_mesh && !mtd_cluster_owns(h->deps.cluster, msg.mesh_id)) {
+        atomic_fetch_add(&h->not_owned, 1);
+        meshtopo_query_t_decode_cleanup(&msg);
+        return;
+    }
     if (mtd_reply_begin(h->deps.replies, msg.reply_channel, msg.request_id, &mt_msgs_type_reply))
         mtd_query_handle(h->deps.queries, &msg);
     meshtopo_query_t_decode_cleanup(&msg);
+}
+
+/* A member's announcement of a version it built: one of an id owned here
+ * (its builder lost it meanwhile) is catalogued before anyone asks. */
+static void on_topology(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    (void)channel;
+    mtd_handlers *h = user;
+    meshtopo_topology_t t;
+    if (mt_msgs_decode(&mt_msgs_type_topology, rbuf->data, rbuf->data_size, &t, NULL, 0) != 0)
+        return;
+    if (t.version > 0 && mt_msgs_mesh_id_check(t.mesh_id, NULL) == MT_OK &&
+        mtd_cluster_owns(h->deps.cluster, t.mesh_id))
+        mtd_archiver_learn(h->deps.archiver, t.mesh_id, (uint32_t)t.version);
+    meshtopo_topology_t_decode_cleanup(&t);
 }
 
 static void on_pull(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
@@ -105,12 +134,14 @@ mt_status mtd_handlers_subscribe(const mtd_handler_deps *deps, mtd_handlers **ou
         [SUB_CHUNK] = {MT_MSGS_CHANNEL_SUBMIT_CHUNK, on_chunk},
         [SUB_QUERY] = {MT_MSGS_CHANNEL_QUERY, on_query},
         [SUB_PULL] = {MT_MSGS_CHANNEL_QUERY_PULL, on_pull},
+        [SUB_TOPOLOGY] = {MT_MSGS_CHANNEL_TOPOLOGY, on_topology},
     };
     *out_handlers = NULL;
     mtd_handlers *h = calloc(1, sizeof *h);
     if (!h) return MT_ERR_NOMEM;
     h->deps = *deps;
     for (int i = 0; i < SUB_COUNT; i++) {
+        if (i == SUB_TOPOLOGY && !deps->cluster) continue;
         char name[MT_MSGS_CHANNEL_NAME_MAX + 1];
         if (mt_msgs_channel_name(deps->prefix, routes[i].channel, name) != MT_OK) {
             mtd_handlers_destroy(h);
@@ -146,4 +177,5 @@ void mtd_handlers_get_counts(mtd_handlers *h, mtd_handler_counts *out_counts)
 {
     out_counts->submissions = atomic_load(&h->submissions);
     out_counts->queries = atomic_load(&h->queries);
+    out_counts->not_owned = atomic_load(&h->not_owned);
 }

@@ -3,13 +3,19 @@
  * each) and the raw handlers that check received bytes (mt_msgs_decode,
  * never lcm-gen's decoders) and route each message to the module that owns
  * it: whole meshes to the submitter, chunks to the transfers, queries to the
- * queries, pulls of large answers to the replies. Runs on the LCM thread. */
+ * queries, pulls of large answers to the replies. In a cluster, a submission
+ * or query of a mesh id another member owns is left to it (cluster.h), and
+ * the TOPOLOGY broadcasts of the other members are read too: a version
+ * announced for an id this member owns now goes to the archiver's catalog.
+ * Runs on the LCM thread. */
 #ifndef MESHTOPOD_HANDLERS_H
 #define MESHTOPOD_HANDLERS_H
 
 #include <lcm/lcm.h>
 #include <stdint.h>
 
+#include "archiver.h"
+#include "cluster.h"
 #include "query.h"
 #include "reply.h"
 #include "submit.h"
@@ -23,6 +29,8 @@ typedef struct mtd_handler_deps {
     mtd_submitter *submitter;
     mtd_transfers *transfers;
     mtd_queries *queries;
+    mtd_cluster *cluster;   /* NULL without --cluster */
+    mtd_archiver *archiver; /* told of versions other members announce */
 } mtd_handler_deps;
 
 typedef struct mtd_handlers mtd_handlers;
@@ -38,10 +46,12 @@ void mtd_handlers_unsubscribe(mtd_handlers *handlers);
 /* Unsubscribes and frees. NULL-safe. */
 void mtd_handlers_destroy(mtd_handlers *handlers);
 
-/* Messages received on SUBMIT and on QUERY, undecodable ones included. */
+/* Messages received on SUBMIT and on QUERY, undecodable ones included, and
+ * those left to the member of the cluster that owns their mesh id. */
 typedef struct mtd_handler_counts {
     int64_t submissions;
     int64_t queries;
+    int64_t not_owned;
 } mtd_handler_counts;
 
 void mtd_handlers_get_counts(mtd_handlers *handlers, mtd_handler_counts *out_counts);

@@ -69,6 +69,15 @@ void mtd_heartbeat_publish(const mtd_heartbeat_sources *src)
     st.transfers_expired = transfers.expired;
     st.transfers_refused = transfers.refused;
     mtd_archiver_stats(src->archiver, &st);
+    st.cluster = "";
+    if (src->cluster) {
+        mtd_cluster_view view;
+        mtd_cluster_get_view(src->cluster, &view);
+        st.cluster = (char *)mtd_cluster_name(src->cluster);
+        st.cluster_members = view.members;
+        st.cluster_share = view.share;
+        st.cluster_view = (int64_t)view.hash;
+    }
 
     int size = meshtopo_status_t_encoded_size(&st);
     void *buf = size > 0 ? malloc((size_t)size) : NULL;

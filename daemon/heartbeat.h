@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "archiver.h"
+#include "cluster.h"
 #include "config.h"
 #include "error_log.h"
 #include "handlers.h"
@@ -42,6 +43,7 @@ typedef struct mtd_heartbeat_sources {
     mtd_submitter *submitter;
     mtd_transfers *transfers;
     mtd_archiver *archiver;
+    mtd_cluster *cluster; /* NULL without --cluster */
 } mtd_heartbeat_sources;
 
 /* Publishes one status_t. */

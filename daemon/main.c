@@ -49,14 +49,16 @@ static int install_signals(void)
 
 /* Listens on the status channel for two of our heartbeat periods before
  * serving: a daemon already on the prefix beats within that time. Returns
- * false (after logging it) when one does. */
-static bool prefix_is_free(lcm_t *lcm, const mtd_config *config)
+ * false (after logging it) when one does that is not a member of our
+ * cluster; the members heard go to `cluster` (NULL without one), so that
+ * this daemon starts with the ids it owns and not every id. */
+static bool prefix_is_free(lcm_t *lcm, const mtd_config *config, mtd_cluster *cluster)
 {
     char channel[MT_MSGS_CHANNEL_NAME_MAX + 1];
     if (mt_msgs_channel_name(config->channel_prefix, MT_MSGS_CHANNEL_STATUS, channel) != MT_OK)
         return true; /* the daemon refuses the prefix itself */
     mtd_peers *probe = NULL;
-    if (mtd_peers_create(lcm, channel, "", INT64_MAX, NULL, &probe) != MT_OK) return true;
+    if (mtd_peers_create(lcm, channel, "", INT64_MAX, NULL, cluster, &probe) != MT_OK) return true;
     int64_t wait_us = 2 * (int64_t)config->heartbeat_ms * 1000;
     if (wait_us > 3000000) wait_us = 3000000;
     const int64_t until = mtd_now_utime() + wait_us;
@@ -78,17 +80,23 @@ static bool prefix_is_free(lcm_t *lcm, const mtd_config *config)
 /* Runs until a signal arrives; returns the signal number (0 on an LCM error). */
 static int run_loop(mtd_daemon *d, lcm_t *lcm, const mtd_config *config)
 {
-    int64_t period_us = (int64_t)config->heartbeat_ms * 1000;
-    int64_t next_beat = mtd_now_utime();
+    const int64_t period_us = (int64_t)config->heartbeat_ms * 1000;
+    const int64_t watch_us = period_us / 4; /* the cluster's view: a quarter period late at most */
+    int64_t next_beat = mtd_monotonic_us(), next_watch = next_beat;
     struct pollfd fds[2] = {{.fd = lcm_get_fileno(lcm), .events = POLLIN},
                             {.fd = signal_pipe[0], .events = POLLIN}};
     for (;;) {
-        int64_t now = mtd_now_utime();
+        int64_t now = mtd_monotonic_us();
         if (now >= next_beat) {
             mtd_daemon_tick(d);
             next_beat = now + period_us;
         }
-        int timeout_ms = (int)((next_beat - now + 999) / 1000);
+        if (now >= next_watch) {
+            mtd_daemon_watch_cluster(d);
+            next_watch = now + watch_us;
+        }
+        int64_t next = next_watch < next_beat ? next_watch : next_beat;
+        int timeout_ms = (int)((next - now + 999) / 1000);
         int n = poll(fds, 2, timeout_ms);
         if (n < 0 && errno != EINTR) {
             mtd_log(MTD_LOG_ERROR, "poll", "error=%s", strerror(errno));
@@ -133,12 +141,28 @@ int main(int argc, char **argv)
                 config.lcm_url[0] ? config.lcm_url : "(LCM default)");
         return 1;
     }
-    if (!prefix_is_free(lcm, &config)) {
+    mtd_cluster *cluster = NULL;
+    if (config.cluster[0]) {
+        char instance[128];
+        mtd_daemon_instance_name(mtd_now_utime(), instance, sizeof instance);
+        mtd_cluster_options members = {.name = config.cluster,
+                                       .instance = instance,
+                                       .member_name = config.name,
+                                       .expiry_us = mtd_cluster_expiry_us(config.heartbeat_ms),
+                                       .ignored_name = config.test_ignore_member};
+        if (mtd_cluster_create(&members, &cluster) != MT_OK) {
+            mtd_log(MTD_LOG_ERROR, "start", "cannot create the cluster membership");
+            lcm_destroy(lcm);
+            return 1;
+        }
+    }
+    if (!prefix_is_free(lcm, &config, cluster)) {
+        mtd_cluster_destroy(cluster);
         lcm_destroy(lcm);
         return 1;
     }
     mtd_daemon *d = NULL;
-    if (mtd_daemon_create(&config, lcm, &d, &diag) != MT_OK) {
+    if (mtd_daemon_create(&config, lcm, cluster, &d, &diag) != MT_OK) {
         mtd_log(MTD_LOG_ERROR, "start", "error=%s", diag.message);
         lcm_destroy(lcm);
         return 1;

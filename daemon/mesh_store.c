@@ -477,6 +477,35 @@ mt_status mtd_store_remove(mtd_store *store, const char *id, uint32_t version, m
     return MT_OK;
 }
 
+size_t mtd_store_remove_unless(mtd_store *store, bool (*keep)(void *ctx, const char *id), void *ctx)
+{
+    pthread_mutex_lock(&store->lock);
+    size_t count = 0;
+    for (size_t s = 0; s < store->num_slots; s++)
+        if (store->slots[s]->num_versions && !keep(ctx, store->slots[s]->id))
+            count += store->slots[s]->num_versions;
+    mtd_mesh_entry **dropped = count ? malloc(count * sizeof *dropped) : NULL;
+    size_t n = 0;
+    for (size_t s = 0; dropped && s < store->num_slots; s++) {
+        id_slot *slot = store->slots[s];
+        /* keep may answer otherwise than in the count (a view changed):
+         * never past what was counted. */
+        if (!slot->num_versions || n + slot->num_versions > count || keep(ctx, slot->id)) continue;
+        for (uint32_t v = 0; v < slot->num_versions; v++) {
+            dropped[n++] = slot->versions[v];
+            store->totals.versions--;
+            store->totals.memory_bytes -= slot->versions[v]->info.memory_bytes;
+        }
+        slot->num_versions = 0;
+        store->totals.ids--;
+    }
+    pthread_mutex_unlock(&store->lock);
+    /* The store's references; queries holding an entry keep it. */
+    for (size_t i = 0; i < n; i++) mtd_entry_release(dropped[i]);
+    free(dropped);
+    return n;
+}
+
 void mtd_store_get_totals(mtd_store *store, mtd_store_totals *out_totals)
 {
     pthread_mutex_lock(&store->lock);

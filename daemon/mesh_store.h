@@ -121,6 +121,13 @@ mt_status mtd_store_acquire(mtd_store *store, const char *id, uint32_t version,
  * next add still gets a higher version. */
 mt_status mtd_store_remove(mtd_store *store, const char *id, uint32_t version, mt_diag *diag);
 
+/* Removes every version held of each id that keep(ctx, id) refuses (keep
+ * runs under the store's lock: it must not call the store). The ids keep
+ * their version numbers, as with mtd_store_remove. Returns the versions
+ * removed (0 also when out of memory: nothing is then removed). */
+size_t mtd_store_remove_unless(mtd_store *store, bool (*keep)(void *ctx, const char *id),
+                               void *ctx);
+
 /* Another reference to an entry the caller holds (for handing it to a
  * worker thread). Returns entry. */
 mtd_mesh_entry *mtd_entry_retain(mtd_mesh_entry *entry);

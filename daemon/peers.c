@@ -3,7 +3,8 @@
  * this one, compared with our start time. A heartbeat is not taken for a
  * live daemon when it was sent more than STALE_US from now, or names a
  * process of this host that no longer exists: what lcm-logplayer replays
- * from a recorded session. */
+ * from a recorded session. With a cluster, the live heartbeats of its
+ * members go to it (cluster.h) instead. */
 #define _DEFAULT_SOURCE /* gethostname */
 #include "peers.h"
 
@@ -17,6 +18,7 @@
 #include <unistd.h>
 
 #include "clock.h"
+#include "cluster.h"
 #include "log.h"
 #include "meshtopo/msgs.h"
 
@@ -26,6 +28,7 @@ struct mtd_peers {
     lcm_t *lcm;
     lcm_subscription_t *subscription;
     mtd_error_log *errors; /* not owned; NULL in the probe */
+    mtd_cluster *cluster;  /* not owned; NULL without --cluster */
     char instance[128];
     char host[64];
     int64_t start_utime;
@@ -54,7 +57,11 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *use
     meshtopo_status_t st;
     if (mt_msgs_decode(&mt_msgs_type_status, rbuf->data, rbuf->data_size, &st, NULL, 0) != 0)
         return;
-    if (strcmp(st.instance, p->instance) != 0 && alive(p, &st)) {
+    /* A member of our cluster is no second daemon: the cluster takes it. */
+    bool member =
+        p->cluster && alive(p, &st) &&
+        mtd_cluster_heard(p->cluster, st.cluster, st.instance, st.name, mtd_monotonic_us());
+    if (!member && strcmp(st.instance, p->instance) != 0 && alive(p, &st)) {
         int64_t started = st.utime - st.uptime_us;
         bool older = started < p->start_utime ||
                      (started == p->start_utime && strcmp(st.instance, p->instance) < 0);
@@ -72,9 +79,10 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *use
         if (warn) {
             char error[512];
             snprintf(error, sizeof error,
-                     "another meshtopod %s beats on this prefix: both would build every "
-                     "submission; give each its own --prefix",
-                     who);
+                     "another meshtopod %s beats on this prefix%s%.60s%s: both would build every "
+                     "submission; give each its own --prefix, or both one --cluster",
+                     who, st.cluster[0] ? " (cluster '" : "", st.cluster,
+                     st.cluster[0] ? "')" : "");
             mtd_error_log_note(p->errors, error);
             mtd_log(MTD_LOG_WARN, "second_daemon", "%s", error);
         }
@@ -83,13 +91,15 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *channel, void *use
 }
 
 mt_status mtd_peers_create(lcm_t *lcm, const char *status_channel, const char *instance,
-                           int64_t start_utime, mtd_error_log *errors, mtd_peers **out_peers)
+                           int64_t start_utime, mtd_error_log *errors, mtd_cluster *cluster,
+                           mtd_peers **out_peers)
 {
     *out_peers = NULL;
     mtd_peers *p = calloc(1, sizeof *p);
     if (!p) return MT_ERR_NOMEM;
     p->lcm = lcm;
     p->errors = errors;
+    p->cluster = cluster;
     snprintf(p->instance, sizeof p->instance, "%s", instance);
     gethostname(p->host, sizeof p->host - 1);
     p->start_utime = start_utime;

@@ -29,6 +29,7 @@ struct mtd_queries {
     mtd_store *store;
     mtd_pool *pool;
     mtd_replies *replies;
+    mtd_cluster *cluster;  /* NULL without --cluster */
     mtd_fair_share *share; /* the LCM thread's time, per reply channel */
 };
 
@@ -589,8 +590,16 @@ static void send_answer(mtd_replies *replies, const meshtopo_query_t *q, answer 
     free(boundary);
 }
 
+/* Whether a listing shows `id`: the one asked for, or every id this
+ * member owns. */
+static bool listed(mtd_cluster *cluster, const char *mesh_id, const char *id)
+{
+    return mesh_id[0] ? strcmp(mesh_id, id) == 0 : mtd_cluster_owns(cluster, id);
+}
+
 /* LIST_MESHES: fills the list_* arrays of *out (freed by free_list). */
-static void list_meshes(mtd_store *store, answer *a, const char *mesh_id, meshtopo_reply_t *out)
+static void list_meshes(mtd_store *store, mtd_cluster *cluster, answer *a, const char *mesh_id,
+                        meshtopo_reply_t *out)
 {
     memset(out, 0, sizeof *out);
     mtd_store_listing *listing = NULL;
@@ -600,8 +609,7 @@ static void list_meshes(mtd_store *store, answer *a, const char *mesh_id, meshto
     }
     size_t n = 0;
     for (size_t i = 0; i < listing->num_ids; i++)
-        if (!mesh_id[0] || strcmp(mesh_id, listing->ids[i].id) == 0)
-            n += listing->ids[i].num_versions;
+        if (listed(cluster, mesh_id, listing->ids[i].id)) n += listing->ids[i].num_versions;
     out->list_mesh_ids = calloc(n + 1, sizeof(char *));
     out->list_versions = calloc(n + 1, sizeof(int32_t));
     out->list_sources = calloc(n + 1, sizeof(char *));
@@ -620,7 +628,7 @@ static void list_meshes(mtd_store *store, answer *a, const char *mesh_id, meshto
     size_t k = 0;
     for (size_t i = 0; i < listing->num_ids && k < n; i++) {
         const mtd_listed_id *id = &listing->ids[i];
-        if (mesh_id[0] && strcmp(mesh_id, id->id) != 0) continue;
+        if (!listed(cluster, mesh_id, id->id)) continue;
         for (uint32_t v = 0; v < id->num_versions && k < n; v++) {
             const mtd_mesh_info *info = &id->versions[v];
             out->list_mesh_ids[k] = strdup(info->id);
@@ -709,7 +717,7 @@ static void answer_query(mtd_queries *qs, const meshtopo_query_t *q, bool may_lo
     check_request(&a, q);
     if (a.status == MESHTOPO_STATUS_CODE_T_OK && q->kind == MESHTOPO_QUERY_T_LIST_MESHES) {
         meshtopo_reply_t list;
-        list_meshes(qs->store, &a, q->mesh_id, &list);
+        list_meshes(qs->store, qs->cluster, &a, q->mesh_id, &list);
         send_answer(qs->replies, q, &a, 0, NULL, &list);
         free_list(&list);
         answer_free(&a);
@@ -810,7 +818,7 @@ void mtd_query_handle(mtd_queries *qs, const meshtopo_query_t *q)
 }
 
 mt_status mtd_queries_create(mtd_store *store, mtd_pool *pool, mtd_replies *replies,
-                             mtd_queries **out_queries)
+                             mtd_cluster *cluster, mtd_queries **out_queries)
 {
     mtd_queries *qs = calloc(1, sizeof *qs);
     *out_queries = qs;
@@ -818,6 +826,7 @@ mt_status mtd_queries_create(mtd_store *store, mtd_pool *pool, mtd_replies *repl
     qs->store = store;
     qs->pool = pool;
     qs->replies = replies;
+    qs->cluster = cluster;
     if (mtd_fair_share_create(&qs->share) != MT_OK) {
         free(qs);
         *out_queries = NULL;

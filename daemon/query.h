@@ -6,6 +6,7 @@
 #ifndef MESHTOPOD_QUERY_H
 #define MESHTOPOD_QUERY_H
 
+#include "cluster.h"
 #include "mesh_store.h"
 #include "meshtopo/msgs.h"
 #include "reply.h"
@@ -16,10 +17,11 @@
 
 typedef struct mtd_queries mtd_queries;
 
-/* Answers from `store` through `replies`, loading on `pool`'s workers; none
- * of them owned, all must outlive it. MT_OK or MT_ERR_NOMEM. */
+/* Answers from `store` through `replies`, loading on `pool`'s workers; in a
+ * cluster (NULL: none), a listing of every mesh shows the ids this member
+ * owns. None of them owned, all must outlive it. MT_OK or MT_ERR_NOMEM. */
 mt_status mtd_queries_create(mtd_store *store, mtd_pool *pool, mtd_replies *replies,
-                             mtd_queries **out_queries);
+                             mtd_cluster *cluster, mtd_queries **out_queries);
 
 /* NULL-safe. Call once the worker pool has stopped. */
 void mtd_queries_destroy(mtd_queries *queries);

@@ -266,9 +266,12 @@ static void build_job(void *arg, bool cancelled)
             mt_mesh_report(held)->num_defects, duration);
     if (mtd_topology_fill(held, mtd_entry_info(entry), duration, MTD_TOPOLOGY_LIST_MAX,
                           &topology) == 0) {
+        /* Announced before it is acknowledged: another member of a cluster
+         * that owns the id now hears of the version before the sender can
+         * ask it for the version (handlers.c). */
+        broadcast_topology(sub, held, mtd_entry_info(entry), duration, &topology);
         send_ack_with_report(sub, m, MESHTOPO_STATUS_CODE_T_OK, "", (int32_t)version,
                              job->content_hash, &topology);
-        broadcast_topology(sub, held, mtd_entry_info(entry), duration, &topology);
         mtd_topology_free(&topology);
     } else {
         /* The mesh is held; the client learns its version without the report. */

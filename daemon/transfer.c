@@ -435,6 +435,7 @@ static mtd_transfer *take_chunk(mtd_transfers *ts, const meshtopo_mesh_chunk_t *
         return NULL;
     }
     mtd_transfer *t = find_transfer(ts, channel, c->request_id);
+    if (!t && !mtd_cluster_owns(ts->deps.cluster, c->mesh_id)) return NULL; /* its owner's */
     if (!t) {
         /* Finished already (building or acked), or new. */
         mtd_request_state state = mtd_reply_state(ts->deps.replies, channel, c->request_id,

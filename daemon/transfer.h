@@ -11,6 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "cluster.h"
 #include "config.h"
 #include "content_pool.h"
 #include "reply.h"
@@ -24,6 +25,7 @@ typedef struct mtd_transfer_deps {
     mtd_replies *replies;
     mtd_submitter *submitter;
     mtd_content_pool *contents;
+    mtd_cluster *cluster; /* NULL without --cluster */
 } mtd_transfer_deps;
 
 /* MT_OK or MT_ERR_NOMEM. */
@@ -36,7 +38,10 @@ void mtd_transfers_destroy(mtd_transfers *transfers);
 /* Handles one received mesh_chunk_t (bytes with its fingerprint, not yet
  * decoded): decodes it, adds it to its transfer (admitting a new one within
  * the limits), answers with mesh_transfer_t when asked or wrong, and hands a
- * complete mesh to the submitter. Expires stalled transfers first. */
+ * complete mesh to the submitter. Expires stalled transfers first. In a
+ * cluster, a chunk opens a transfer only on the member owning its mesh id;
+ * a transfer already open is finished by its member whoever owns the id
+ * now. */
 void mtd_transfers_chunk(mtd_transfers *transfers, const void *data, size_t size);
 
 /* Drops every transfer that received nothing for transfer_timeout_ms and

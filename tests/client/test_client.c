@@ -1205,6 +1205,7 @@ static void publish_heartbeat(lcm_t *lcm, int32_t pid)
     st.instance = "test";
     st.channel_prefix = "MESHTOPO_";
     st.last_error = "";
+    st.cluster = "";
     CHECK_EQ(meshtopo_status_t_publish(lcm, "MESHTOPO_STATUS", &st), 0);
 }
 

@@ -86,6 +86,11 @@ static void config_bad_values_named(void)
         {{"--bogus", "1"}, 2, "option '--bogus': unknown"},
         {{"--workers"}, 1, "option '--workers': needs a value"},
         {{"extra"}, 1, "argument 'extra': meshtopod takes no positional arguments"},
+        {{"--cluster", "map"}, 2, "option --cluster 'map': needs --archive DIR"},
+        {{"--cluster=map", "--archive=/nonexistent/a", "--archive-mode=async"},
+         3,
+         "option --cluster 'map': needs --archive-mode sync"},
+        {{"--cluster", "a b"}, 2, "option --cluster 'a b': only printable"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         const char *argv[4] = {"meshtopod", cases[i].args[0], cases[i].args[1], cases[i].args[2]};

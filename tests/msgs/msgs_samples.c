@@ -500,6 +500,10 @@ static void fill_status(void *out)
     s->archive_backlog = 1;
     s->archive_bytes = 4567890;
     s->memory_budget = 268435456;
+    s->cluster = "mapping";
+    s->cluster_members = 3;
+    s->cluster_share = 0.3359375;
+    s->cluster_view = 0x5ca1ab1e;
 }
 
 /* ---- mesh_chunk_t and mesh_transfer_t --------------------------------------- */

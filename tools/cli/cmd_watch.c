@@ -73,6 +73,11 @@ static void status_json(mt_json *j, const meshtopo_status_t *s)
     FIELD_INT(archive_backlog);
     FIELD_INT(archive_bytes);
     FIELD_INT(memory_budget);
+    FIELD_STR(cluster);
+    FIELD_INT(cluster_members);
+    mt_json_key(j, "cluster_share");
+    mt_json_double(j, s->cluster_share);
+    FIELD_INT(cluster_view);
 #undef FIELD_INT
 #undef FIELD_STR
     mt_json_object_end(j);
@@ -91,6 +96,9 @@ static void status_text(const char *channel, const meshtopo_status_t *s)
                " loaded, %" PRId64 " evicted, %" PRId32 " waiting, %" PRId64 " errors",
                s->archive_versions, s->archive_bytes, s->archive_writes, s->archive_loads,
                s->archive_evictions, s->archive_backlog, s->archive_errors);
+    if (s->cluster[0])
+        printf("; cluster %s: %" PRId32 " members, owns %.1f %% of mesh ids (view %016" PRIx64 ")",
+               s->cluster, s->cluster_members, 100.0 * s->cluster_share, (uint64_t)s->cluster_view);
     if (s->last_error[0]) printf("; last error: %s", s->last_error);
     putchar('\n');
 }

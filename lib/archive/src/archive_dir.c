@@ -219,14 +219,39 @@ mt_status mt_archive_list_filtered(const mt_archive *archive, mt_archive_name_fi
     return MT_OK;
 }
 
+mt_status mt_archive_list_file(const mt_archive *archive, const char *file_name,
+                               mt_archive_entry *out, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    if (!out) return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_list_file: NULL");
+    memset(out, 0, sizeof *out);
+    if (!archive || !file_name)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_list_file: NULL");
+    if (strchr(file_name, '/') || !is_archive_name(file_name) ||
+        strlen(file_name) > MT_ARCHIVE_FILE_NAME_MAX)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "'%s' is not an archive file name",
+                                file_name);
+    if (!(out->file_name = mt__archive_strdup(file_name)))
+        return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory listing %s", file_name);
+    mt_diag_clear(&out->diag);
+    out->status = mt__archive_read_entry(archive, file_name, out, &out->diag);
+    if (diag && out->status != MT_OK) *diag = out->diag;
+    return out->status;
+}
+
+void mt_archive_entry_free(mt_archive_entry *entry)
+{
+    if (!entry) return;
+    free(entry->file_name);
+    free(entry->mesh_id);
+    free(entry->source);
+    memset(entry, 0, sizeof *entry);
+}
+
 void mt_archive_listing_free(mt_archive_listing *listing)
 {
     if (!listing) return;
-    for (size_t i = 0; i < listing->count; i++) {
-        free(listing->entries[i].file_name);
-        free(listing->entries[i].mesh_id);
-        free(listing->entries[i].source);
-    }
+    for (size_t i = 0; i < listing->count; i++) mt_archive_entry_free(&listing->entries[i]);
     free(listing->entries);
     memset(listing, 0, sizeof *listing);
 }

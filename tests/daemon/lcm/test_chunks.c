@@ -92,7 +92,7 @@ static void fixture_start(fixture *fx, const mtd_config *config)
     mtd_log_set_level(config->log_level);
     fx->lcm = lcm_create("memq://");
     CHECK(fx->lcm != NULL);
-    CHECK_OK(mtd_daemon_create(config, fx->lcm, &fx->daemon, &diag));
+    CHECK_OK(mtd_daemon_create(config, fx->lcm, NULL, &fx->daemon, &diag));
     lcm_subscribe(fx->lcm, REPLY "_(ACK|TRANSFER)", on_reply, fx);
     lcm_subscribe(fx->lcm, REPLY2 "_(ACK|TRANSFER)", on_reply, fx);
     lcm_subscribe(fx->lcm, "MESHTOPO_STATUS", on_status, fx);

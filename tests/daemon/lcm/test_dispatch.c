@@ -90,7 +90,7 @@ static void fixture_init_with(fixture *fx, int argc, char **argv)
     mtd_log_set_level(config.log_level);
     fx->lcm = lcm_create("memq://");
     CHECK(fx->lcm != NULL);
-    CHECK_OK(mtd_daemon_create(&config, fx->lcm, &fx->daemon, &diag));
+    CHECK_OK(mtd_daemon_create(&config, fx->lcm, NULL, &fx->daemon, &diag));
     lcm_subscribe(fx->lcm, REPLY_CHANNEL "_(ACK|REPLY|PART)", on_reply, fx);
     lcm_subscribe(fx->lcm, "MESHTOPO_TOPOLOGY", on_topology, fx);
     lcm_subscribe(fx->lcm, "MESHTOPO_STATUS", on_status, fx);
@@ -1080,7 +1080,7 @@ static void test_second_daemon_noted(void)
     struct timespec pause = {0, 2000000L};
     nanosleep(&pause, NULL); /* a later start time */
     mtd_daemon *younger = NULL;
-    CHECK_OK(mtd_daemon_create(&config, fx.lcm, &younger, &diag));
+    CHECK_OK(mtd_daemon_create(&config, fx.lcm, NULL, &younger, &diag));
     char who[256] = "";
     CHECK(!mtd_daemon_other_seen(younger, who, sizeof who));
     mtd_counters before;

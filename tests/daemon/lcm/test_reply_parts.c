@@ -478,7 +478,7 @@ static void fixture_init(fixture *fx)
     mtd_log_set_level(config.log_level);
     fx->lcm = lcm_create("memq://");
     CHECK(fx->lcm != NULL);
-    CHECK_OK(mtd_daemon_create(&config, fx->lcm, &fx->daemon, &diag));
+    CHECK_OK(mtd_daemon_create(&config, fx->lcm, NULL, &fx->daemon, &diag));
     lcm_subscribe(fx->lcm, RAW_REPLY "_(REPLY|PART)", on_raw, fx);
 }
 

@@ -295,6 +295,17 @@ void mt_archive_listing_free(mt_archive_listing *listing);
 mt_status mt_archive_highest_version(const mt_archive *archive, const char *mesh_id,
                                      uint32_t *out_version, mt_diag *diag);
 
+/* One file of the archive directory as mt_archive_list lists it, by name:
+ * *out is filled as a listing's entry is (status, diag and fault included)
+ * and freed with mt_archive_entry_free. Returns out->status, or
+ * MT_ERR_INVALID_ARG for a name that is not an archive file's or
+ * MT_ERR_NOMEM. */
+mt_status mt_archive_list_file(const mt_archive *archive, const char *file_name,
+                               mt_archive_entry *out, mt_diag *diag);
+
+/* Frees what an entry of mt_archive_list_file owns and zeroes it. NULL-safe. */
+void mt_archive_entry_free(mt_archive_entry *entry);
+
 /* Which files mt_archive_list_filtered reads: true to read file_name. */
 typedef bool (*mt_archive_name_filter)(void *ctx, const char *file_name);
 
