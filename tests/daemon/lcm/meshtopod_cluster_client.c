@@ -13,9 +13,12 @@
  *   chaos MESHTOPOD ARCHIVE_DIR LOG_DIR MEMBERS ROUNDS HEARTBEAT_MS
  *     Starts MEMBERS meshtopod (cluster "chaos", one build worker each),
  *     then, ROUNDS times, while a stream of submissions and queries runs:
- *     SIGKILLs one member at a random instant, measures the time until the
- *     ids it owned answer again (failover), starts a new member (a join
- *     under load) and waits until every member sees the same view. Then it
+ *     SIGKILLs one member (in odd rounds at a random instant, in even rounds
+ *     the owner of a large mesh the stream is sending in chunks, once a
+ *     quarter of it is confirmed: that submission must still complete),
+ *     measures the time until the ids it owned answer again (failover),
+ *     starts a new member (a join under load) and waits until every member
+ *     sees the same view. Then it
  *     queries every acknowledged version and stops the members it started
  *     (by PID). Fails on a lost acknowledged version, a version number
  *     acknowledged for two contents, a query or submission never answered,
@@ -48,6 +51,9 @@
 #define MAX_MEMBERS 8
 /* Mesh ids of the chaos stream; each gets versions all along. */
 #define CHAOS_IDS 48
+/* Large meshes sent in chunks, one per even round: "chaos-big-ROUND". */
+#define MAX_ROUNDS 64
+#define BIG_CELLS 300 /* a 300 x 300 grid of triangles: about 5 MB of content */
 #define MAX_RECORDS 20000
 
 static int64_t now_us(void)
@@ -267,8 +273,13 @@ typedef struct chaos {
     int num_members, next_number;
     record records[MAX_RECORDS];
     int num_records;
-    int32_t highest_acked[CHAOS_IDS];
+    int32_t highest_acked[CHAOS_IDS + MAX_ROUNDS];
     atomic_int stop;
+    /* The large submission of an even round: main asks for it (big_round),
+     * the stream sends it and says when a quarter is confirmed (big_quarter)
+     * and when it was acknowledged (big_done: 1 acknowledged, -1 failed). */
+    atomic_int big_round, big_quarter, big_done;
+    int64_t big_killed_us, big_acked_us;
     int64_t submitted, queried, failed_ops, stale_latest, wrong_hash, reused_versions;
 } chaos;
 
@@ -333,9 +344,22 @@ static int wait_settled(chaos *ch, int timeout_ms)
     return -1;
 }
 
+/* Ids 0 .. CHAOS_IDS - 1 are the stream's small meshes, the ones above the
+ * large meshes of the even rounds. */
 static void chaos_id(int k, char *id, size_t size)
 {
-    snprintf(id, size, "chaos-%d", k);
+    if (k < CHAOS_IDS)
+        snprintf(id, size, "chaos-%d", k);
+    else
+        snprintf(id, size, "chaos-big-%d", k - CHAOS_IDS);
+}
+
+static chaos *progress_chaos;
+
+static void on_progress(uint64_t done, uint64_t total, void *user)
+{
+    (void)user;
+    if (done >= total / 4) atomic_store(&progress_chaos->big_quarter, 1);
 }
 
 /* Records an ack; a version acknowledged before for another content is a
@@ -361,7 +385,9 @@ static int submit_one(chaos *ch, mt_client *c, int k, uint64_t seq)
     char id[32];
     chaos_id(k, id, sizeof id);
     mt_face_list list;
-    if (make_mesh(seq, &list) != 0) return -1;
+    if (k >= CHAOS_IDS ? mt_gen_grid(BIG_CELLS, BIG_CELLS, true, &list) != MT_OK
+                       : make_mesh(seq, &list) != 0)
+        return -1;
     mt_client_ack ack;
     mt_diag diag;
     mt_status st = mt_client_submit(c, id, &list, 0, &ack, &diag);
@@ -415,14 +441,29 @@ static void *stream_main(void *arg)
 {
     chaos *ch = arg;
     /* Attempts of 100 ms, retried for 20 s: a member's death costs a few. */
-    mt_client *c = client_new(100, 200, "cluster-stream");
-    if (!c) {
+    mt_client_options o;
+    memset(&o, 0, sizeof o);
+    o.timeout_ms = 100;
+    o.retries = 200;
+    o.source = "cluster-stream";
+    o.progress = on_progress;
+    progress_chaos = ch;
+    mt_client *c = NULL;
+    mt_diag diag;
+    if (mt_client_create(&o, &c, &diag) != MT_OK) {
         ch->failed_ops++;
         return NULL;
     }
     uint64_t seq = 1000;
     unsigned rng = 12345;
     while (!atomic_load(&ch->stop)) {
+        int big = atomic_exchange(&ch->big_round, 0);
+        if (big) {
+            int rc = submit_one(ch, c, CHAOS_IDS + big, seq++);
+            ch->big_acked_us = now_us();
+            atomic_store(&ch->big_done, rc == 0 ? 1 : -1);
+            continue;
+        }
         int k = (int)(rand_r(&rng) % CHAOS_IDS);
         if (submit_one(ch, c, k, seq++) != 0) ch->failed_ops++;
         ch->submitted++;
@@ -435,14 +476,20 @@ static void *stream_main(void *arg)
     return NULL;
 }
 
-/* Kills one member at random; returns the failover time in ms (the last of
+/* Kills one member: the owner of id `target` (an index for chaos_id), or a
+ * random one when target < 0. Returns the failover time in ms (the last of
  * its ids to answer again), -1 when one never did. */
-static int kill_and_measure(chaos *ch, mt_client *probe, unsigned *rng)
+static int kill_and_measure(chaos *ch, mt_client *probe, unsigned *rng, int target)
 {
     pthread_mutex_lock(&ch->lock);
-    int victim = (int)(rand_r(rng) % (unsigned)ch->num_members);
     const char *instances[MAX_MEMBERS];
     for (int i = 0; i < ch->num_members; i++) instances[i] = ch->members[i].instance;
+    int victim = (int)(rand_r(rng) % (unsigned)ch->num_members);
+    if (target >= 0) {
+        char id[32];
+        chaos_id(target, id, sizeof id);
+        victim = (int)mtd_cluster_owner_of(instances, (size_t)ch->num_members, id);
+    }
     bool owned[CHAOS_IDS];
     int dead_ids = 0;
     for (int k = 0; k < CHAOS_IDS; k++) {
@@ -456,6 +503,7 @@ static int kill_and_measure(chaos *ch, mt_client *probe, unsigned *rng)
     pthread_mutex_unlock(&ch->lock);
 
     int64_t killed = now_us();
+    ch->big_killed_us = killed;
     kill(dead.pid, SIGKILL);
     waitpid(dead.pid, NULL, 0);
     int64_t last = killed;
@@ -500,10 +548,37 @@ static int run_chaos(chaos *ch, int members, int rounds)
     pthread_t stream;
     pthread_create(&stream, NULL, stream_main, ch);
     unsigned rng = (unsigned)getpid();
-    int failover[64], num_failover = 0;
-    for (int round = 0; round < rounds && round < 64; round++) {
-        sleep_ms(300 + (int)(rand_r(&rng) % 1200)); /* a random instant of the stream */
-        int ms = kill_and_measure(ch, probe, &rng);
+    int failover[MAX_ROUNDS], num_failover = 0;
+    for (int round = 0; round < rounds && round < MAX_ROUNDS; round++) {
+        int big = round % 2 ? round : 0; /* the second, fourth, ... round */
+        int ms;
+        if (big) {
+            /* The owner of a large mesh in flight, a quarter of it confirmed. */
+            atomic_store(&ch->big_quarter, 0);
+            atomic_store(&ch->big_done, 0);
+            atomic_store(&ch->big_round, big);
+            int64_t asked = now_us();
+            while (!atomic_load(&ch->big_quarter) && !atomic_load(&ch->big_done) &&
+                   now_us() - asked < 20000000)
+                sleep_ms(1);
+            bool in_flight = atomic_load(&ch->big_quarter) && !atomic_load(&ch->big_done);
+            ms = kill_and_measure(ch, probe, &rng, CHAOS_IDS + big);
+            while (!atomic_load(&ch->big_done) && now_us() - asked < 30000000) sleep_ms(5);
+            int done = atomic_load(&ch->big_done);
+            printf("round %d: the owner of chaos-big-%d was killed %s; the submission %s",
+                   round + 1, big,
+                   in_flight ? "with a quarter of its chunks confirmed" : "(not in flight: FAIL)",
+                   done == 1 ? "was acknowledged" : "FAILED");
+            if (done == 1)
+                printf(" %.0f ms after the kill\n",
+                       (double)(ch->big_acked_us - ch->big_killed_us) / 1e3);
+            else
+                printf("\n");
+            if (!in_flight || done != 1) failures++;
+        } else {
+            sleep_ms(300 + (int)(rand_r(&rng) % 1200)); /* a random instant of the stream */
+            ms = kill_and_measure(ch, probe, &rng, -1);
+        }
         if (ms < 0)
             failures++;
         else
