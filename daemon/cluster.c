@@ -1,8 +1,7 @@
 /* meshtopod's cluster membership (cluster.h): the members heard, in one
  * small array under a mutex (the member itself first, never dropped), and
- * rendezvous hashing over them. A member's weight for an id is XXH3 of the
- * id seeded with the hash of the member's instance: independent per member,
- * the same on every machine. */
+ * rendezvous hashing over them (mt_msgs_cluster_owner, the protocol's rule:
+ * a client reading the heartbeats computes the same). */
 #include "cluster.h"
 
 #include <pthread.h>
@@ -10,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <xxhash.h>
+
+#include "meshtopo/protocol.h"
 
 #include "log.h"
 
@@ -34,34 +35,12 @@ struct mtd_cluster {
     bool full_logged;
 };
 
-static uint64_t seed_of(const char *instance)
-{
-    return XXH3_64bits(instance, strlen(instance));
-}
-
-/* Index of the member of `seeds` with the highest weight for id. */
-static size_t owner_by_seed(const uint64_t *seeds, size_t num, const char *id, size_t len)
-{
-    size_t best = 0;
-    uint64_t best_weight = 0;
-    for (size_t i = 0; i < num; i++) {
-        uint64_t w = XXH3_64bits_withSeed(id, len, seeds[i]);
-        /* Ties (never seen in practice) go to the lower seed, the same on
-         * every member. */
-        if (i == 0 || w > best_weight || (w == best_weight && seeds[i] < seeds[best])) {
-            best = i;
-            best_weight = w;
-        }
-    }
-    return best;
-}
-
 size_t mtd_cluster_owner_of(const char *const *instances, size_t num, const char *mesh_id)
 {
     uint64_t seeds[MTD_CLUSTER_MAX_MEMBERS];
     if (num > MTD_CLUSTER_MAX_MEMBERS) num = MTD_CLUSTER_MAX_MEMBERS;
-    for (size_t i = 0; i < num; i++) seeds[i] = seed_of(instances[i]);
-    return owner_by_seed(seeds, num, mesh_id, strlen(mesh_id));
+    for (size_t i = 0; i < num; i++) seeds[i] = mt_msgs_cluster_seed(instances[i]);
+    return mt_msgs_cluster_owner(seeds, num, mesh_id);
 }
 
 int64_t mtd_cluster_expiry_us(uint32_t heartbeat_ms)
@@ -82,7 +61,7 @@ mt_status mtd_cluster_create(const mtd_cluster_options *o, mtd_cluster **out_clu
     member *self = &c->members[0];
     snprintf(self->instance, sizeof self->instance, "%s", o->instance);
     snprintf(self->name, sizeof self->name, "%s", o->member_name ? o->member_name : "");
-    self->seed = seed_of(self->instance);
+    self->seed = mt_msgs_cluster_seed(self->instance);
     c->count = 1;
     *out_cluster = c;
     return MT_OK;
@@ -120,7 +99,7 @@ bool mtd_cluster_heard(mtd_cluster *c, const char *cluster_name, const char *ins
         member *m = &c->members[c->count++];
         snprintf(m->instance, sizeof m->instance, "%s", instance);
         snprintf(m->name, sizeof m->name, "%s", daemon_name);
-        m->seed = seed_of(m->instance);
+        m->seed = mt_msgs_cluster_seed(m->instance);
         m->heard_us = now_us;
         c->generation++;
         joined = true;
@@ -168,7 +147,7 @@ bool mtd_cluster_owns(mtd_cluster *c, const char *mesh_id)
     size_t n = c->count;
     for (size_t i = 0; i < n; i++) seeds[i] = c->members[i].seed;
     pthread_mutex_unlock(&c->lock);
-    return owner_by_seed(seeds, n, mesh_id, strlen(mesh_id)) == 0;
+    return mt_msgs_cluster_owner(seeds, n, mesh_id) == 0;
 }
 
 static int compare_text(const void *a, const void *b)
@@ -195,8 +174,8 @@ void mtd_cluster_get_view(mtd_cluster *c, mtd_cluster_view *out)
     size_t owned = 0;
     for (int k = 0; k < SHARE_SAMPLE; k++) {
         char id[16];
-        int len = snprintf(id, sizeof id, "%d", k);
-        owned += owner_by_seed(seeds, n, id, (size_t)len) == 0;
+        snprintf(id, sizeof id, "%d", k);
+        owned += mt_msgs_cluster_owner(seeds, n, id) == 0;
     }
     out->share = (double)owned / SHARE_SAMPLE;
     qsort(sorted, n, sizeof *sorted, compare_text);

@@ -131,6 +131,7 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
         return fail_nomem(diag, "query handler");
     mtd_handler_deps handlers = {.lcm = d->lcm,
                                  .prefix = c->channel_prefix,
+                                 .instance = d->instance,
                                  .replies = d->replies,
                                  .submitter = d->submitter,
                                  .transfers = d->transfers,

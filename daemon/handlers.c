@@ -9,6 +9,7 @@
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* LCM drops messages beyond this many waiting per subscription (default 30). */
 #define QUEUE_CAPACITY 10000
@@ -90,9 +91,11 @@ static void on_query(const lcm_recv_buf_t *rbuf, const char *channel, void *user
         mtd_reply_undecodable(h->deps.replies, &mt_msgs_type_query, rbuf->data, size, why);
         return;
     }
-    /* A listing of every mesh is answered by each member for what it owns. */
+    /* A listing of every mesh is answered by each member for what it owns;
+     * a query naming another daemon's instance is that daemon's. */
     bool every_mesh = msg.kind == MESHTOPO_QUERY_T_LIST_MESHES && !msg.mesh_id[0];
-    if (!every_mesh && !mtd_cluster_owns(h->deps.cluster, msg.mesh_id)) {
+    bool other_daemon = msg.instance[0] && strcmp(msg.instance, h->deps.instance) != 0;
+    if (other_daemon || (!every_mesh && !mtd_cluster_owns(h->deps.cluster, msg.mesh_id))) {
         atomic_fetch_add(&h->not_owned, 1);
         meshtopo_query_t_decode_cleanup(&msg);
         return;

@@ -24,7 +24,8 @@
 /* Where each message goes; not owned, all must outlive the handlers. */
 typedef struct mtd_handler_deps {
     lcm_t *lcm;
-    const char *prefix; /* of the channel names */
+    const char *prefix;   /* of the channel names */
+    const char *instance; /* this daemon's, as in its heartbeat */
     mtd_replies *replies;
     mtd_submitter *submitter;
     mtd_transfers *transfers;

@@ -264,6 +264,7 @@ static void fill_query_ring(void *out)
     q->kind = MESHTOPO_QUERY_T_VERTEX_RING;
     q->num_ids = 3;
     q->ids = ids;
+    q->instance = "";
 }
 
 static void fill_query_edges(void *out)
@@ -278,6 +279,7 @@ static void fill_query_edges(void *out)
     q->kind = MESHTOPO_QUERY_T_EDGE_FACES;
     q->num_ids = 6;
     q->ids = ids;
+    q->instance = "robot-7:4242:1700000000000000";
 }
 
 /* ---- reply_t --------------------------------------------------------------- */

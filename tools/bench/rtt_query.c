@@ -94,6 +94,7 @@ bool mt__rtt_query_latency(mt_client *client, const mt_mesh *local, uint32_t cou
     int32_t id = 0;
     q.mesh_id = (char *)MT__RTT_MESH_ID;
     q.reply_channel = (char *)mt_client_reply_channel(client);
+    q.instance = "";
     q.kind = MESHTOPO_QUERY_T_VERTEX_RING;
     q.num_ids = 1;
     q.ids = &id;

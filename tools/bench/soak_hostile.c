@@ -139,6 +139,7 @@ static void send_flood(mt__soak_hostile *h, int32_t *ids, uint64_t n)
     memset(&q, 0, sizeof q);
     q.request_id = (int64_t)(3000000 + n);
     q.reply_channel = REPLY;
+    q.instance = "";
     q.mesh_id = h->mesh_id;
     q.kind = MESHTOPO_QUERY_T_VERTEX_RING;
     q.num_ids = (int32_t)h->flood_ids;
@@ -157,6 +158,7 @@ static void send_own_channel(mt__soak_hostile *h, uint64_t n)
     memset(&q, 0, sizeof q);
     q.request_id = (int64_t)(4000000 + n);
     q.reply_channel = (char *)own[n % 4];
+    q.instance = "";
     q.mesh_id = h->mesh_id;
     q.kind = MESHTOPO_QUERY_T_VALENCE;
     q.num_ids = 1;

@@ -58,15 +58,17 @@ static mt_status check_query(const char *mesh_id, int32_t version, int32_t kind,
 
 /* ---- Encoding ----------------------------------------------------------- */
 
-static mt_status encode_query(mt_client *client, int64_t request_id, const char *mesh_id,
-                              int32_t version, int32_t kind, const uint32_t *ids, size_t num_ids,
-                              mt__msgbuf **out_buf, mt_diag *diag)
+static mt_status encode_query(mt_client *client, int64_t request_id, const char *instance,
+                              const char *mesh_id, int32_t version, int32_t kind,
+                              const uint32_t *ids, size_t num_ids, mt__msgbuf **out_buf,
+                              mt_diag *diag)
 {
     meshtopo_query_t q;
     memset(&q, 0, sizeof q);
     q.utime = mt__client_utime();
     q.request_id = request_id;
     q.reply_channel = client->reply_channel;
+    q.instance = (char *)(uintptr_t)(instance ? instance : "");
     q.mesh_id = (char *)(uintptr_t)mesh_id;
     q.version = version;
     q.kind = kind;
@@ -161,14 +163,15 @@ mt_status mt_client_submit(mt_client *client, const char *mesh_id, const mt_face
 
 /* ---- Queries ------------------------------------------------------------ */
 
-static mt_status query_sync(mt_client *client, const char *mesh_id, int32_t version, int32_t kind,
-                            const uint32_t *ids, size_t num_ids, meshtopo_reply_t *out_reply,
-                            mt_diag *diag)
+/* instance: the daemon that answers (NULL: any). */
+static mt_status query_sync(mt_client *client, const char *instance, const char *mesh_id,
+                            int32_t version, int32_t kind, const uint32_t *ids, size_t num_ids,
+                            meshtopo_reply_t *out_reply, mt_diag *diag)
 {
     int64_t request_id = mt__client_next_id(client);
     mt__msgbuf *buf = NULL;
-    mt_status st =
-        encode_query(client, request_id, mesh_id, version, kind, ids, num_ids, &buf, diag);
+    mt_status st = encode_query(client, request_id, instance, mesh_id, version, kind, ids, num_ids,
+                                &buf, diag);
     if (st != MT_OK) return st;
     mt__pending p;
     st = call_sync(client, request_id, &mt_msgs_type_reply, client->query_channel, buf, &p, diag);
@@ -186,20 +189,31 @@ mt_status mt_client_query(mt_client *client, const char *mesh_id, int32_t versio
     if (!out_reply)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "mt_client_query: out_reply is NULL");
     if ((st = check_query(mesh_id, version, kind, ids, num_ids, diag)) != MT_OK) return st;
-    return query_sync(client, mesh_id, version, kind, ids, num_ids, out_reply, diag);
+    return query_sync(client, NULL, mesh_id, version, kind, ids, num_ids, out_reply, diag);
 }
 
 mt_status mt_client_list(mt_client *client, const char *mesh_id, meshtopo_reply_t *out_reply,
                          mt_diag *diag)
+{
+    return mt_client_list_from(client, NULL, mesh_id, out_reply, diag);
+}
+
+mt_status mt_client_list_from(mt_client *client, const char *instance, const char *mesh_id,
+                              meshtopo_reply_t *out_reply, mt_diag *diag)
 {
     if (out_reply) memset(out_reply, 0, sizeof *out_reply);
     mt_status st = check_client(client, diag, "mt_client_list");
     if (st != MT_OK) return st;
     if (!out_reply)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "mt_client_list: out_reply is NULL");
+    if (instance && strlen(instance) > MT_CLIENT_MAX_INSTANCE)
+        return mt__client_fail(diag, MT_ERR_INVALID_ARG,
+                               "mt_client_list_from: instance longer than %d bytes",
+                               MT_CLIENT_MAX_INSTANCE);
     if (!mesh_id) mesh_id = "";
     if (mesh_id[0] && (st = mt_msgs_mesh_id_check(mesh_id, diag)) != MT_OK) return st;
-    return query_sync(client, mesh_id, 0, MESHTOPO_QUERY_T_LIST_MESHES, NULL, 0, out_reply, diag);
+    return query_sync(client, instance, mesh_id, 0, MESHTOPO_QUERY_T_LIST_MESHES, NULL, 0,
+                      out_reply, diag);
 }
 
 mt_status mt_client_query_async(mt_client *client, const char *mesh_id, int32_t version,
@@ -214,7 +228,8 @@ mt_status mt_client_query_async(mt_client *client, const char *mesh_id, int32_t 
     mt__pending *p = calloc(1, sizeof *p);
     if (!p) return mt__client_fail(diag, MT_ERR_NOMEM, "no memory for a pending query");
     p->request_id = mt__client_next_id(client);
-    st = encode_query(client, p->request_id, mesh_id, version, kind, ids, num_ids, &p->buf, diag);
+    st = encode_query(client, p->request_id, NULL, mesh_id, version, kind, ids, num_ids, &p->buf,
+                      diag);
     if (st != MT_OK) {
         free(p);
         return st;

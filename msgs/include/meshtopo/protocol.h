@@ -1,11 +1,13 @@
-/* meshtopo::msgs protocol rules that are code, not fields: the mesh-id rule
- * and the one table between status_code_t values, mt_status and names. The
+/* meshtopo::msgs protocol rules that are code, not fields: the mesh-id rule,
+ * the owner of a mesh id in a cluster, and the one table between
+ * status_code_t values, mt_status and names. The
  * daemon, the client and the archive call these; the numeric limits are
  * const members of the .lcm types (MESHTOPO_MESH_T_MESH_ID_MAX, ...). Pure
  * functions, any thread. */
 #ifndef MESHTOPO_PROTOCOL_H
 #define MESHTOPO_PROTOCOL_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "meshtopo/msgs.h" /* the limits: MESHTOPO_MESH_T_MESH_ID_MAX, ... */
@@ -23,6 +25,15 @@ extern "C" {
  * diag->byte_offset the offending byte (UINT64_MAX for the NULL, empty and
  * length rules). */
 mt_status mt_msgs_mesh_id_check(const char *id, mt_diag *diag);
+
+/* Which member of a cluster (meshtopod --cluster) owns a mesh id:
+ * rendezvous (highest-random-weight) hashing over the members' seeds, each
+ * member's seed being mt_msgs_cluster_seed of its heartbeat's instance
+ * (status_t.instance). Returns the index in seeds[0 .. num_members - 1] (0
+ * when num_members is 0). Every member computes the same, and so can a
+ * client or a tool that reads the heartbeats. */
+uint64_t mt_msgs_cluster_seed(const char *instance);
+size_t mt_msgs_cluster_owner(const uint64_t *seeds, size_t num_members, const char *mesh_id);
 
 /* The mt_status a status_code_t value stands for (MT_ERR_IO for a code this
  * table does not know: a newer daemon's). */

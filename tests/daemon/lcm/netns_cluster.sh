@@ -5,7 +5,7 @@
 #     once, as version 1, by the member that built it, each id built by one
 #     member, each member's share within 25 % of even; the archive holds the
 #     300 versions and verifies; the heartbeats say 3 members and a third
-#     of the ids each.
+#     of the ids each; `meshtopo list` merges the members' listings.
 #  2. Two members whose views disagree (one ignores the other's heartbeats,
 #     --test-ignore-member): both may build a submission, each build is
 #     archived under its own version number, every acknowledged version is in
@@ -82,6 +82,16 @@ shares = sorted(round(b["cluster_share"], 3) for b in beats.values())
 assert all(b["cluster"] == "spread" and b["cluster_members"] == 3 for b in beats.values())
 assert 0.97 < sum(shares) < 1.03 and all(0.25 < s < 0.42 for s in shares), shares
 print("heartbeats: cluster spread, 3 members, one view, shares %s" % shares)
+EOF
+"$meshtopo" list --json >"$dir/list.json" 2>"$dir/list.err" ||
+    fail "meshtopo list failed: $(cat "$dir/list.err")"
+python3 - "$dir/list.json" <<'EOF' || fail "meshtopo list does not show the whole cluster"
+import json, sys
+meshes = json.load(open(sys.argv[1]))["meshes"]
+ids = [m["mesh_id"] for m in meshes]
+assert sorted(ids) == sorted("spread-%d" % k for k in range(300)), len(ids)
+assert all(m["version"] == 1 for m in meshes)
+print("meshtopo list: the three members' 300 meshes, merged, each once")
 EOF
 stop_members
 

@@ -283,6 +283,7 @@ static int query(fixture *fx, const char *id, int32_t version, int32_t kind, con
     memset(&q, 0, sizeof q);
     q.request_id = fx->next_request_id++;
     q.reply_channel = REPLY_CHANNEL;
+    q.instance = "";
     q.mesh_id = (char *)id;
     q.version = version;
     q.kind = kind;
@@ -703,6 +704,34 @@ static void test_versions_and_list(void)
         }
         meshtopo_reply_t_decode_cleanup(&r);
     }
+    /* A query naming another daemon's instance is left to that daemon; one
+     * naming this daemon's is answered. Queries run in order on the LCM
+     * thread: once the second is answered, the first would have been. */
+    meshtopo_query_t q;
+    memset(&q, 0, sizeof q);
+    q.reply_channel = REPLY_CHANNEL;
+    q.mesh_id = "";
+    q.kind = MESHTOPO_QUERY_T_LIST_MESHES;
+    q.request_id = 9001;
+    q.instance = "elsewhere:1:1700000000000000";
+    publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    q.request_id = 9002;
+    q.instance = (char *)mtd_daemon_instance(fx.daemon);
+    publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    if (wait_for(&fx, &mt_msgs_type_reply, 9002, &r) == 0) {
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.num_meshes, 2);
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    for (size_t i = 0; i < fx.num_inbox; i++) {
+        meshtopo_reply_t other;
+        if (mt_msgs_type_of(fx.inbox[i].data, fx.inbox[i].size) != &mt_msgs_type_reply ||
+            mt_msgs_decode(&mt_msgs_type_reply, fx.inbox[i].data, fx.inbox[i].size, &other, NULL,
+                           0) != 0)
+            continue;
+        CHECK(other.request_id != 9001);
+        meshtopo_reply_t_decode_cleanup(&other);
+    }
     mt_face_list_free(&tet);
     fixture_free(&fx);
 }
@@ -825,6 +854,7 @@ static void test_bad_channels(void)
     memset(&q, 0, sizeof q);
     q.request_id = 5102;
     q.reply_channel = REPLY_CHANNEL;
+    q.instance = "";
     q.mesh_id = "cube";
     q.kind = MESHTOPO_QUERY_T_VALENCE;
     q.num_ids = 1;
@@ -912,6 +942,7 @@ static void test_bad_fingerprint(void)
     memset(&q, 0, sizeof q);
     q.request_id = 4242;
     q.reply_channel = REPLY_CHANNEL;
+    q.instance = "";
     q.mesh_id = "cube";
     q.kind = MESHTOPO_QUERY_T_REPORT;
     int size = meshtopo_query_t_encoded_size(&q);
@@ -1148,6 +1179,7 @@ static void test_query_flood_shared(void)
     meshtopo_query_t q;
     memset(&q, 0, sizeof q);
     q.reply_channel = "FLOOD";
+    q.instance = "";
     q.mesh_id = "grid";
     q.kind = MESHTOPO_QUERY_T_VERTEX_RING;
     q.num_ids = n;
@@ -1460,6 +1492,7 @@ static void test_request_id_shared_by_kinds(void)
     memset(&q, 0, sizeof q);
     q.request_id = 4242;
     q.reply_channel = REPLY_CHANNEL;
+    q.instance = "";
     q.mesh_id = "tet";
     q.kind = MESHTOPO_QUERY_T_VALENCE;
     int32_t v = 0;
@@ -1517,6 +1550,7 @@ static void test_duplicate_request(void)
     memset(&q, 0, sizeof q);
     q.request_id = 777;
     q.reply_channel = REPLY_CHANNEL;
+    q.instance = "";
     q.mesh_id = "tet";
     q.kind = MESHTOPO_QUERY_T_REPORT;
     meshtopo_reply_t r1, r2;

@@ -693,6 +693,7 @@ static void test_daemon_pulls(void)
     memset(&q, 0, sizeof q);
     q.request_id = 77;
     q.reply_channel = RAW_REPLY;
+    q.instance = "";
     q.mesh_id = "grid";
     q.kind = MESHTOPO_QUERY_T_VERTEX_RING;
     q.num_ids = (int32_t)n;

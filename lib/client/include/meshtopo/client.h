@@ -209,6 +209,16 @@ mt_status mt_client_query(mt_client *client, const char *mesh_id, int32_t versio
 mt_status mt_client_list(mt_client *client, const char *mesh_id, meshtopo_reply_t *out_reply,
                          mt_diag *diag);
 
+/* Longest daemon instance mt_client_list_from accepts (status_t.instance). */
+#define MT_CLIENT_MAX_INSTANCE 127
+
+/* mt_client_list answered only by the daemon whose heartbeat carries
+ * `instance` (status_t.instance; NULL or "": any daemon). In a cluster each
+ * member lists the ids it owns: ask each member seen in the heartbeats and
+ * merge (meshtopo list does). */
+mt_status mt_client_list_from(mt_client *client, const char *instance, const char *mesh_id,
+                              meshtopo_reply_t *out_reply, mt_diag *diag);
+
 /* Called once per asynchronous query: with MT_OK or the daemon's mapped
  * status and the reply, or with MT_ERR_IO and reply NULL after the last
  * attempt timed out (or the client was destroyed). diag says why when status
