@@ -4,12 +4,14 @@
  *   meshtopo-bench transfer [options]  large submissions vs a raw LCM push (bench_transfer.c)
  *   meshtopo-bench archive [options]   archive write and reload vs bare HDF5
  *                                      (bench_archive.c)
- *   meshtopo-bench soak [options]      meshtopod under normal and hostile traffic (soak.c) */
+ *   meshtopo-bench soak [options]      meshtopod under normal and hostile traffic (soak.c)
+ *   meshtopo-bench cluster [options]   1 vs 2 members of a cluster, failover (bench_cluster.c) */
 #include <stdio.h>
 #include <string.h>
 
 #include "bench.h"
 #include "bench_archive.h"
+#include "bench_cluster.h"
 #include "bench_transfer.h"
 #include "rtt.h"
 #include "soak.h"
@@ -22,6 +24,8 @@ int main(int argc, char **argv)
     if (argc > 1 && strcmp(argv[1], "archive") == 0)
         return mt__bench_archive_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "soak") == 0) return mt__bench_soak_command(argc - 1, argv + 1);
+    if (argc > 1 && strcmp(argv[1], "cluster") == 0)
+        return mt__bench_cluster_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "build") == 0) return mt__bench_command(argc - 1, argv + 1);
     return mt__bench_command(argc, argv);
 }

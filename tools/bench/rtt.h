@@ -71,6 +71,11 @@ const char *mt__rtt_daemon_find(const char *given, char *buf, size_t size);
 bool mt__rtt_daemon_start(const char *path, const char *archive_dir, mt__rtt_daemon *out, char *err,
                           size_t err_size);
 
+/* The same with the flags of args (NULL-terminated) after --lcm-url and
+ * --log-level warn. */
+bool mt__rtt_daemon_start_with(const char *path, const char *const *args, mt__rtt_daemon *out,
+                               char *err, size_t err_size);
+
 /* SIGTERM to the daemon's PID, SIGKILL after 10 s; true on a clean exit. */
 bool mt__rtt_daemon_stop(mt__rtt_daemon *daemon, char *err, size_t err_size);
 

@@ -20,6 +20,14 @@
 bool mt__rtt_daemon_start(const char *path, const char *archive_dir, mt__rtt_daemon *out, char *err,
                           size_t err_size)
 {
+    const char *with_archive[] = {"--heartbeat-ms", "100", "--archive", archive_dir, NULL};
+    const char *without[] = {"--heartbeat-ms", "100", NULL};
+    return mt__rtt_daemon_start_with(path, archive_dir ? with_archive : without, out, err, err_size);
+}
+
+bool mt__rtt_daemon_start_with(const char *path, const char *const *args, mt__rtt_daemon *out,
+                               char *err, size_t err_size)
+{
     memset(out, 0, sizeof *out);
     const char *tmp = getenv("TMPDIR");
     snprintf(out->log_path, sizeof out->log_path, "%s/meshtopo-rtt-daemon-XXXXXX",
@@ -40,12 +48,11 @@ bool mt__rtt_daemon_start(const char *path, const char *archive_dir, mt__rtt_dae
         dup2(log_fd, STDERR_FILENO);
         int null_fd = open("/dev/null", O_WRONLY);
         if (null_fd >= 0) dup2(null_fd, STDOUT_FILENO);
-        if (archive_dir)
-            execl(path, path, "--lcm-url", MT__RTT_LCM_URL, "--heartbeat-ms", "100", "--log-level",
-                  "warn", "--archive", archive_dir, (char *)NULL);
-        else
-            execl(path, path, "--lcm-url", MT__RTT_LCM_URL, "--heartbeat-ms", "100", "--log-level",
-                  "warn", (char *)NULL);
+        const char *argv[64] = {path, "--lcm-url", MT__RTT_LCM_URL, "--log-level", "warn"};
+        size_t n = 5;
+        for (size_t i = 0; args[i] && n < 63; i++) argv[n++] = args[i];
+        argv[n] = NULL;
+        execv(path, (char *const *)argv);
         fprintf(stderr, "meshtopo-bench rtt: cannot start %s: %s\n", path, strerror(errno));
         _exit(127);
     }

@@ -57,7 +57,7 @@ static int bench_run(int argc, char **argv)
 const mt_cli_command mt_cli_cmd_bench = {
     .name = "bench",
     .summary = "benchmarks: core build vs OpenMesh/CGAL, query round trips, soak",
-    .synopsis = "[build|rtt|transfer|archive|soak] [options]",
+    .synopsis = "[build|rtt|transfer|archive|soak|cluster] [options]",
     .description =
         "  meshtopo bench [build] [options]  build a 1M-triangle grid from a face list and\n"
         "                                    sweep its one-rings, against OpenMesh and CGAL\n"
@@ -71,6 +71,9 @@ const mt_cli_command mt_cli_cmd_bench = {
         "                                    S seconds in a private network namespace: lost\n"
         "                                    acks, latency against a baseline, memory\n"
         "                                    (meshtopo bench soak --help)\n"
+        "  meshtopo bench cluster [options]  build throughput of a meshtopod cluster of 1\n"
+        "                                    and 2 members, and the failover time of a\n"
+        "                                    member killed (meshtopo bench cluster --help)\n"
         "The exit status is meshtopo-bench's: 0 when every measurement ran and all\n"
         "answers agree; missed targets are printed but do not fail.\n",
     .run_raw = bench_run,
