@@ -4,6 +4,7 @@
  * (geometry kinds included);
  * every kind of bad message gets an error reply naming the problem while the
  * daemon keeps serving; a retried request id is answered from the cache. */
+#include <dirent.h>
 #include <inttypes.h>
 #include <lcm/lcm.h>
 #include <math.h>
@@ -11,11 +12,13 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 #include <xxhash.h>
 
 #include "clock.h"
 #include "daemon.h"
 #include "harness.h"
+#include "meshtopo/archive.h"
 #include "meshtopo/core.h"
 #include "meshtopo/io.h"
 #include "meshtopo/msgs.h"
@@ -1598,6 +1601,151 @@ static void test_heartbeat(void)
     fixture_free(&fx);
 }
 
+/* Removes a flat directory (an archive) and what it holds. */
+static void remove_dir(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    while (d && (e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        unlink(path);
+    }
+    if (d) closedir(d);
+    rmdir(dir);
+}
+
+/* Lets every daemon on fx's LCM hear the others' heartbeats and act on it. */
+static void let_members_meet(fixture *fx, mtd_daemon *const *daemons, int n)
+{
+    for (int i = 0; i < n; i++) mtd_daemon_heartbeat(daemons[i]);
+    for (int i = 0; i < 50; i++) lcm_handle_timeout(fx->lcm, 2);
+    for (int i = 0; i < n; i++) mtd_daemon_watch_cluster(daemons[i]);
+}
+
+/* Two members of a cluster in one process, on one in-process LCM and one
+ * archive directory, their builds on two workers each: every id built and
+ * acknowledged once, the listings of the two members split the ids; then
+ * one member gone silent: the other takes its ids over and serves them from
+ * the archive; then two members whose views disagree both build the same
+ * ids, and the archive numbers the versions (the builds race on the same
+ * names). */
+static void test_cluster_in_process(void)
+{
+    char dir[] = "/tmp/meshtopo-cluster-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL);
+    char *argv_a[] = {"meshtopod", "--cluster", "t", "--archive",   dir,     "--workers",
+                      "2",         "--name",    "a", "--log-level", "error", "--heartbeat-ms",
+                      "200"};
+    fixture fx;
+    fixture_init_with(&fx, 13, argv_a);
+    char *argv_b[13];
+    memcpy(argv_b, argv_a, sizeof argv_b);
+    argv_b[8] = "b";
+    mtd_config config_b;
+    mtd_config_action action;
+    mt_diag diag;
+    CHECK_OK(mtd_config_parse(13, argv_b, &config_b, &action, &diag));
+    mtd_daemon *b = NULL;
+    CHECK_OK(mtd_daemon_create(&config_b, fx.lcm, NULL, &b, &diag));
+    if (!b) return;
+    mtd_daemon *both[2] = {fx.daemon, b};
+    let_members_meet(&fx, both, 2);
+
+    mt_face_list tet;
+    CHECK_OK(mt_gen_platonic(MT_TETRAHEDRON, &tet));
+    enum { IDS = 40 };
+    char ids[IDS][16];
+    for (int k = 0; k < IDS; k++) {
+        snprintf(ids[k], sizeof ids[k], "part-%d", k);
+        CHECK_EQ(submit_ok(&fx, ids[k], &tet), 1);
+    }
+    for (int i = 0; i < 50; i++) lcm_handle_timeout(fx.lcm, 2);
+    CHECK_EQ(fx.num_inbox, 0); /* no second ack */
+    mtd_counters ca, cb;
+    mtd_daemon_get_counts(fx.daemon, &ca);
+    mtd_daemon_get_counts(b, &cb);
+    CHECK_EQ(ca.builds + cb.builds, IDS);
+    CHECK(ca.builds >= 8 && cb.builds >= 8);
+
+    /* Each member lists the ids it owns. */
+    int listed = 0;
+    for (int i = 0; i < 2; i++) {
+        meshtopo_query_t q;
+        memset(&q, 0, sizeof q);
+        q.reply_channel = REPLY_CHANNEL;
+        q.mesh_id = "";
+        q.kind = MESHTOPO_QUERY_T_LIST_MESHES;
+        q.request_id = 7000 + i;
+        q.instance = (char *)mtd_daemon_instance(both[i]);
+        publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+        meshtopo_reply_t r;
+        if (wait_for(&fx, &mt_msgs_type_reply, q.request_id, &r) != 0) continue;
+        CHECK_EQ(r.num_meshes, i == 0 ? ca.builds : cb.builds);
+        listed += r.num_meshes;
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    CHECK_EQ(listed, IDS);
+
+    /* b goes silent: once the expiry passes, a owns every id and loads b's
+     * meshes from the archive. */
+    mtd_daemon_destroy(b);
+    b = NULL;
+    struct timespec pause = {0, 500 * 1000 * 1000}; /* beyond 2 heartbeat periods */
+    nanosleep(&pause, NULL);
+    mtd_daemon_watch_cluster(fx.daemon);
+    for (int k = 0; k < IDS; k++) {
+        meshtopo_reply_t r;
+        if (query(&fx, ids[k], 0, MESHTOPO_QUERY_T_REPORT, NULL, 0, &r) != 0) continue;
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.version, 1);
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+
+    /* c joins but ignores a's heartbeats: c believes it owns every id, a
+     * owns about half of them (it hears c). A second submission of each id
+     * is built by both for a's half: every build is archived under its own
+     * number. */
+    char *argv_c[15];
+    memcpy(argv_c, argv_a, sizeof argv_a);
+    argv_c[8] = "c";
+    argv_c[13] = "--test-ignore-member";
+    argv_c[14] = "a";
+    mtd_config config_c;
+    CHECK_OK(mtd_config_parse(15, argv_c, &config_c, &action, &diag));
+    mtd_daemon *c = NULL;
+    CHECK_OK(mtd_daemon_create(&config_c, fx.lcm, NULL, &c, &diag));
+    if (c) {
+        mtd_daemon *pair[2] = {fx.daemon, c};
+        let_members_meet(&fx, pair, 2);
+        for (int k = 0; k < IDS; k++) CHECK(submit_ok(&fx, ids[k], &tet) >= 2);
+        for (int i = 0; i < 100; i++) lcm_handle_timeout(fx.lcm, 2);
+        mtd_daemon_destroy(c);
+    }
+    /* Whoever built them, every version number of an id is used once. */
+    mt_archive *archive = NULL;
+    CHECK_OK(mt_archive_open(dir, &(mt_archive_options){.read_only = true}, &archive, &diag));
+    mt_archive_listing l;
+    if (archive && mt_archive_list(archive, &l, &diag) == MT_OK) {
+        int second = 0;
+        for (size_t i = 0; i < l.count; i++) {
+            CHECK_OK(l.entries[i].status);
+            second += l.entries[i].version >= 2;
+            if (i > 0 && l.entries[i].status == MT_OK && l.entries[i - 1].status == MT_OK &&
+                strcmp(l.entries[i].mesh_id, l.entries[i - 1].mesh_id) == 0)
+                CHECK(l.entries[i].version != l.entries[i - 1].version);
+        }
+        CHECK(second >= IDS);          /* one second version at least per id */
+        CHECK((int)l.count > 2 * IDS); /* and a third one for the ids c built too */
+        mt_archive_listing_free(&l);
+    }
+    mt_archive_close(archive);
+    mt_face_list_free(&tet);
+    fixture_free(&fx);
+    remove_dir(dir);
+}
+
 static const mt_test_case cases[] = {
     {"generated_every_kind", test_generated_every_kind},
     {"corpus_every_kind", test_corpus_every_kind},
@@ -1618,5 +1766,6 @@ static const mt_test_case cases[] = {
     {"duplicate_request", test_duplicate_request},
     {"request_id_shared_by_kinds", test_request_id_shared_by_kinds},
     {"heartbeat", test_heartbeat},
+    {"cluster_in_process", test_cluster_in_process},
 };
 const mt_test_table mt_tests_dispatch = {cases, sizeof cases / sizeof cases[0]};
