@@ -790,10 +790,10 @@ static mt_status open_archive(mtd_archiver *a, const mtd_config *c, mt_diag *dia
     mt_archive_listing listing;
     s = mt_archive_list(a->archive, &listing, diag);
     if (s != MT_OK) return s;
-    size_t bad = 0, readable = listing.count;
+    size_t bad = 0, listed = listing.count;
     size_t added = catalog_listing(a, &listing, true, &bad);
     mt_archive_listing_free(&listing);
-    if (added + bad < readable)
+    if (added + bad < listed)
         return mt_diag_set(diag, MT_ERR_NOMEM, "out of memory cataloguing %s", c->archive_dir);
     mtd_log(MTD_LOG_INFO, "archive",
             "dir=%s mode=%s versions=%zu unreadable=%zu leftovers_removed=%zu bytes=%" PRIu64,

@@ -10,9 +10,8 @@
 #include <string.h>
 #include <xxhash.h>
 
-#include "meshtopo/protocol.h"
-
 #include "log.h"
+#include "meshtopo/protocol.h"
 
 /* Ids of the fixed sample the heartbeat's share is measured on. */
 #define SHARE_SAMPLE 4096
@@ -20,7 +19,7 @@
 typedef struct member {
     char instance[128];
     char name[64];
-    uint64_t seed; /* XXH3 of instance */
+    uint64_t seed; /* mt_msgs_cluster_seed of instance */
     int64_t heard_us;
 } member;
 
@@ -33,6 +32,8 @@ struct mtd_cluster {
     size_t count;
     uint64_t generation, reported; /* view changes, and the last one refresh returned */
     bool full_logged;
+    mtd_cluster_view view;    /* computed for generation view_generation - 1 */
+    uint64_t view_generation; /* 0: none yet */
 };
 
 size_t mtd_cluster_owner_of(const char *const *instances, size_t num, const char *mesh_id)
@@ -155,15 +156,10 @@ static int compare_text(const void *a, const void *b)
     return strcmp(*(const char *const *)a, *(const char *const *)b);
 }
 
-void mtd_cluster_get_view(mtd_cluster *c, mtd_cluster_view *out)
+/* The view of members[0 .. n-1] (members[0] this daemon). */
+static void compute_view(const member *members, size_t n, mtd_cluster_view *out)
 {
     memset(out, 0, sizeof *out);
-    member members[MTD_CLUSTER_MAX_MEMBERS];
-    pthread_mutex_lock(&c->lock);
-    size_t n = c->count;
-    memcpy(members, c->members, n * sizeof *members);
-    pthread_mutex_unlock(&c->lock);
-
     out->members = (int32_t)n;
     uint64_t seeds[MTD_CLUSTER_MAX_MEMBERS];
     const char *sorted[MTD_CLUSTER_MAX_MEMBERS];
@@ -193,4 +189,25 @@ void mtd_cluster_get_view(mtd_cluster *c, mtd_cluster_view *out)
         if (w < 0) break;
         used += (size_t)w;
     }
+}
+
+void mtd_cluster_get_view(mtd_cluster *c, mtd_cluster_view *out)
+{
+    member members[MTD_CLUSTER_MAX_MEMBERS];
+    pthread_mutex_lock(&c->lock);
+    bool fresh = c->view_generation == c->generation + 1;
+    if (fresh) *out = c->view;
+    const uint64_t generation = c->generation;
+    size_t n = c->count;
+    memcpy(members, c->members, n * sizeof *members);
+    pthread_mutex_unlock(&c->lock);
+    if (fresh) return;
+    /* Every heartbeat reports the view: it is computed once per change. */
+    compute_view(members, n, out);
+    pthread_mutex_lock(&c->lock);
+    if (c->generation == generation) {
+        c->view = *out;
+        c->view_generation = generation + 1;
+    }
+    pthread_mutex_unlock(&c->lock);
 }

@@ -153,6 +153,19 @@ void mtd_daemon_instance_name(int64_t start_utime, char *out, size_t size)
     snprintf(out, size, "%s:%d:%" PRId64, host, (int)getpid(), start_utime);
 }
 
+mt_status mtd_daemon_cluster_create(const mtd_config *config, const char *instance,
+                                    mtd_cluster **out_cluster)
+{
+    *out_cluster = NULL;
+    if (!config->cluster[0]) return MT_OK;
+    mtd_cluster_options members = {.name = config->cluster,
+                                   .instance = instance,
+                                   .member_name = config->name,
+                                   .expiry_us = mtd_cluster_expiry_us(config->heartbeat_ms),
+                                   .ignored_name = config->test_ignore_member};
+    return mtd_cluster_create(&members, out_cluster);
+}
+
 mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_cluster *cluster,
                             mtd_daemon **out_daemon, mt_diag *diag)
 {
@@ -171,16 +184,9 @@ mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_cluster *c
         snprintf(d->instance, sizeof d->instance, "%s", mtd_cluster_instance(d->cluster));
     else
         mtd_daemon_instance_name(d->start_utime, d->instance, sizeof d->instance);
-    if (config->cluster[0] && !d->cluster) {
-        mtd_cluster_options members = {.name = config->cluster,
-                                       .instance = d->instance,
-                                       .member_name = config->name,
-                                       .expiry_us = mtd_cluster_expiry_us(config->heartbeat_ms),
-                                       .ignored_name = config->test_ignore_member};
-        if (mtd_cluster_create(&members, &d->cluster) != MT_OK) {
-            free(d);
-            return fail_nomem(diag, "cluster membership");
-        }
+    if (!d->cluster && mtd_daemon_cluster_create(config, d->instance, &d->cluster) != MT_OK) {
+        free(d);
+        return fail_nomem(diag, "cluster membership");
     }
     /* lcm-gen's fingerprints are computed lazily without a lock: do it now,
      * before any worker thread encodes. */

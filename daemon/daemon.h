@@ -30,6 +30,12 @@ typedef struct mtd_daemon mtd_daemon;
 mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_cluster *cluster,
                             mtd_daemon **out_daemon, mt_diag *diag);
 
+/* The membership of config's cluster for a daemon of this instance (*out
+ * NULL without --cluster): what the start-up probe fills and
+ * mtd_daemon_create takes over. MT_OK or MT_ERR_NOMEM. */
+mt_status mtd_daemon_cluster_create(const mtd_config *config, const char *instance,
+                                    mtd_cluster **out_cluster);
+
 /* Formats the instance id a daemon started at start_utime has:
  * "host:pid:start_utime". */
 void mtd_daemon_instance_name(int64_t start_utime, char *out, size_t size);

@@ -142,19 +142,12 @@ int main(int argc, char **argv)
         return 1;
     }
     mtd_cluster *cluster = NULL;
-    if (config.cluster[0]) {
-        char instance[128];
-        mtd_daemon_instance_name(mtd_now_utime(), instance, sizeof instance);
-        mtd_cluster_options members = {.name = config.cluster,
-                                       .instance = instance,
-                                       .member_name = config.name,
-                                       .expiry_us = mtd_cluster_expiry_us(config.heartbeat_ms),
-                                       .ignored_name = config.test_ignore_member};
-        if (mtd_cluster_create(&members, &cluster) != MT_OK) {
-            mtd_log(MTD_LOG_ERROR, "start", "cannot create the cluster membership");
-            lcm_destroy(lcm);
-            return 1;
-        }
+    char instance[128];
+    mtd_daemon_instance_name(mtd_now_utime(), instance, sizeof instance);
+    if (mtd_daemon_cluster_create(&config, instance, &cluster) != MT_OK) {
+        mtd_log(MTD_LOG_ERROR, "start", "cannot create the cluster membership: out of memory");
+        lcm_destroy(lcm);
+        return 1;
     }
     if (!prefix_is_free(lcm, &config, cluster)) {
         mtd_cluster_destroy(cluster);
