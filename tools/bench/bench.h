@@ -130,6 +130,10 @@ struct mt__bench_runner {
  * `[build] [options]` or `all [options]`. Returns the process exit code. */
 int mt__bench_command(int argc, char **argv);
 
+/* bench_args.c: a decimal count in [min, max] (no sign, no suffix); false
+ * when text is not one. */
+bool mt__bench_parse_u32(const char *text, uint32_t min, uint32_t max, uint32_t *out);
+
 /* bench_stats.c: both sort `values` in place; NaN for n == 0. */
 double mt__bench_median_of(double *values, uint32_t n);
 double mt__bench_quantile(double *values, uint32_t n, double q); /* nearest rank, q in [0, 1] */

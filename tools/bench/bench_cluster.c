@@ -69,16 +69,6 @@ static void usage(FILE *out)
             "one failed, 2 on a usage error, 77 when no network namespace can be made here.\n");
 }
 
-static bool parse_u32(const char *text, uint32_t min, uint32_t max, uint32_t *out)
-{
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(text, &end, 10);
-    if (errno || end == text || *end || text[0] == '-' || v < min || v > max) return false;
-    *out = (uint32_t)v;
-    return true;
-}
-
 /* Returns 0, 1 (--help) or 2 (usage error, printed). */
 static int parse_options(int argc, char **argv, options *o)
 {
@@ -100,12 +90,12 @@ static int parse_options(int argc, char **argv, options *o)
         } else if (ok && strcmp(a, "--archive") == 0) {
             o->archive = v;
         } else if (ok && strcmp(a, "--triangles") == 0) {
-            ok = parse_u32(v, 2000, 20000000, &o->triangles);
+            ok = mt__bench_parse_u32(v, 2000, 20000000, &o->triangles);
             triangles_given = true;
         } else if (ok && strcmp(a, "--meshes") == 0) {
-            ok = parse_u32(v, 2, MAX_MESHES, &o->meshes);
+            ok = mt__bench_parse_u32(v, 2, MAX_MESHES, &o->meshes);
         } else if (ok && strcmp(a, "--reps") == 0) {
-            ok = parse_u32(v, 1, MAX_REPS, &o->reps);
+            ok = mt__bench_parse_u32(v, 1, MAX_REPS, &o->reps);
             reps_given = true;
         } else {
             fprintf(stderr, "meshtopo-bench cluster: unknown option or missing value: %s\n", a);
@@ -124,18 +114,12 @@ static int parse_options(int argc, char **argv, options *o)
     return 0;
 }
 
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
+/* The median of n values, leaving them in their order. */
 static double median(const double *values, uint32_t n)
 {
     double sorted[MAX_REPS];
     memcpy(sorted, values, n * sizeof *values);
-    qsort(sorted, n, sizeof *sorted, compare_double);
-    return n % 2 ? sorted[n / 2] : (sorted[n / 2 - 1] + sorted[n / 2]) / 2;
+    return mt__bench_median_of(sorted, n);
 }
 
 /* ---- the members of one run ---------------------------------------------- */

@@ -68,16 +68,6 @@ static void usage(FILE *out)
             MT_CLIENT_DEFAULT_WINDOW_CHUNKS);
 }
 
-static bool parse_u32(const char *text, uint32_t min, uint32_t max, uint32_t *out)
-{
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(text, &end, 10);
-    if (errno || end == text || *end || text[0] == '-' || v < min || v > max) return false;
-    *out = (uint32_t)v;
-    return true;
-}
-
 /* Returns 0, 1 (--help) or 2 (usage error, printed). */
 static int parse_options(int argc, char **argv, options *o)
 {
@@ -110,14 +100,14 @@ static int parse_options(int argc, char **argv, options *o)
         if (strcmp(a, "--daemon") == 0) {
             o->daemon_path = v;
         } else if (strcmp(a, "--triangles") == 0) {
-            ok = parse_u32(v, 20000, 20000000, &o->triangles);
+            ok = mt__bench_parse_u32(v, 20000, 20000000, &o->triangles);
             triangles_given = true;
         } else if (strcmp(a, "--reps") == 0) {
-            ok = parse_u32(v, 1, MAX_REPS, &o->reps);
+            ok = mt__bench_parse_u32(v, 1, MAX_REPS, &o->reps);
         } else if (strcmp(a, "--window") == 0) {
-            ok = parse_u32(v, 1, 4096, &o->window);
+            ok = mt__bench_parse_u32(v, 1, 4096, &o->window);
         } else if (strcmp(a, "--loss") == 0) {
-            ok = parse_u32(v, 1, 50, &n);
+            ok = mt__bench_parse_u32(v, 1, 50, &n);
             o->loss = (int)n;
         } else {
             o->csv_path = v;

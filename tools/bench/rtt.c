@@ -56,16 +56,6 @@ static void usage(FILE *out)
             "one failed, 2 on a usage error, 77 when no network namespace can be made here.\n");
 }
 
-static bool parse_u32(const char *text, uint32_t min, uint32_t max, uint32_t *out)
-{
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(text, &end, 10);
-    if (errno || end == text || *end || text[0] == '-' || v < min || v > max) return false;
-    *out = (uint32_t)v;
-    return true;
-}
-
 static bool is_value_option(const char *arg)
 {
     static const char *const names[] = {"--daemon",  "--grid",    "--round-trips", "--reps",
@@ -106,22 +96,22 @@ static int parse_options(int argc, char **argv, mt__rtt_options *o)
         } else if (strcmp(a, "--daemon") == 0) {
             o->daemon_path = v;
         } else if (strcmp(a, "--grid") == 0) {
-            ok = parse_u32(v, 2, 2000, &o->grid);
+            ok = mt__bench_parse_u32(v, 2, 2000, &o->grid);
         } else if (strcmp(a, "--round-trips") == 0) {
-            ok = parse_u32(v, 10, 1000000, &o->round_trips);
+            ok = mt__bench_parse_u32(v, 10, 1000000, &o->round_trips);
         } else if (strcmp(a, "--reps") == 0) {
-            ok = parse_u32(v, 1, MT__RTT_MAX_REPS, &o->reps);
+            ok = mt__bench_parse_u32(v, 1, MT__RTT_MAX_REPS, &o->reps);
         } else if (strcmp(a, "--seconds") == 0) {
-            ok = parse_u32(v, 1, 600, &n);
+            ok = mt__bench_parse_u32(v, 1, 600, &n);
             o->seconds = n;
         } else if (strcmp(a, "--clients") == 0) {
-            ok = parse_u32(v, 1, MT__RTT_MAX_CLIENTS, &o->clients);
+            ok = mt__bench_parse_u32(v, 1, MT__RTT_MAX_CLIENTS, &o->clients);
         } else if (strcmp(a, "--batch") == 0) {
-            ok = parse_u32(v, 1, 4096, &o->batch);
+            ok = mt__bench_parse_u32(v, 1, 4096, &o->batch);
         } else if (strcmp(a, "--window") == 0) {
-            ok = parse_u32(v, 1, 256, &o->window);
+            ok = mt__bench_parse_u32(v, 1, 256, &o->window);
         } else if (strcmp(a, "--seed") == 0) {
-            ok = parse_u32(v, 0, UINT32_MAX, &n);
+            ok = mt__bench_parse_u32(v, 0, UINT32_MAX, &n);
             o->seed = n;
         } else if (strcmp(a, "--csv") == 0) {
             o->csv_path = v;

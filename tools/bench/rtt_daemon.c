@@ -22,7 +22,8 @@ bool mt__rtt_daemon_start(const char *path, const char *archive_dir, mt__rtt_dae
 {
     const char *with_archive[] = {"--heartbeat-ms", "100", "--archive", archive_dir, NULL};
     const char *without[] = {"--heartbeat-ms", "100", NULL};
-    return mt__rtt_daemon_start_with(path, archive_dir ? with_archive : without, out, err, err_size);
+    return mt__rtt_daemon_start_with(path, archive_dir ? with_archive : without, out, err,
+                                     err_size);
 }
 
 bool mt__rtt_daemon_start_with(const char *path, const char *const *args, mt__rtt_daemon *out,
