@@ -393,14 +393,23 @@ static void test_leftovers_cleaned(void)
 {
     char dir[512];
     CHECK(at_tmpdir(dir, sizeof dir));
-    char stale[600], live[600], other[600];
+    char stale[600], live[600], other[600], stale_here[600], elsewhere[600], host[256] = "";
     /* A pid above any pid_max: its writer cannot be running. */
     snprintf(stale, sizeof stale, "%s/.mt-tmp-2147483000-3.part", dir);
     snprintf(live, sizeof live, "%s/.mt-tmp-%ld-0.part", dir, (long)getppid());
     snprintf(other, sizeof other, "%s/notes.txt", dir);
+    /* The same dead pid, named on this host (removed) and on another one
+     * (its writer may run there: kept). */
+    gethostname(host, sizeof host - 1);
+    snprintf(stale_here, sizeof stale_here, "%s/.mt-tmp-2147483000-0123456789abcdef.%s.part", dir,
+             host);
+    snprintf(elsewhere, sizeof elsewhere, "%s/.mt-tmp-2147483000-0123456789abcdef.not-%s.part", dir,
+             host);
     CHECK(at_write_bytes(stale, "\x89HDF\r\n", 6));
     CHECK(at_write_bytes(live, "\x89HDF\r\n", 6));
     CHECK(at_write_bytes(other, "keep", 4));
+    CHECK(at_write_bytes(stale_here, "\x89HDF\r\n", 6));
+    CHECK(at_write_bytes(elsewhere, "\x89HDF\r\n", 6));
     mt_archive *archive = NULL;
     mt_archive_options ro = {.read_only = true};
     CHECK_OK(mt_archive_open(dir, &ro, &archive, NULL));
@@ -408,8 +417,10 @@ static void test_leftovers_cleaned(void)
     CHECK(access(stale, F_OK) == 0);
     mt_archive_close(archive);
     CHECK_OK(mt_archive_open(dir, NULL, &archive, NULL));
-    CHECK_EQ(mt_archive_leftovers_removed(archive), 1);
+    CHECK_EQ(mt_archive_leftovers_removed(archive), 2);
     CHECK(access(stale, F_OK) != 0);
+    CHECK(access(stale_here, F_OK) != 0);
+    CHECK(access(elsewhere, F_OK) == 0);
     CHECK(access(live, F_OK) == 0); /* its writer (our parent) still runs */
     CHECK(access(other, F_OK) == 0);
     /* Leftovers are not listed. */
@@ -430,6 +441,7 @@ static void test_leftovers_cleaned(void)
     rmdir(sub);
     CHECK_STATUS(mt_archive_open(other, NULL, &archive, &diag), MT_ERR_IO);
     unlink(live);
+    unlink(elsewhere);
     at_rmdir(dir);
 }
 
@@ -476,18 +488,21 @@ static void test_killed_while_writing(void)
         uint32_t v, acknowledged = 0;
         while (read(fds[0], &v, sizeof v) == (ssize_t)sizeof v) acknowledged = v;
         close(fds[0]);
-        /* A leftover is named ".mt-tmp-<pid>-<16 random hex digits>.part":
-         * nothing about it can be guessed but the pid. */
+        /* A leftover is named ".mt-tmp-<pid>-<16 random hex digits>.<host>.part":
+         * nothing about it can be guessed but the pid and the host. */
+        char host[256] = "", suffix[300];
+        gethostname(host, sizeof host - 1);
+        snprintf(suffix, sizeof suffix, ".%s.part", host);
         DIR *before = opendir(dir);
         struct dirent *left;
         while (before && (left = readdir(before)) != NULL) {
             if (strncmp(left->d_name, ".mt-tmp-", 8) != 0) continue;
             char expected[64];
             snprintf(expected, sizeof expected, ".mt-tmp-%ld-", (long)pid);
-            size_t n = strlen(expected), len = strlen(left->d_name);
-            bool named = strncmp(left->d_name, expected, n) == 0 && len == n + 16 + 5 &&
+            size_t n = strlen(expected);
+            bool named = strncmp(left->d_name, expected, n) == 0 &&
                          strspn(left->d_name + n, "0123456789abcdef") == 16 &&
-                         strcmp(left->d_name + n + 16, ".part") == 0;
+                         strcmp(left->d_name + n + 16, suffix) == 0;
             CHECK(named);
             if (!named) printf("leftover named %s\n", left->d_name);
         }

@@ -5,6 +5,7 @@
  * and ".mt-tmp-*" leftovers, and of the latter only regular files of ours:
  * whatever else is planted under such a name is never followed, opened or
  * removed. */
+#include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -16,14 +17,37 @@
 
 #include "archive_internal.h"
 
-/* Whether a temporary file's writer (the pid in its name) is gone. */
+void mt__archive_host(char *out, size_t size)
+{
+    char host[256] = "";
+    gethostname(host, sizeof host - 1);
+    size_t n = 0;
+    /* Host names are [A-Za-z0-9.-]; anything else is not put in a name. */
+    for (const char *p = host; *p && n + 1 < size && n < MT__ARCHIVE_HOST_MAX; p++)
+        out[n++] = (isalnum((unsigned char)*p) || *p == '.' || *p == '-') ? *p : '_';
+    if (n == 0 && size > 1) out[n++] = '_';
+    if (size > 0) out[n] = '\0';
+}
+
+/* Whether a temporary file's writer (the pid in its name, on the host its
+ * name gives) is gone. A file of another host is never judged here: its
+ * writer may be running there (a directory shared by several machines). */
 static bool leftover_is_stale(const char *name)
 {
     const char *p = name + strlen(MT__ARCHIVE_TMP_PREFIX);
     char *end = NULL;
     long pid = strtol(p, &end, 10);
     if (end == p || *end != '-' || pid <= 0) return true; /* not one of ours in progress */
-    if (pid == (long)getpid()) return false;              /* another handle of this process */
+    /* "-<16 hex>" then ".<host>.part" (names written before hosts were
+     * named end with ".part" right after the digits: this host's). */
+    if (strlen(end + 1) > 16 && end[1 + 16] == '.') {
+        const char *host = end + 1 + 16;
+        char here[MT__ARCHIVE_HOST_MAX + 1];
+        mt__archive_host(here, sizeof here);
+        size_t len = strlen(here);
+        if (strncmp(host + 1, here, len) != 0 || strcmp(host + 1 + len, ".part") != 0) return false;
+    }
+    if (pid == (long)getpid()) return false; /* another handle of this process */
     return kill((pid_t)pid, 0) != 0 && errno == ESRCH;
 }
 

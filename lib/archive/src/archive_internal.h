@@ -27,11 +27,18 @@ struct mt_archive {
     void *content_hash_ctx;
 };
 
-/* Prefix of temporary files: ".mt-tmp-<pid>-<16 random hex digits>.part"
- * (meshtopo before format 4 used "<pid>-<counter>"). A leading dot keeps
- * them out of listings; the pid tells whether the writer still runs; the
- * random part (getrandom) makes the name unguessable. */
+/* Prefix of temporary files: ".mt-tmp-<pid>-<16 random hex digits>.<host>.part"
+ * (meshtopo before format 4 used "<pid>-<counter>.part", then until
+ * clusters "<pid>-<16 hex>.part"). A leading dot keeps them out of
+ * listings; the pid and host tell whether the writer still runs; the random
+ * part (getrandom) makes the name unguessable. */
 #define MT__ARCHIVE_TMP_PREFIX ".mt-tmp-"
+/* Longest host name put in a temporary file's name. */
+#define MT__ARCHIVE_HOST_MAX 64
+
+/* This machine's host name as it goes into temporary file names: at most
+ * MT__ARCHIVE_HOST_MAX bytes of [A-Za-z0-9.-], anything else as '_'. */
+void mt__archive_host(char *out, size_t size);
 
 /* Prefix of files set aside (mt_archive_set_aside): hidden, never listed,
  * never removed as leftovers. */

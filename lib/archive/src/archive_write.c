@@ -268,8 +268,10 @@ static mt_status write_meshtopo(hid_t file, const mt_archive_meta *meta, const m
     return st;
 }
 
-/* The temporary file: ".mt-tmp-<pid>-<16 random hex digits>.part" created
- * with O_CREAT | O_EXCL | O_NOFOLLOW, so that nothing already there (a
+/* The temporary file: ".mt-tmp-<pid>-<16 random hex digits>.<host>.part"
+ * (the host, so that a writer on another machine sharing the directory
+ * never takes it for a leftover of a dead local process) created with
+ * O_CREAT | O_EXCL | O_NOFOLLOW, so that nothing already there (a
  * symbolic link planted at a guessed name included) is opened, followed or
  * truncated; a taken name means another draw. On MT_OK *out_fd is the new
  * empty file and *out_path its path (malloc'ed). */
@@ -278,9 +280,11 @@ static mt_status tmp_create(const mt_archive *archive, int *out_fd, char **out_p
     *out_fd = -1;
     *out_path = NULL;
     for (int attempt = 0; attempt < TMP_ATTEMPTS; attempt++) {
-        char hex[17], name[64];
+        char hex[17], name[160], host[MT__ARCHIVE_HOST_MAX + 1];
         mt__archive_random_hex(hex);
-        snprintf(name, sizeof name, MT__ARCHIVE_TMP_PREFIX "%ld-%s.part", (long)getpid(), hex);
+        mt__archive_host(host, sizeof host);
+        snprintf(name, sizeof name, MT__ARCHIVE_TMP_PREFIX "%ld-%s.%s.part", (long)getpid(), hex,
+                 host);
         char *path = mt__archive_path(archive, name);
         if (!path) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
         int fd = open(path, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);

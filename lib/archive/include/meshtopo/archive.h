@@ -98,7 +98,9 @@ typedef struct mt_archive_options {
 
 /* Opens the archive in directory `dir`. Unless read_only, removes leftovers
  * of interrupted writes: temporary files (".mt-tmp-<pid>-...") whose writing
- * process is gone; their number is mt_archive_leftovers_removed(). Only
+ * process on this host is gone (those another host wrote, in a directory
+ * several machines share, are left to that host); their number is
+ * mt_archive_leftovers_removed(). Only
  * regular files owned by the effective user are removed: anything else with
  * such a name (a symbolic link planted there, a directory, another user's
  * file) is left alone, never followed and never opened. On MT_OK
@@ -147,7 +149,7 @@ typedef struct mt_archive_write_stats {
  * faces it rejected are kept in the face list but left out of the VTKHDF
  * cells). When this returns MT_OK the file is durable (linked into place
  * and the directory fsynced), so a submission may then be acknowledged.
- * The temporary file is ".mt-tmp-<pid>-<16 random hex digits>.part",
+ * The temporary file is ".mt-tmp-<pid>-<16 random hex digits>.<host>.part",
  * created exclusively (another name is drawn when one is taken). An
  * existing version is never overwritten: MT_ERR_INVALID_ARG ("already
  * archived"), like a bad id, version 0 or a mesh that is not list's build;
