@@ -683,7 +683,7 @@ static int name_cmp(const void *x, const void *y)
 static bool not_known(void *ctx, const char *file_name)
 {
     const known_names *k = ctx;
-    return !bsearch(file_name, k->names, k->count, sizeof *k->names, name_cmp);
+    return !k->count || !bsearch(file_name, k->names, k->count, sizeof *k->names, name_cmp);
 }
 
 /* Adds a readable listed file to the catalog and reserves its number in
@@ -760,7 +760,7 @@ size_t mtd_archiver_rescan(mtd_archiver *a)
                              sizeof *known.names);
     pthread_mutex_unlock(&a->lock);
     if (catalogued && !known.names) return 0;
-    qsort(known.names, known.count, sizeof *known.names, name_cmp);
+    if (known.count) qsort(known.names, known.count, sizeof *known.names, name_cmp);
     mt_archive_listing listing;
     mt_diag diag;
     size_t added = 0, bad = 0;

@@ -585,7 +585,7 @@ static int run_chaos(chaos *ch, int members, int rounds)
             failover[num_failover++] = ms;
         sleep_ms(200);
         if (start_member(ch) != 0) return 1;
-        int settled = wait_settled(ch, 15000);
+        int settled = wait_settled(ch, 30000);
         printf("round %d: a new member joined under load; views agree after %d ms\n", round + 1,
                settled);
         if (settled < 0) failures++;
