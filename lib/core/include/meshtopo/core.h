@@ -8,6 +8,7 @@
 #include "meshtopo/geometry.h"
 #include "meshtopo/mesh.h"
 #include "meshtopo/mesh_parts.h"
+#include "meshtopo/predicates.h"
 #include "meshtopo/query.h"
 #include "meshtopo/report.h"
 #include "meshtopo/status.h"
