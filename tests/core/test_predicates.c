@@ -1,4 +1,5 @@
-/* Tests of the exact orientation predicates (meshtopo/predicates.h) against
+/* Tests of the exact predicates (meshtopo/predicates.h). The orientations
+ * against
  * an exact oracle: points with integer coordinates (exact doubles), whose
  * determinants __int128 holds exactly. Nearly collinear points are points
  * of a line rounded to integers; nearly coplanar ones lie on a plane whose
@@ -7,7 +8,10 @@
  * evaluation, which often gets the sign wrong; the same points moved by
  * 2^20 (still exact doubles) make the differences cancel too. The
  * predicates must agree with the oracle on every one, and flip sign exactly
- * under an odd permutation. */
+ * under an odd permutation. The intersection tests are checked on touching,
+ * crossing, coplanar and degenerate triangles and near misses by one
+ * representable step; tests/core/cgal_intersect_check.cpp compares them
+ * with CGAL on random triangles. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -195,7 +199,88 @@ static void orientation_conventions(void)
     CHECK_EQ(mt_orient3d(o, x, y, (double[3]){0, 0, INFINITY}), 0);
 }
 
+/* T(a, b, c) as a 3x3 array literal. */
+#define TRI(ax, ay, az, bx, by, bz, cx, cy, cz) \
+    (const double[3][3])                        \
+    {                                           \
+        {ax, ay, az}, {bx, by, bz},             \
+        {                                       \
+            cx, cy, cz                          \
+        }                                       \
+    }
+
+static void triangles_touching_and_not(void)
+{
+    const double(*flat)[3] = TRI(0, 0, 0, 4, 0, 0, 0, 4, 0);
+    /* Crossing: a vertical triangle through the flat one. */
+    CHECK(mt_triangles_intersect(flat, TRI(1, 1, -1, 1, 1, 1, 2, 0.5, 0)));
+    /* Parallel planes. */
+    CHECK(!mt_triangles_intersect(flat, TRI(0, 0, 1, 4, 0, 1, 0, 4, 1)));
+    /* A corner on the flat one's inside, on its edge, on its corner: touching. */
+    CHECK(mt_triangles_intersect(flat, TRI(1, 1, 0, 1, 1, 3, 2, 2, 3)));
+    CHECK(mt_triangles_intersect(flat, TRI(2, 0, 0, 2, 1, 3, 2, -1, 3)));
+    CHECK(mt_triangles_intersect(flat, TRI(4, 0, 0, 5, 1, 3, 5, -1, 3)));
+    /* The same corner one representable step above the plane: apart. */
+    double above = nextafter(0.0, 1.0);
+    CHECK(!mt_triangles_intersect(flat, TRI(1, 1, above, 1, 1, 3, 2, 2, 3)));
+    /* A corner on the slanted edge y = x / 3 (at x = 1.5, y = 0.5), one
+     * representable step inside it and one outside. */
+    const double(*slanted)[3] = TRI(0, 0, 0, 3, 1, 0, 0, 1, 0);
+    double in = nextafter(0.5, 1.0), out = nextafter(0.5, 0.0);
+    CHECK(mt_triangles_intersect(slanted, TRI(1.5, 0.5, 0, 1.5, 0.5, 2, 2, 2, 2)));
+    CHECK(mt_triangles_intersect(slanted, TRI(1.5, in, 0, 1.5, in, 2, 2, 2, 2)));
+    CHECK(!mt_triangles_intersect(slanted, TRI(1.5, out, 0, 1.5, out, 2, 2, 2, 2)));
+    /* Coplanar: overlapping, one inside the other, sharing an edge, apart. */
+    CHECK(mt_triangles_intersect(flat, TRI(1, 1, 0, 5, 1, 0, 1, 5, 0)));
+    CHECK(mt_triangles_intersect(flat, TRI(0.5, 0.5, 0, 1, 0.5, 0, 0.5, 1, 0)));
+    CHECK(mt_triangles_intersect(flat, TRI(4, 0, 0, 0, 4, 0, 4, 4, 0)));
+    CHECK(!mt_triangles_intersect(flat, TRI(4.5, 0, 0, 4.5, 4, 0, 8, 2, 0)));
+    /* Degenerate: a segment through it, a segment beside it in its plane,
+     * a point in it, a point beside it. */
+    CHECK(mt_triangles_intersect(flat, TRI(1, 1, -1, 1, 1, 1, 1, 1, 0.5)));
+    CHECK(!mt_triangles_intersect(flat, TRI(3, 3, 0, 5, 5, 0, 4, 4, 0)));
+    CHECK(mt_triangles_intersect(flat, TRI(1, 1, 0, 1, 1, 0, 1, 1, 0)));
+    CHECK(!mt_triangles_intersect(flat, TRI(3, 3, 0, 3, 3, 0, 3, 3, 0)));
+    /* Two segments on one line, overlapping and apart; a point on a segment. */
+    CHECK(mt_triangles_intersect(TRI(0, 0, 0, 2, 2, 2, 1, 1, 1), TRI(1, 1, 1, 3, 3, 3, 3, 3, 3)));
+    CHECK(!mt_triangles_intersect(TRI(0, 0, 0, 1, 1, 1, 1, 1, 1), TRI(2, 2, 2, 3, 3, 3, 3, 3, 3)));
+    CHECK(mt_triangles_intersect(TRI(0, 0, 0, 2, 2, 2, 2, 2, 2), TRI(1, 1, 1, 1, 1, 1, 1, 1, 1)));
+    /* Skew segments do not meet; crossing ones do. */
+    CHECK(!mt_triangles_intersect(TRI(0, 0, 0, 2, 0, 0, 2, 0, 0), TRI(1, -1, 1, 1, 1, 1, 1, 1, 1)));
+    CHECK(mt_triangles_intersect(TRI(0, 0, 0, 2, 0, 0, 2, 0, 0), TRI(1, -1, 0, 1, 1, 0, 1, 1, 0)));
+    /* The segment test alone, and symmetry. */
+    CHECK(mt_segment_hits_triangle((double[3]){1, 1, -1}, (double[3]){1, 1, 1}, flat));
+    CHECK(!mt_segment_hits_triangle((double[3]){1, 1, 0.5}, (double[3]){1, 1, 1}, flat));
+}
+
+/* Near misses far from the origin: two triangles moved by 2^20, one of them
+ * by a tiny step more, toward and away from the other. */
+static void triangles_near_miss_far_away(void)
+{
+    const double o = 0x1p20, step = 0x1p-30;
+    double a[3][3] = {{o, o, o}, {o + 1, o, o}, {o, o + 1, o}};
+    /* b's corner lies on a's plane z = o at the edge x + y = o + 1 ... */
+    double b[3][3] = {{o + 0.5, o + 0.5, o}, {o + 1, o + 1, o + 1}, {o + 2, o, o + 1}};
+    CHECK(mt_triangles_intersect(a, b));
+    /* ... moved off a's edge (outside) by a step: apart. */
+    for (int i = 0; i < 3; i++) {
+        b[i][0] += step;
+        b[i][1] += step;
+    }
+    CHECK(!mt_triangles_intersect(a, b));
+    CHECK(!mt_triangles_intersect(b, a));
+    /* and back inside by two steps: touching a's plane inside it. */
+    for (int i = 0; i < 3; i++) {
+        b[i][0] -= 2 * step;
+        b[i][1] -= 2 * step;
+    }
+    CHECK(mt_triangles_intersect(a, b));
+    CHECK(mt_triangles_intersect(b, a));
+}
+
 static const mt_test_case cases[] = {
+    {"triangles_touching_and_not", triangles_touching_and_not},
+    {"triangles_near_miss_far_away", triangles_near_miss_far_away},
     {"orientation_conventions", orientation_conventions},
     {"orient2d_exact_near_lines", orient2d_exact_near_lines},
     {"orient3d_exact_near_planes", orient3d_exact_near_planes},
