@@ -21,7 +21,7 @@ enum { SUB_SUBMIT, SUB_CHUNK, SUB_QUERY, SUB_PULL, SUB_TOPOLOGY, SUB_COUNT };
 struct mtd_handlers {
     mtd_handler_deps deps;
     lcm_subscription_t *subs[SUB_COUNT];
-    atomic_int_fast64_t submissions, queries, not_owned;
+    atomic_int_fast64_t submissions, queries;
 };
 
 /* Why bytes on a channel of `type` are not a message of it, before decoding. */
@@ -54,7 +54,6 @@ static void on_submit(const lcm_recv_buf_t *rbuf, const char *channel, void *use
         return;
     }
     if (!mtd_cluster_owns(h->deps.cluster, msg->mesh_id)) {
-        atomic_fetch_add(&h->not_owned, 1);
         meshtopo_mesh_t_decode_cleanup(msg);
         free(msg);
         return;
@@ -96,7 +95,6 @@ static void on_query(const lcm_recv_buf_t *rbuf, const char *channel, void *user
     bool every_mesh = msg.kind == MESHTOPO_QUERY_T_LIST_MESHES && !msg.mesh_id[0];
     bool other_daemon = msg.instance[0] && strcmp(msg.instance, h->deps.instance) != 0;
     if (other_daemon || (!every_mesh && !mtd_cluster_owns(h->deps.cluster, msg.mesh_id))) {
-        atomic_fetch_add(&h->not_owned, 1);
         meshtopo_query_t_decode_cleanup(&msg);
         return;
     }
@@ -180,5 +178,4 @@ void mtd_handlers_get_counts(mtd_handlers *h, mtd_handler_counts *out_counts)
 {
     out_counts->submissions = atomic_load(&h->submissions);
     out_counts->queries = atomic_load(&h->queries);
-    out_counts->not_owned = atomic_load(&h->not_owned);
 }

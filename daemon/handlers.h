@@ -47,12 +47,10 @@ void mtd_handlers_unsubscribe(mtd_handlers *handlers);
 /* Unsubscribes and frees. NULL-safe. */
 void mtd_handlers_destroy(mtd_handlers *handlers);
 
-/* Messages received on SUBMIT and on QUERY, undecodable ones included, and
- * those left to the member of the cluster that owns their mesh id. */
+/* Messages received on SUBMIT and on QUERY, undecodable ones included. */
 typedef struct mtd_handler_counts {
     int64_t submissions;
     int64_t queries;
-    int64_t not_owned;
 } mtd_handler_counts;
 
 void mtd_handlers_get_counts(mtd_handlers *handlers, mtd_handler_counts *out_counts);
