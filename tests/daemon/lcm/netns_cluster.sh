@@ -41,7 +41,7 @@ stop_members() {
 # ---- 1. three members, 300 ids ------------------------------------------
 mkdir "$dir/spread"
 for m in 1 2 3; do
-    "$meshtopod" --cluster spread --archive "$dir/spread" --heartbeat-ms 200 --workers 1 \
+    "$meshtopod" --cluster spread --archive "$dir/spread" --heartbeat-ms 500 --workers 1 \
         --name "m$m" 2>"$dir/m$m.log" &
     pids+=($!)
 done
