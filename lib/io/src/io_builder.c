@@ -133,3 +133,17 @@ void mt__builder_free(mt__builder *b)
     free(b->indices);
     memset(b, 0, sizeof *b);
 }
+
+mt_status mt__builder_read(mt__io_src *src, mt__builder_reader read, mt_face_list *out,
+                           mt_diag *diag)
+{
+    mt__builder b;
+    memset(&b, 0, sizeof b);
+    mt_status status = read(src, &b, diag);
+    /* A reader's confirm context lives in its frame, gone by now. */
+    b.confirm = NULL;
+    b.confirm_ctx = NULL;
+    if (status == MT_OK) status = mt__builder_finish(&b, out, src, diag);
+    mt__builder_free(&b);
+    return status;
+}

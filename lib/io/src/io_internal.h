@@ -322,6 +322,12 @@ mt_status mt__builder_finish(mt__builder *b, mt_face_list *out, const mt__io_src
                              mt_diag *diag);
 void mt__builder_free(mt__builder *b);
 
+/* Runs a reader that fills a builder, then moves the builder's arrays into
+ * *out (mt__builder_finish); the builder is freed whatever happens. */
+typedef mt_status (*mt__builder_reader)(mt__io_src *src, mt__builder *b, mt_diag *diag);
+mt_status mt__builder_read(mt__io_src *src, mt__builder_reader read, mt_face_list *out,
+                           mt_diag *diag);
+
 /* The failure every reader reports when an array cannot grow. */
 mt_status mt__io_fail_nomem(mt_diag *diag, const mt__io_src *src);
 

@@ -259,12 +259,7 @@ static mt_status read_obj(mt__io_src *src, mt__builder *b, mt_diag *diag)
 
 mt_status mt__read_obj(mt__io_src *src, mt_face_list *out, mt_diag *diag)
 {
-    mt__builder b;
-    memset(&b, 0, sizeof b);
-    mt_status status = read_obj(src, &b, diag);
-    if (status == MT_OK) status = mt__builder_finish(&b, out, src, diag);
-    mt__builder_free(&b);
-    return status;
+    return mt__builder_read(src, read_obj, out, diag);
 }
 
 /* ---- Writing ----------------------------------------------------------- */

@@ -384,6 +384,10 @@ static mt_status read_off(mt__io_src *src, mt__builder *b, mt_diag *diag)
     b->confirm_ctx = &confirm;
     if (status == MT_OK) status = read_verts(src, &pos, &c, extras, b, diag);
     if (status == MT_OK) status = read_faces(src, &pos, &c, b, diag);
+    /* confirm lives in this frame: the builder must not keep it (GCC's
+     * -Wdangling-pointer checks it here). */
+    b->confirm = NULL;
+    b->confirm_ctx = NULL;
     if (status != MT_OK) return status;
     switch (mt__src_skip_trailer(src, &pos, 1)) {
         case MT__TRAIL_END:
@@ -407,12 +411,7 @@ static mt_status read_off(mt__io_src *src, mt__builder *b, mt_diag *diag)
 
 mt_status mt__read_off(mt__io_src *src, mt_face_list *out, mt_diag *diag)
 {
-    mt__builder b;
-    memset(&b, 0, sizeof b);
-    mt_status status = read_off(src, &b, diag);
-    if (status == MT_OK) status = mt__builder_finish(&b, out, src, diag);
-    mt__builder_free(&b);
-    return status;
+    return mt__builder_read(src, read_off, out, diag);
 }
 
 /* ---- Writing ----------------------------------------------------------- */
