@@ -52,6 +52,22 @@ static mt_status read_faces(hid_t g, const char *file_name, mt_archive_record *r
     return st;
 }
 
+/* A computed content hash h against the file's: a mismatch is the fault
+ * CONTENT. */
+static mt_status compare_hash(mt__check *c, uint64_t h, const char *file_name, mt_diag *diag)
+{
+    if (h != c->record.content_hash) {
+        c->fault = MT_ARCHIVE_FAULT_CONTENT;
+        return mt__archive_fail(diag, MT_ERR_CORRUPT,
+                                "%s: content hash mismatch: the file says %016llx, the face list "
+                                "hashes to %016llx",
+                                file_name, (unsigned long long)c->record.content_hash,
+                                (unsigned long long)h);
+    }
+    c->hash_checked = true;
+    return MT_OK;
+}
+
 /* The content hash of `faces` must be the file's content_hash. */
 static mt_status check_hash(mt__check *c, const mt_face_list *faces, const char *file_name,
                             mt_diag *diag)
@@ -65,16 +81,7 @@ static mt_status check_hash(mt__check *c, const mt_face_list *faces, const char 
     if (st != MT_OK)
         return mt__archive_fail(diag, st, "%s: the content hash cannot be computed: %s", file_name,
                                 why.message);
-    if (h != c->record.content_hash) {
-        c->fault = MT_ARCHIVE_FAULT_CONTENT;
-        return mt__archive_fail(diag, MT_ERR_CORRUPT,
-                                "%s: content hash mismatch: the file says %016llx, the face list "
-                                "hashes to %016llx",
-                                file_name, (unsigned long long)c->record.content_hash,
-                                (unsigned long long)h);
-    }
-    c->hash_checked = true;
-    return MT_OK;
+    return compare_hash(c, h, file_name, diag);
 }
 
 /* The content hash check of a restored mesh's file without decoding the
@@ -95,16 +102,7 @@ static mt_status check_hash_stored(mt__check *c, hid_t g, const char *file_name,
             mt__content_hash_stored(g, file_name, parts.num_verts, parts.positions, &h, diag);
         c->check_ms += mt__archive_now_ms() - t;
         if (st != MT_OK) return st;
-        if (h != c->record.content_hash) {
-            c->fault = MT_ARCHIVE_FAULT_CONTENT;
-            return mt__archive_fail(diag, MT_ERR_CORRUPT,
-                                    "%s: content hash mismatch: the file says %016llx, the face "
-                                    "list hashes to %016llx",
-                                    file_name, (unsigned long long)c->record.content_hash,
-                                    (unsigned long long)h);
-        }
-        c->hash_checked = true;
-        return MT_OK;
+        return compare_hash(c, h, file_name, diag);
     }
     void *counts = NULL, *indices = NULL;
     uint64_t num_counts = 0, num_indices = 0;
