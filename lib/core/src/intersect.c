@@ -38,22 +38,10 @@ static bool segments_meet_2d(const double p[2], const double q[2], const double 
            (d3 == 0 && between(p, q, r, 2)) || (d4 == 0 && between(p, q, s, 2));
 }
 
-/* Whether a, b, c are on one line (or coincide). */
-static bool collinear3(const double a[3], const double b[3], const double c[3])
-{
-    for (int drop = 0; drop < 3; drop++) {
-        double pa[2], pb[2], pc[2];
-        project(a, drop, pa);
-        project(b, drop, pb);
-        project(c, drop, pc);
-        if (mt_orient2d(pa, pb, pc) != 0) return false;
-    }
-    return true;
-}
-
-/* A coordinate to drop that keeps the plane of the non-collinear points
- * a, b, c one to one: one where their projections are not collinear. */
-static int projection_of_plane(const double a[3], const double b[3], const double c[3])
+/* A coordinate to drop that keeps the plane of a, b, c one to one (one
+ * where their projections are not collinear); -1 when a, b, c are on one
+ * line (or coincide) and span no plane. */
+static int plane_projection(const double a[3], const double b[3], const double c[3])
 {
     for (int drop = 0; drop < 3; drop++) {
         double pa[2], pb[2], pc[2];
@@ -62,7 +50,7 @@ static int projection_of_plane(const double a[3], const double b[3], const doubl
         project(c, drop, pc);
         if (mt_orient2d(pa, pb, pc) != 0) return drop;
     }
-    return 2; /* not reached for non-collinear points */
+    return -1;
 }
 
 /* Closed segments [p, q] and [r, s] in space. */
@@ -74,9 +62,8 @@ static bool segments_meet(const double p[3], const double q[3], const double r[3
     /* Coplanar: a projection that is one to one on their plane, if three of
      * them span it. */
     for (int i = 0; i < 4; i++) {
-        const double *a = pts[i], *b = pts[(i + 1) % 4], *c = pts[(i + 2) % 4];
-        if (collinear3(a, b, c)) continue;
-        int drop = projection_of_plane(a, b, c);
+        int drop = plane_projection(pts[i], pts[(i + 1) % 4], pts[(i + 2) % 4]);
+        if (drop < 0) continue;
         double pp[2], pq[2], pr[2], ps[2];
         project(p, drop, pp);
         project(q, drop, pq);
@@ -107,12 +94,12 @@ static bool inside_2d(const double a[2], const double b[2], const double c[2], c
 bool mt_segment_hits_triangle(const double s[3], const double e[3], const double t[3][3])
 {
     const double *a = t[0], *b = t[1], *c = t[2];
-    if (collinear3(a, b, c))
+    const int drop = plane_projection(a, b, c);
+    if (drop < 0)
         return segments_meet(s, e, a, b) || segments_meet(s, e, b, c) || segments_meet(s, e, c, a);
     int os = mt_orient3d(a, b, c, s), oe = mt_orient3d(a, b, c, e);
     if (os == oe && os != 0) return false; /* both on one side */
     if (os == 0 && oe == 0) {
-        int drop = projection_of_plane(a, b, c);
         double pa[2], pb[2], pc[2], ps[2], pe[2];
         project(a, drop, pa);
         project(b, drop, pb);
