@@ -27,6 +27,18 @@ static mt_mesh *polygon_mesh(const double *positions, uint32_t n)
     return mesh;
 }
 
+/* The n corners (3n doubles) of a regular n-gon in z = 0 taken two steps at
+ * a time: a star polygon crossing itself. */
+static void star_polygon(int n, double *out)
+{
+    for (int i = 0; i < n; i++) {
+        double a = 2 * 3.14159265358979323846 * (2 * i % n) / n;
+        out[3 * i] = cos(a);
+        out[3 * i + 1] = sin(a);
+        out[3 * i + 2] = 0;
+    }
+}
+
 static mt_face_shape shape_of(const double *positions, uint32_t n)
 {
     mt_face_shape shape;
@@ -84,23 +96,13 @@ static void test_shape_crossing(void)
         lifted[3 * i + 2] = 0.3 * bowtie[3 * i] - 0.7 * bowtie[3 * i + 1];
     }
     CHECK_EQ(shape_of(lifted, 4).kind, MT_FACE_SELF_CROSSING);
-    /* A pentagram: corners of a regular pentagon taken two steps at a time. */
-    double star[15];
-    for (int i = 0; i < 5; i++) {
-        double a = 2 * 3.14159265358979323846 * (2 * i % 5) / 5;
-        star[3 * i] = cos(a);
-        star[3 * i + 1] = sin(a);
-        star[3 * i + 2] = 0;
-    }
+    /* A pentagram and a heptagram: corners of a regular polygon taken two
+     * steps at a time. */
+    double star[21];
+    star_polygon(5, star);
     CHECK_EQ(shape_of(star, 5).kind, MT_FACE_SELF_CROSSING);
-    double star7[21];
-    for (int i = 0; i < 7; i++) {
-        double a = 2 * 3.14159265358979323846 * (2 * i % 7) / 7;
-        star7[3 * i] = cos(a);
-        star7[3 * i + 1] = sin(a);
-        star7[3 * i + 2] = 0;
-    }
-    CHECK_EQ(shape_of(star7, 7).kind, MT_FACE_SELF_CROSSING);
+    star_polygon(7, star);
+    CHECK_EQ(shape_of(star, 7).kind, MT_FACE_SELF_CROSSING);
     /* Corner 2 lies on side 0 (touching, not crossing). */
     const double touch[] = {0, 0, 0, 2, 0, 0, 1, 0, 0, 1, 1, 0};
     mt_face_shape t = shape_of(touch, 4);
@@ -262,12 +264,7 @@ static void test_shape_whole_mesh(void)
 static void test_shape_triangulate_refused(void)
 {
     double star[15];
-    for (int i = 0; i < 5; i++) {
-        double a = 2 * 3.14159265358979323846 * (2 * i % 5) / 5;
-        star[3 * i] = cos(a);
-        star[3 * i + 1] = sin(a);
-        star[3 * i + 2] = 0;
-    }
+    star_polygon(5, star);
     mt_mesh *mesh = polygon_mesh(star, 5);
     if (!mesh) return;
     mt_diag diag;
@@ -304,12 +301,7 @@ static int same_edge(const uint32_t *a, uint32_t b0, uint32_t b1)
 static void test_shape_boundary_loops(void)
 {
     double p[3 * 6] = {0, 0, 0.1};
-    for (int i = 0; i < 5; i++) {
-        double a = 2 * 3.14159265358979323846 * (2 * i % 5) / 5;
-        p[3 * (i + 1)] = cos(a);
-        p[3 * (i + 1) + 1] = sin(a);
-        p[3 * (i + 1) + 2] = 0;
-    }
+    star_polygon(5, p + 3);
     uint32_t sizes[5] = {3, 3, 3, 3, 3}, idx[15];
     for (uint32_t i = 0; i < 5; i++) {
         idx[3 * i] = 0;

@@ -175,6 +175,29 @@ static void ignored_member_disagrees(void)
     for (int i = 0; i < 2; i++) mtd_cluster_destroy(cs[i]);
 }
 
+/* A node forging heartbeats of the cluster under many instances: the
+ * membership stays within MTD_CLUSTER_MAX_MEMBERS (memory bounded), the
+ * forged members leave once they stop beating, and the view is whole again. */
+static void forged_members_bounded(void)
+{
+    mtd_cluster *c = member(0, NULL);
+    if (!c) return;
+    for (int k = 0; k < 1000; k++) {
+        char instance[64];
+        snprintf(instance, sizeof instance, "forged:%d:1700000000000000", k);
+        CHECK(mtd_cluster_heard(c, "mapping", instance, "forged", T0));
+    }
+    mtd_cluster_view v;
+    mtd_cluster_get_view(c, &v);
+    CHECK_EQ(v.members, MTD_CLUSTER_MAX_MEMBERS);
+    CHECK(v.share < 0.05); /* the forgers took most ids: the documented risk */
+    CHECK(mtd_cluster_refresh(c, T0 + EXPIRY + 1));
+    mtd_cluster_get_view(c, &v);
+    CHECK_EQ(v.members, 1);
+    CHECK(v.share == 1.0);
+    mtd_cluster_destroy(c);
+}
+
 static void refuses_bad_options(void)
 {
     mtd_cluster *c = NULL;
@@ -192,6 +215,7 @@ static const mt_test_case cases[] = {
     {"minimal_movement", minimal_movement},
     {"members_agree_and_expire", members_agree_and_expire},
     {"ignored_member_disagrees", ignored_member_disagrees},
+    {"forged_members_bounded", forged_members_bounded},
     {"refuses_bad_options", refuses_bad_options},
 };
 const mt_test_table mt_tests_cluster = {cases, sizeof cases / sizeof cases[0]};
