@@ -320,10 +320,7 @@ static double run_throughput(const options *o, const char *daemon, const char *a
     double seconds = (mt__bench_now_ms() - t0) / 1e3;
     *out_cores = (cpu_seconds(&m) - cpu0) / seconds;
     bool stopped = stop_members(&m, err, err_size);
-    char command[PATH_MAX + 64];
-    snprintf(command, sizeof command, "rm -rf '%s'", archive);
-    if (system(command) != 0)
-        fprintf(stderr, "meshtopo-bench cluster: cannot remove %s\n", archive);
+    mt__rtt_daemon_remove_archive(archive);
     if (atomic_load(&s.failed)) {
         snprintf(err, err_size, "%s", s.err[0] ? s.err : "a submission failed");
         return -1;
@@ -381,10 +378,7 @@ static double run_failover(const char *daemon, const char *archive_root, uint32_
         mt_client_destroy(client);
     }
     stop_members(&m, err, err_size);
-    char command[PATH_MAX + 64];
-    snprintf(command, sizeof command, "rm -rf '%s'", archive);
-    if (system(command) != 0)
-        fprintf(stderr, "meshtopo-bench cluster: cannot remove %s\n", archive);
+    mt__rtt_daemon_remove_archive(archive);
     return ms;
 }
 

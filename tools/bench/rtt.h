@@ -76,6 +76,10 @@ bool mt__rtt_daemon_start(const char *path, const char *archive_dir, mt__rtt_dae
 bool mt__rtt_daemon_start_with(const char *path, const char *const *args, mt__rtt_daemon *out,
                                char *err, size_t err_size);
 
+/* Removes an archive directory a run's daemons wrote, and all it holds
+ * (symbolic links are removed, never followed). */
+void mt__rtt_daemon_remove_archive(const char *dir);
+
 /* SIGTERM to the daemon's PID, SIGKILL after 10 s; true on a clean exit. */
 bool mt__rtt_daemon_stop(mt__rtt_daemon *daemon, char *err, size_t err_size);
 

@@ -1,9 +1,11 @@
-/* The meshtopod of a `meshtopo-bench rtt`, `transfer` or `soak` run: started as a
- * child process on the run's LCM URL, awaited by its first heartbeat
- * (mt__rtt_daemon_wait, rtt_client.c), and stopped by its PID (SIGTERM, then
- * SIGKILL after 10 s). */
+/* The meshtopod of a `meshtopo-bench rtt`, `transfer`, `soak` or `cluster`
+ * run: started as a child process on the run's LCM URL, awaited by its first
+ * heartbeat (mt__rtt_daemon_wait, rtt_client.c), stopped by its PID
+ * (SIGTERM, then SIGKILL after 10 s), and its archive removed. */
+#define _XOPEN_SOURCE 700 /* nftw */
 #include <errno.h>
 #include <fcntl.h>
+#include <ftw.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -94,6 +96,20 @@ bool mt__rtt_daemon_stop(mt__rtt_daemon *daemon, char *err, size_t err_size)
     daemon->pid = 0;
     if (clean && daemon->log_path[0]) unlink(daemon->log_path);
     return clean;
+}
+
+static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st;
+    (void)flag;
+    (void)ftw;
+    remove(path);
+    return 0;
+}
+
+void mt__rtt_daemon_remove_archive(const char *dir)
+{
+    nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
 }
 
 const char *mt__rtt_daemon_find(const char *given, char *buf, size_t size)

@@ -252,15 +252,6 @@ static void archive_bytes(const char *dir, uint64_t *out_total, uint64_t *out_ho
     if (d) closedir(d);
 }
 
-static int remove_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
-{
-    (void)st;
-    (void)flag;
-    (void)ftw;
-    remove(path);
-    return 0;
-}
-
 static void merge(soak *s, uint32_t clients, int phase, samples *out, uint64_t *out_failed)
 {
     memset(out, 0, sizeof *out);
@@ -428,7 +419,7 @@ int mt__bench_soak_command(int argc, char **argv)
     bool met = ok && report(s, &o, &counts, rss_start, rss_end, lost, checked, archive_total,
                             archive_hostile);
     if (ok && !met) printf("\ntarget missed (see the table)\n");
-    nftw(archive, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+    mt__rtt_daemon_remove_archive(archive);
     if (s)
         for (uint32_t c = 0; c < MAX_CLIENTS; c++) {
             for (int p = 0; p < PHASES; p++) free(s->workers[c].latency[p].v);
