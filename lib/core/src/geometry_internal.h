@@ -80,4 +80,24 @@ typedef void (*mt__edge_visit)(void *user, uint32_t a, uint32_t b, mt_edge_shape
 mt_status mt__edge_sweep(const mt_mesh *m, double tol, const char *what, mt__edge_visit visit,
                          void *user, mt_diag *diag);
 
+/* Whether the diagonal between corners i and j of a polygon may be cut. */
+typedef bool (*mt__diagonal_ok)(void *user, uint32_t i, uint32_t j);
+
+/* Cuts the polygon with corner positions pos[0..n) (n >= 3) into n - 2
+ * triangles by ear clipping in the plane of its Newell normal: out_tris gets
+ * 3 (n - 2) corner indices, each triangle in the polygon's orientation. A
+ * corner that is no geometric ear is cut only when none is (a self-crossing
+ * polygon); pos NULL makes every corner an ear. diagonal_ok (NULL: any) may
+ * forbid diagonals; false when every diagonal left to cut is forbidden.
+ * rem is scratch for n indices. */
+bool mt__ear_clip(const double *const *pos, uint32_t n, mt__diagonal_ok diagonal_ok, void *user,
+                  uint32_t *rem, uint32_t *out_tris);
+
+/* Whether triangles a and b of two different faces (caller corner ids ia,
+ * ib; corner positions pa, pb) meet other than at the corners they share and
+ * along a side they share: the rules of mt_mesh_self_intersections, decided
+ * by exact predicates (intersect.c). */
+bool mt__triangles_cross(const uint32_t ia[3], const double *const pa[3], const uint32_t ib[3],
+                         const double *const pb[3]);
+
 #endif

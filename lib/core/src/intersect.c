@@ -8,6 +8,7 @@
  * are the union of their sides. */
 #include <stdbool.h>
 
+#include "geometry_internal.h"
 #include "meshtopo/predicates.h"
 
 /* p projected by dropping coordinate `drop`. */
@@ -124,4 +125,67 @@ bool mt_triangles_intersect(const double a[3][3], const double b[3][3])
             mt_segment_hits_triangle(b[i], b[(i + 1) % 3], a))
             return true;
     return false;
+}
+
+/* Triangles sharing the side u-w, third corners a3 and b3: whether they meet
+ * beyond that side. Not coplanar, they meet only along it. Coplanar, they
+ * overlap when the third corners lie strictly on one side of the line; a
+ * triangle whose third corner is on the line is a segment along it, which a
+ * proper triangle meets only within u-w, and two such segments overlap
+ * beyond u-w when both third corners lie past the same end. */
+static bool fold_across_side(const double *u, const double *w, const double *a3, const double *b3)
+{
+    if (mt_orient3d(u, w, a3, b3) != 0) return false;
+    int drop = plane_projection(u, w, a3);
+    if (drop < 0) drop = plane_projection(u, w, b3);
+    if (drop >= 0) {
+        double pu[2], pw[2], pa[2], pb[2];
+        project(u, drop, pu);
+        project(w, drop, pw);
+        project(a3, drop, pa);
+        project(b3, drop, pb);
+        const int sa = mt_orient2d(pu, pw, pa), sb = mt_orient2d(pu, pw, pb);
+        return sa != 0 && sa == sb;
+    }
+    for (int k = 0; k < 3; k++) { /* all four on one line */
+        if (u[k] == w[k] && u[k] == a3[k] && u[k] == b3[k]) continue;
+        const double lo = u[k] < w[k] ? u[k] : w[k], hi = u[k] < w[k] ? w[k] : u[k];
+        return (a3[k] > hi && b3[k] > hi) || (a3[k] < lo && b3[k] < lo);
+    }
+    return false; /* all at one point: the shared corners' */
+}
+
+static void copy_corners(const double *const p[3], double out[3][3])
+{
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++) out[i][k] = p[i][k];
+}
+
+bool mt__triangles_cross(const uint32_t ia[3], const double *const pa[3], const uint32_t ib[3],
+                         const double *const pb[3])
+{
+    int in_b[3], shared = 0; /* in_b[k]: the corner of b that is a's corner k, or -1 */
+    for (int k = 0; k < 3; k++) {
+        in_b[k] = -1;
+        for (int j = 0; j < 3; j++)
+            if (ia[k] == ib[j]) in_b[k] = j;
+        shared += in_b[k] >= 0;
+    }
+    if (shared == 3) return true;
+    if (shared < 2) {
+        double a[3][3], b[3][3];
+        copy_corners(pa, a);
+        copy_corners(pb, b);
+        if (shared == 0) return mt_triangles_intersect(a, b);
+        int k = 0;
+        while (in_b[k] < 0) k++;
+        const int j = in_b[k];
+        return mt_segment_hits_triangle(pa[(k + 1) % 3], pa[(k + 2) % 3], b) ||
+               mt_segment_hits_triangle(pb[(j + 1) % 3], pb[(j + 2) % 3], a);
+    }
+    int k = 0, j = 0; /* the unshared corners */
+    while (in_b[k] >= 0) k++;
+    while (j < 3 && (ib[j] == ia[(k + 1) % 3] || ib[j] == ia[(k + 2) % 3])) j++;
+    if (j == 3) return false; /* b repeats a corner: no third one */
+    return fold_across_side(pa[(k + 1) % 3], pa[(k + 2) % 3], pa[k], pb[j]);
 }

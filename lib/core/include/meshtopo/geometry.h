@@ -125,6 +125,38 @@ typedef struct mt_loop_crossing {
 mt_status mt_mesh_boundary_loop_crossings(const mt_mesh *mesh, mt_loop_crossing *out,
                                           size_t capacity, size_t *out_count, mt_diag *diag);
 
+/* ---- self-intersections --------------------------------------------------- */
+
+/* Two faces, a < b. */
+typedef struct mt_face_pair {
+    uint32_t a, b;
+} mt_face_pair;
+
+/* Every pair of faces that meet other than at the vertices and along the
+ * edges they share: faces that pass through each other, touch at a point
+ * that is not a shared vertex, or fold onto each other across a shared
+ * edge (coplanar, on the same side of it). Faces sharing all their corners
+ * (duplicates) are reported too. Polygon faces are checked as the triangles
+ * of their ear-clipping triangulation in their best-fit plane; the triangles
+ * of one face are not checked against each other (mt_face_shape_of judges a
+ * face on its own). Closed triangles; one whose corners are on a line (or
+ * coincide) is the union of its sides, judged by the same rules.
+ *
+ * Exact: every decision is an exact orientation test (meshtopo/predicates.h)
+ * on the double coordinates, so the answer does not depend on rounding.
+ * Pairs are candidates from a bounding-volume hierarchy over the triangles'
+ * boxes (O(n log n) for n triangles, plus the pairs of triangles whose boxes
+ * overlap), checked on every core for large meshes. A face with a corner at
+ * NaN or infinity is not judged (the report lists the vertex as a
+ * nonfinite_coordinate). Rejected and deleted face records are skipped.
+ *
+ * out gets up to capacity pairs in ascending (a, b) order (NULL or 0 to
+ * learn how many), *out_count how many there are; MT_ERR_BUFFER_TOO_SMALL
+ * when they do not fit. MT_ERR_NO_GEOMETRY without positions,
+ * MT_ERR_NOMEM, MT_ERR_CORRUPT on a broken face ring. */
+mt_status mt_mesh_self_intersections(const mt_mesh *mesh, mt_face_pair *out, size_t capacity,
+                                     size_t *out_count, mt_diag *diag);
+
 /* ---- vertices ------------------------------------------------------------- */
 
 /* Angle-weighted vertex normal (Thuermer and Wuethrich 1998): the sum of the

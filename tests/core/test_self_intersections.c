@@ -1,0 +1,298 @@
+/* Tests of mt_mesh_self_intersections on hand-built meshes whose answers
+ * are worked out in the comments: an octahedron with one apex pushed out
+ * through the opposite face, two interpenetrating tetrahedra, faces that only
+ * touch along what they share, coplanar overlaps and folds, a mesh of
+ * degenerate triangles, polygon faces (a concave one whose notch another face
+ * passes through), faces skipped for NaN corners or deletion, the size query
+ * and a short buffer; and, on a soup of random triangles large enough to be
+ * checked on several threads, the same pairs as a check of every pair. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness.h"
+#include "meshtopo/core.h"
+#include "meshtopo/predicates.h"
+
+/* Builds a mesh of the given faces (sizes may be NULL: all triangles). */
+static mt_mesh *mesh_of(const double *positions, uint32_t num_verts, const uint32_t *indices,
+                        const uint32_t *sizes, uint32_t num_faces)
+{
+    uint32_t *face_sizes = malloc(num_faces * sizeof *face_sizes);
+    uint64_t num_indices = 0;
+    for (uint32_t f = 0; f < num_faces; f++) {
+        face_sizes[f] = sizes ? sizes[f] : 3;
+        num_indices += face_sizes[f];
+    }
+    mt_face_list list = {num_verts,           num_faces,  num_indices,
+                         (double *)positions, face_sizes, (uint32_t *)indices};
+    mt_mesh *mesh = NULL;
+    mt_diag diag;
+    CHECK_OK(mt_mesh_build(&list, NULL, &mesh, &diag));
+    free(face_sizes);
+    return mesh;
+}
+
+/* The pairs of mesh as "a-b a-b ..." (at most 64 pairs), for comparison. */
+static void pairs_text(const mt_mesh *mesh, char *out, size_t size)
+{
+    mt_face_pair pairs[64];
+    size_t count = 0;
+    mt_diag diag;
+    out[0] = '\0';
+    CHECK_OK(mt_mesh_self_intersections(mesh, pairs, 64, &count, &diag));
+    size_t used = 0;
+    for (size_t i = 0; i < count && i < 64; i++)
+        used += (size_t)snprintf(out + used, size - used, "%s%u-%u", i ? " " : "", pairs[i].a,
+                                 pairs[i].b);
+}
+
+#define CHECK_PAIRS(mesh, want)                                                           \
+    do {                                                                                  \
+        char got[1024];                                                                   \
+        pairs_text(mesh, got, sizeof got);                                                \
+        if (strcmp(got, want) != 0)                                                       \
+            mt_test_fail(__FILE__, __LINE__, "pairs \"%s\", expected \"%s\"", got, want); \
+    } while (0)
+
+/* The octahedron with vertices +-x (0, 1), +-y (2, 3), +-z (4, 5); faces 0-3
+ * around the top apex, 4-7 around the bottom one, all outward. */
+static const uint32_t octahedron_faces[] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
+                                            2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+
+static void test_selfx_octahedron_pushed_through(void)
+{
+    double pos[] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
+    mt_mesh *mesh = mesh_of(pos, 6, octahedron_faces, NULL, 8);
+    CHECK_PAIRS(mesh, "");
+    mt_mesh_destroy(mesh);
+    /* The top apex pushed down to (0.5, 0.5, -0.5), past face 4 (+x, +y,
+     * -z; plane x + y - z = 1, the apex at 1.5). Edges -x..apex and
+     * -y..apex leave the bottom pyramid through face 4, at (0.2, 0.4, -0.4)
+     * and (0.4, 0.2, -0.4): faces 1, 2 and 3 (which hold those edges) pass
+     * through face 4. Face 0 shares the edge +x..+y with face 4 and turns
+     * about it, meeting it nowhere else. */
+    pos[12] = 0.5, pos[13] = 0.5, pos[14] = -0.5;
+    mesh = mesh_of(pos, 6, octahedron_faces, NULL, 8);
+    CHECK_PAIRS(mesh, "1-4 2-4 3-4");
+    mt_mesh_destroy(mesh);
+}
+
+static void test_selfx_interpenetrating_tetrahedra(void)
+{
+    /* Tetrahedron A (0-3) and a smaller one B (4-7) whose top corner
+     * (0.2, 0.2, 0.1) is inside A and whose base is at z = -0.5: B's three
+     * sides cross A's bottom face (z = 0, face 0) inside it and meet
+     * nothing else of A (they keep x, y >= 0.1 and x + y + z <= 0.5). */
+    const double pos[] = {0,   0,   0,   1,   0,   0,    0,   1,   0,    0,   0,   1,
+                          0.2, 0.2, 0.1, 0.1, 0.1, -0.5, 0.4, 0.1, -0.5, 0.1, 0.4, -0.5};
+    const uint32_t faces[] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2,
+                              4, 5, 6, 4, 6, 7, 4, 7, 5, 5, 7, 6};
+    mt_mesh *mesh = mesh_of(pos, 8, faces, NULL, 8);
+    CHECK_PAIRS(mesh, "0-4 0-5 0-6");
+    mt_mesh_destroy(mesh);
+}
+
+static void test_selfx_touching_not_crossing(void)
+{
+    /* Faces that meet only in what they share: a closed tetrahedron; a flat
+     * strip (coplanar triangles on both sides of their shared edge); two
+     * coplanar triangles sharing a vertex whose sides leave it in opposite
+     * directions along one line; a triangle whose side passes through the
+     * plane of another exactly at their shared vertex. */
+    const double tet[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const uint32_t tet_faces[] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+    mt_mesh *mesh = mesh_of(tet, 4, tet_faces, NULL, 4);
+    CHECK_PAIRS(mesh, "");
+    mt_mesh_destroy(mesh);
+
+    const double strip[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    const uint32_t strip_faces[] = {0, 1, 2, 1, 3, 2};
+    mesh = mesh_of(strip, 4, strip_faces, NULL, 2);
+    CHECK_PAIRS(mesh, "");
+    mt_mesh_destroy(mesh);
+
+    const double bow[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, -1, 0, 0, -1, 1, 0};
+    const uint32_t bow_faces[] = {0, 1, 2, 0, 4, 3};
+    mesh = mesh_of(bow, 5, bow_faces, NULL, 2);
+    CHECK_PAIRS(mesh, "");
+    mt_mesh_destroy(mesh);
+
+    /* Face 0 in z = 0 (x, y >= 0); face 1 crosses that plane along the -y
+     * axis, which leaves face 0 at their shared vertex 0. */
+    const double stand[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, -1, -1, -1, 1, -1, 1};
+    const uint32_t stand_faces[] = {0, 1, 2, 0, 3, 4};
+    mesh = mesh_of(stand, 5, stand_faces, NULL, 2);
+    CHECK_PAIRS(mesh, "");
+    mt_mesh_destroy(mesh);
+}
+
+static void test_selfx_coplanar(void)
+{
+    /* Two triangles in z = 0 overlapping, no shared vertex. */
+    const double overlap[] = {0, 0, 0, 2, 0, 0, 0, 2, 0, 1, 1, 0, 3, 1, 0, 1, 3, 0};
+    const uint32_t overlap_faces[] = {0, 1, 2, 3, 4, 5};
+    mt_mesh *mesh = mesh_of(overlap, 6, overlap_faces, NULL, 2);
+    CHECK_PAIRS(mesh, "0-1");
+    mt_mesh_destroy(mesh);
+    /* Two triangles sharing edge 0..1 with their third corners on the same
+     * side of it in their common plane: folded onto each other. Also one
+     * (face 2) touching face 0 only with its corner (1.5, 1, 0), which lies
+     * on face 0's side 1..2 but is not shared (reported: they meet outside
+     * what they share). */
+    const double fold[] = {0, 0, 0, 2, 0, 0, 1, 2, 0, 1, 1, 0, 5, 0, 0, 4, 1, 0, 1.5, 1, 0};
+    const uint32_t fold_faces[] = {0, 1, 2, 1, 0, 3, 4, 5, 6};
+    mesh = mesh_of(fold, 7, fold_faces, NULL, 3);
+    CHECK_PAIRS(mesh, "0-1 0-2");
+    mt_mesh_destroy(mesh);
+    /* A duplicate face (same corners, either orientation) covers the other. */
+    const uint32_t dup_faces[] = {0, 1, 2, 0, 2, 1};
+    mesh = mesh_of(fold, 3, dup_faces, NULL, 2);
+    CHECK_PAIRS(mesh, "0-1");
+    mt_mesh_destroy(mesh);
+}
+
+static void test_selfx_degenerate(void)
+{
+    /* Every triangle degenerate: 0-4 on the x axis at x = 0, 1, 2, 3, 4;
+     * 5-10 all at one point. Face 0 (x 0..2) and face 1 (x 2..4) touch only
+     * at their shared vertex 2; face 2 (x 1..4) shares vertices 3 and 4
+     * with face 1 and its corner 1 lies past the same end of that side as
+     * face 1's corner 2, so they overlap over x 2..3; face 2 shares vertex 1
+     * with face 0 and overlaps it over x 1..2; faces 3 and 4 coincide. */
+    const double pos[] = {0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0, 5, 5,
+                          5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5};
+    const uint32_t faces[] = {0, 1, 2, 2, 3, 4, 1, 3, 4, 5, 6, 7, 8, 9, 10};
+    mt_mesh *mesh = mesh_of(pos, 11, faces, NULL, 5);
+    CHECK_PAIRS(mesh, "0-2 1-2 3-4");
+    mt_mesh_destroy(mesh);
+}
+
+static void test_selfx_polygons(void)
+{
+    /* Face 0: an L-shaped hexagon in z = 0 (the square 0..2 with the
+     * corner square 1..2 x 1..2 cut out). Face 1 stands vertically through
+     * the notch (x = y = 1.5), inside the hexagon's convex hull but outside
+     * the hexagon: not reported.
+     * Face 2, a vertical quad, passes through the hexagon at x = 0.5. */
+    const double pos[] = {0,   0,   0,  2,   0,   0,  2,   1,   0, 1,   1,   0,
+                          1,   2,   0,  0,   2,   0,                             /* hexagon */
+                          1.4, 1.6, -1, 1.6, 1.4, -1, 1.5, 1.5, 1,               /* in the notch */
+                          0.5, 0.5, -1, 0.5, 0.7, -1, 0.5, 0.7, 1, 0.5, 0.5, 1}; /* through it */
+    const uint32_t faces[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+    const uint32_t sizes[] = {6, 3, 4};
+    mt_mesh *mesh = mesh_of(pos, 13, faces, sizes, 3);
+    CHECK_PAIRS(mesh, "0-2");
+    mt_mesh_destroy(mesh);
+}
+
+static void test_selfx_skipped_faces(void)
+{
+    /* The pushed-through octahedron with face 2 deleted, then with vertex 1
+     * (-x) at NaN: faces 1 and 2, which cross face 4 through it, are not
+     * judged. */
+    double pos[] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0.5, 0.5, -0.5, 0, 0, -1};
+    mt_mesh *mesh = mesh_of(pos, 6, octahedron_faces, NULL, 8);
+    mt_diag diag;
+    CHECK_OK(mt_face_delete(mesh, 2, &diag));
+    CHECK_PAIRS(mesh, "1-4 3-4");
+    mt_mesh_destroy(mesh);
+    pos[3] = NAN;
+    mesh = mesh_of(pos, 6, octahedron_faces, NULL, 8);
+    CHECK_PAIRS(mesh, "3-4");
+    mt_mesh_destroy(mesh);
+}
+
+static void test_selfx_buffers_and_errors(void)
+{
+    double pos[] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0.5, 0.5, -0.5, 0, 0, -1};
+    mt_mesh *mesh = mesh_of(pos, 6, octahedron_faces, NULL, 8);
+    mt_diag diag;
+    size_t count = 99;
+    CHECK_OK(mt_mesh_self_intersections(mesh, NULL, 0, &count, &diag));
+    CHECK_EQ(count, 3);
+    mt_face_pair two[2] = {{0, 0}, {0, 0}};
+    CHECK_STATUS(mt_mesh_self_intersections(mesh, two, 2, &count, &diag), MT_ERR_BUFFER_TOO_SMALL);
+    CHECK_EQ(count, 3);
+    CHECK(two[0].a == 1 && two[0].b == 4 && two[1].a == 2 && two[1].b == 4);
+    CHECK(strstr(diag.message, "3 pairs") != NULL);
+    CHECK_STATUS(mt_mesh_self_intersections(mesh, two, 2, NULL, &diag), MT_ERR_INVALID_ARG);
+    CHECK_STATUS(mt_mesh_self_intersections(NULL, two, 2, &count, &diag), MT_ERR_INVALID_ARG);
+    mt_mesh_destroy(mesh);
+    mesh = mesh_of(NULL, 6, octahedron_faces, NULL, 8);
+    CHECK_STATUS(mt_mesh_self_intersections(mesh, NULL, 0, &count, &diag), MT_ERR_NO_GEOMETRY);
+    mt_mesh_destroy(mesh);
+}
+
+static uint64_t rng_state = 0x9e3779b97f4a7c15u;
+
+static double uniform(void)
+{
+    rng_state = rng_state * 6364136223846793005u + 1442695040888963407u;
+    return (double)(rng_state >> 11) / 9007199254740992.0;
+}
+
+static void test_selfx_random_soup_against_pairs(void)
+{
+    /* 21000 small random triangles in the unit cube, each on its own three
+     * vertices, so that every pair is decided by mt_triangles_intersect;
+     * some corners are snapped to a coarse lattice so that touching and
+     * coplanar cases occur. Enough triangles for several threads. */
+    enum { N = 21000 };
+    double *pos = malloc(9 * (size_t)N * sizeof *pos);
+    uint32_t *faces = malloc(3 * (size_t)N * sizeof *faces);
+    for (uint32_t t = 0; t < N; t++) {
+        double c[3] = {uniform(), uniform(), uniform()};
+        for (int i = 0; i < 3; i++) {
+            faces[3 * t + i] = 3 * t + (uint32_t)i;
+            for (int k = 0; k < 3; k++) {
+                double x = c[k] + 0.03 * (uniform() - 0.5);
+                if (t % 4 == 0) x = round(x * 64) / 64;
+                pos[9 * (size_t)t + 3 * (size_t)i + (size_t)k] = x;
+            }
+        }
+    }
+    mt_mesh *mesh = mesh_of(pos, 3 * N, faces, NULL, N);
+    size_t count = 0;
+    mt_diag diag;
+    CHECK_OK(mt_mesh_self_intersections(mesh, NULL, 0, &count, &diag));
+    mt_face_pair *got = malloc((count ? count : 1) * sizeof *got);
+    CHECK_OK(mt_mesh_self_intersections(mesh, got, count, &count, &diag));
+    /* Every pair, in (a, b) order, with an exact box test first. */
+    size_t expected = 0, mismatches = 0;
+    for (uint32_t a = 0; a < N; a++) {
+        const double(*ta)[3] = (const double(*)[3])(pos + 9 * (size_t)a);
+        for (uint32_t b = a + 1; b < N; b++) {
+            const double(*tb)[3] = (const double(*)[3])(pos + 9 * (size_t)b);
+            bool apart = false;
+            for (int k = 0; k < 3 && !apart; k++)
+                apart = fmax(fmax(ta[0][k], ta[1][k]), ta[2][k]) <
+                            fmin(fmin(tb[0][k], tb[1][k]), tb[2][k]) ||
+                        fmax(fmax(tb[0][k], tb[1][k]), tb[2][k]) <
+                            fmin(fmin(ta[0][k], ta[1][k]), ta[2][k]);
+            if (apart || !mt_triangles_intersect(ta, tb)) continue;
+            if (expected >= count || got[expected].a != a || got[expected].b != b) mismatches++;
+            expected++;
+        }
+    }
+    CHECK_EQ(count, expected);
+    CHECK_EQ(mismatches, 0);
+    CHECK(expected > 100); /* the soup is dense enough to test something */
+    free(got);
+    mt_mesh_destroy(mesh);
+    free(pos);
+    free(faces);
+}
+
+static const mt_test_case cases[] = {
+    {"selfx_octahedron_pushed_through", test_selfx_octahedron_pushed_through},
+    {"selfx_interpenetrating_tetrahedra", test_selfx_interpenetrating_tetrahedra},
+    {"selfx_touching_not_crossing", test_selfx_touching_not_crossing},
+    {"selfx_coplanar", test_selfx_coplanar},
+    {"selfx_degenerate", test_selfx_degenerate},
+    {"selfx_polygons", test_selfx_polygons},
+    {"selfx_skipped_faces", test_selfx_skipped_faces},
+    {"selfx_buffers_and_errors", test_selfx_buffers_and_errors},
+    {"selfx_random_soup_against_pairs", test_selfx_random_soup_against_pairs},
+};
+const mt_test_table mt_tests_self_intersections = {cases, sizeof cases / sizeof cases[0]};
