@@ -453,6 +453,103 @@ static void answer_convexity(answer *a, const mt_mesh *mesh)
     free(edges);
 }
 
+/* A whole-mesh geometry list of meshtopo/geometry.h (self-intersecting
+ * pairs, non-simple faces, self-crossing loops), with its element size. */
+typedef struct geometry_list {
+    mt_status (*query)(const mt_mesh *mesh, void *out, size_t capacity, size_t *out_count,
+                       mt_diag *diag);
+    size_t elem_size;
+    const char *what;
+} geometry_list;
+
+static mt_status self_intersections_list(const mt_mesh *m, void *out, size_t cap, size_t *n,
+                                         mt_diag *d)
+{
+    return mt_mesh_self_intersections(m, out, cap, n, d);
+}
+
+static mt_status nonsimple_faces_list(const mt_mesh *m, void *out, size_t cap, size_t *n,
+                                      mt_diag *d)
+{
+    return mt_mesh_nonsimple_faces(m, out, cap, n, d);
+}
+
+static mt_status loop_crossings_list(const mt_mesh *m, void *out, size_t cap, size_t *n, mt_diag *d)
+{
+    return mt_mesh_boundary_loop_crossings(m, out, cap, n, d);
+}
+
+/* The list into a new array (NULL on failure, reported in a): asked first
+ * with room for a few elements, again with room for all only when they do
+ * not fit, so the whole-mesh check usually runs once. */
+static void *fetch_list(answer *a, const mt_mesh *mesh, const geometry_list *list, size_t *count)
+{
+    size_t cap = 256;
+    void *items = malloc(cap * list->elem_size);
+    mt_status s = items ? list->query(mesh, items, cap, count, NULL) : MT_ERR_NOMEM;
+    if (s == MT_ERR_BUFFER_TOO_SMALL) {
+        void *all = *count > MTD_REPLY_MAX_BYTES / list->elem_size
+                        ? NULL
+                        : realloc(items, *count * list->elem_size);
+        if (!all) {
+            fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE,
+                 "%zu %s exceed the daemon's reply limit of %u bytes", *count, list->what,
+                 (unsigned)MTD_REPLY_MAX_BYTES);
+            free(items);
+            return NULL;
+        }
+        items = all;
+        s = list->query(mesh, items, *count, count, NULL);
+    }
+    if (s != MT_OK) {
+        fail_geometry(a, s, list->what, 0);
+        free(items);
+        return NULL;
+    }
+    return items;
+}
+
+/* SELF_INTERSECTIONS: three groups (msgs/reply_t.lcm), reals the warps. */
+static void answer_self_intersections(answer *a, const mt_mesh *mesh)
+{
+    static const geometry_list pairs_list = {self_intersections_list, sizeof(mt_face_pair),
+                                             "self-intersecting face pairs"};
+    static const geometry_list faces_list = {nonsimple_faces_list, sizeof(mt_face_shape),
+                                             "non-simple faces"};
+    static const geometry_list loops_list = {loop_crossings_list, sizeof(mt_loop_crossing),
+                                             "self-crossing boundary loops"};
+    size_t num_pairs = 0, num_faces = 0, num_loops = 0;
+    mt_face_pair *pairs = fetch_list(a, mesh, &pairs_list, &num_pairs);
+    mt_face_shape *faces = pairs ? fetch_list(a, mesh, &faces_list, &num_faces) : NULL;
+    mt_loop_crossing *loops = faces ? fetch_list(a, mesh, &loops_list, &num_loops) : NULL;
+    if (loops) {
+        for (size_t i = 0; i < num_pairs; i++) {
+            push(a, &a->values, (int32_t)pairs[i].a);
+            push(a, &a->values, (int32_t)pairs[i].b);
+        }
+        group_end(a, false);
+        for (size_t i = 0; i < num_faces; i++) {
+            const bool crossing = faces[i].kind == MT_FACE_SELF_CROSSING;
+            push(a, &a->values, (int32_t)faces[i].face);
+            push(a, &a->values, (int32_t)faces[i].kind);
+            push(a, &a->values, crossing ? (int32_t)faces[i].side_a : -1);
+            push(a, &a->values, crossing ? (int32_t)faces[i].side_b : -1);
+            push_real(a, faces[i].warp);
+        }
+        group_end(a, false);
+        for (size_t i = 0; i < num_loops; i++) {
+            push(a, &a->values, (int32_t)loops[i].loop);
+            for (int k = 0; k < 2; k++) push(a, &a->values, (int32_t)loops[i].edge_a[k]);
+            for (int k = 0; k < 2; k++) push(a, &a->values, (int32_t)loops[i].edge_b[k]);
+        }
+        group_end(a, false);
+        item_end(a, MESHTOPO_STATUS_CODE_T_OK);
+    }
+    free(pairs);
+    free(faces);
+    free(loops);
+}
+
 /* Checks the ids against what the kind takes and the mesh's counts. */
 static void check_ids(answer *a, const meshtopo_query_t *q, const mt_mesh *mesh)
 {
@@ -508,6 +605,7 @@ static void check_request(answer *a, const meshtopo_query_t *q)
         case MESHTOPO_QUERY_T_REPORT:
         case MESHTOPO_QUERY_T_LIST_MESHES:
         case MESHTOPO_QUERY_T_CONVEXITY:
+        case MESHTOPO_QUERY_T_SELF_INTERSECTIONS:
             if (q->num_ids != 0)
                 fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST,
                      "ids: kind %" PRId32 " takes no ids, got %" PRId32, q->kind, q->num_ids);
@@ -525,7 +623,7 @@ static void check_request(answer *a, const meshtopo_query_t *q)
             break;
         default:
             fail(a, MESHTOPO_STATUS_CODE_T_UNKNOWN_KIND,
-                 "kind: %" PRId32 " is not a query_t kind (1..12)", q->kind);
+                 "kind: %" PRId32 " is not a query_t kind (1..13)", q->kind);
     }
     if (a->status == MESHTOPO_STATUS_CODE_T_OK && q->version < 0)
         fail(a, MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "version: %" PRId32 " is negative", q->version);
@@ -723,6 +821,17 @@ static void answer_query(mtd_queries *qs, const meshtopo_query_t *q, bool may_lo
         answer_free(&a);
         return;
     }
+    /* The self-intersection check takes long enough on a large mesh to hold
+     * up every other request on the LCM thread: a worker answers it, or
+     * nobody when every worker is taken. */
+    if (a.status == MESHTOPO_STATUS_CODE_T_OK && !may_load &&
+        q->kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS) {
+        if (defer_to_worker(qs, q)) {
+            answer_free(&a);
+            return;
+        }
+        fail(&a, MESHTOPO_STATUS_CODE_T_BUSY, "every worker is busy; ask again later");
+    }
     mtd_mesh_entry *entry = NULL;
     if (a.status == MESHTOPO_STATUS_CODE_T_OK) {
         mt_diag diag;
@@ -780,6 +889,9 @@ static void answer_query(mtd_queries *qs, const meshtopo_query_t *q, bool may_lo
                     break;
                 case MESHTOPO_QUERY_T_CONVEXITY:
                     answer_convexity(&a, mesh);
+                    break;
+                case MESHTOPO_QUERY_T_SELF_INTERSECTIONS:
+                    answer_self_intersections(&a, mesh);
                     break;
                 case MESHTOPO_QUERY_T_REPORT:
                     if (mtd_topology_fill(mesh, mtd_entry_info(entry), 0, SIZE_MAX, &report) == 0)

@@ -5,8 +5,10 @@
                give exit 3 and a message on stderr naming the file
   usage        help, --version, unknown commands and options, bad id lists
   exit_codes   --fail-on-defect (1), --strict (4), --json-defects, readable output
+  self_intersections  inspect --self-intersections, text and JSON
 
-usage: cli_check.py --meshtopo PATH --corpus DIR {read_errors,usage,exit_codes}
+usage: cli_check.py --meshtopo PATH --corpus DIR
+                    {read_errors,usage,exit_codes,self_intersections}
 """
 import argparse
 import json
@@ -198,16 +200,44 @@ def check_exit_codes(meshtopo, corpus):
            "--json: a rejected face has adjacent_faces null", code, out, err)
 
 
+def check_self_intersections(meshtopo, corpus):
+    """inspect --self-intersections: the JSON counts and lists, the readable
+    section, --fail-on-defect counting what it finds; absent without it."""
+    joined = os.path.join(corpus, "trimesh_joined_tetrahedra.off")
+    code, out, err = run(meshtopo, "inspect", joined, "--json", "--self-intersections")
+    doc = parse_json(out)
+    lists = doc.get("self_intersections", {})
+    expect(code == 0 and doc.get("self_intersecting_pairs") == len(lists.get("face_pairs", [1, 2]))
+           and doc.get("non_simple_faces") == len(lists.get("faces", [1]))
+           and doc.get("self_intersecting_boundary_loops") == len(lists.get("boundary_loops", [1]))
+           and doc["self_intersecting_pairs"] > 0
+           and all(a < b for a, b in lists["face_pairs"]),
+           "--self-intersections --json: counts match their lists, pairs a < b", code, out, err)
+    code, out, err = run(meshtopo, "inspect", joined, "--json")
+    expect(code == 0 and "self_intersecting_pairs" not in parse_json(out),
+           "--json without --self-intersections has no geometric keys", code, out, err)
+    code, out, err = run(meshtopo, "inspect", joined, "--self-intersections")
+    expect(code == 0 and "self-intersections: " in out and "pass through" in out,
+           "--self-intersections readable: a section naming the faces", code, out, err)
+    code, out, err = run(meshtopo, "inspect", joined, "--self-intersections", "--fail-on-defect")
+    expect(code == 1, "--fail-on-defect counts self-intersections: exit 1", code, out, err)
+    tet = os.path.join(corpus, "cgal_tetrahedron.off")
+    code, out, err = run(meshtopo, "inspect", tet, "--self-intersections", "--fail-on-defect")
+    expect(code == 0 and "self-intersections: 0 face pairs" in out,
+           "a clean tetrahedron: 0 pairs, exit 0", code, out, err)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--meshtopo", default=os.environ.get("MESHTOPO_CLI"))
     ap.add_argument("--corpus", default=os.environ.get("MESHTOPO_CORPUS"))
-    ap.add_argument("check", choices=["read_errors", "usage", "exit_codes"])
+    ap.add_argument("check", choices=["read_errors", "usage", "exit_codes", "self_intersections"])
     args = ap.parse_args()
     if not args.meshtopo or not args.corpus:
         ap.error("need --meshtopo and --corpus (or MESHTOPO_CLI / MESHTOPO_CORPUS)")
     {"read_errors": check_read_errors, "usage": check_usage,
-     "exit_codes": check_exit_codes}[args.check](args.meshtopo, args.corpus)
+     "exit_codes": check_exit_codes,
+     "self_intersections": check_self_intersections}[args.check](args.meshtopo, args.corpus)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1

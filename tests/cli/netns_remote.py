@@ -141,6 +141,25 @@ def check_geometry(cli, corpus):
     p = run(cli, "query", "cube", "dihedral", "0")
     check(p is not None and p.returncode == 2, "dihedral with an odd id count is a usage error")
 
+    # self-intersections over the wire answers what inspect answers locally,
+    # on the teapot (lid and spout pass through the body; open loops cross).
+    path = os.path.join(corpus, "npm_teapot.off")
+    ack = run_json(cli, "send", path, "--id", "teapot", "--json")
+    check(ack is not None and ack["status"] == "OK", "teapot: sent")
+    got = run_json(cli, "query", "teapot", "self-intersections", "--json")
+    local = run_json(cli, "inspect", path, "--self-intersections", "--json")
+    if check(got is not None and local is not None and len(got["items"]) == 1,
+             "teapot: self-intersections answers one item"):
+        item = got["items"][0]
+        keys = ["self_intersecting_pairs", "non_simple_faces", "self_intersecting_boundary_loops",
+                "self_intersections"]
+        check(all(item.get(k) == local.get(k) for k in keys) and item["self_intersecting_pairs"] > 0,
+              f"teapot: remote self-intersections equal inspect's "
+              f"({item.get('self_intersecting_pairs')} pairs)")
+    p = run(cli, "query", "teapot", "self-intersections")
+    check(p is not None and p.returncode == 0 and "self-intersections: " in p.stdout and
+          "faces " in p.stdout, "teapot: self-intersections prints readable lines")
+
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -16,6 +16,9 @@ static const mt_cli_option options[] = {
     {"json-defects", NULL, "with --json (implied): add a \"defects\" array listing every defect"},
     {"vertices", "LIST", "query these vertices (e.g. 0,78,100-110), in this order"},
     {"faces", "LIST", "query these faces (e.g. 0,158), in this order"},
+    {"self-intersections", NULL,
+     "also check the geometry: faces passing through each other (exact), self-crossing and "
+     "warped faces, self-crossing boundary loops"},
     {"strict", NULL, "refuse any defect: the build fails (exit 4) and names the first one"},
     {"fail-on-defect", NULL, "exit 1 after printing when the report lists any defect"},
     {"format", "NAME",
@@ -103,6 +106,17 @@ static int run_inspect(const mt_cli_args *args)
     req.mesh = &mesh;
     req.json_defects = mt_cli_flag(args, "json-defects");
     req.limit = limit;
+    mt_inspect_geometry geometry = {0};
+    if (mt_cli_flag(args, "self-intersections")) {
+        mt_diag diag;
+        mt_status st = mt_inspect_geometry_compute(mesh.mesh, &geometry, &diag);
+        if (st != MT_OK) {
+            mt_cli_error("inspect", "--self-intersections: %s", diag.message);
+            mt_cli_mesh_free(&mesh);
+            return MT_CLI_EXIT_BUILD;
+        }
+        req.geometry = &geometry;
+    }
     const char *verts_text = mt_cli_arg(args, "vertices");
     const char *faces_text = mt_cli_arg(args, "faces");
     if ((verts_text &&
@@ -123,11 +137,12 @@ static int run_inspect(const mt_cli_args *args)
         code = mt_inspect_print_text(&req, stdout);
     }
     if (code == MT_CLI_EXIT_OK && mt_cli_flag(args, "fail-on-defect") &&
-        mt_mesh_report(mesh.mesh)->num_defects > 0)
+        (mt_mesh_report(mesh.mesh)->num_defects > 0 || mt_inspect_geometry_findings(&geometry) > 0))
         code = MT_CLI_EXIT_DEFECT;
     code = mt_cli_finish_output("inspect", code, MT_CLI_EXIT_BUILD);
     mt_id_list_free(&req.vertices);
     mt_id_list_free(&req.faces);
+    mt_inspect_geometry_free(&geometry);
     mt_cli_mesh_free(&mesh);
     return code;
 }
@@ -136,8 +151,8 @@ const mt_cli_command mt_cli_cmd_inspect = {
     .name = "inspect",
     .summary = "read a mesh file, build it and print its topology report",
     .synopsis =
-        "FILE [--json] [--vertices LIST] [--faces LIST] [--weld exact|EPS] [--strict] "
-        "[--fail-on-defect]",
+        "FILE [--json] [--self-intersections] [--vertices LIST] [--faces LIST] "
+        "[--weld exact|EPS] [--strict] [--fail-on-defect]",
     .description =
         "Reads FILE (OFF, OBJ, PLY or STL, gzip-compressed too; the format is detected from\n"
         "the content), builds the half-edge mesh and prints counts, boundary loops, components,\n"
@@ -159,6 +174,12 @@ const mt_cli_command mt_cli_cmd_inspect = {
         "The report adds how many vertices were merged and the vertices the weld made\n"
         "non-manifold: non-manifold in the welded mesh, while no vertex merged into them was\n"
         "in the unwelded one (JSON key \"weld\").\n"
+        "\n"
+        "--self-intersections adds the geometric checks: pairs of faces that pass through\n"
+        "or touch each other other than at the vertices and edges they share (exact\n"
+        "arithmetic, polygons by their triangulation), faces whose sides cross in their\n"
+        "plane or whose corners leave it (warped), and boundary loops that cross\n"
+        "themselves. --fail-on-defect counts what they find.\n"
         "\n"
         "exit codes: 0 report printed (whatever its defects), 1 --fail-on-defect and a\n"
         "defect was found, 2 usage error (also an id out of range), 3 FILE could not be\n"

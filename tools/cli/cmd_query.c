@@ -1,6 +1,7 @@
 /* `meshtopo query ID KIND IDS...`: one batch query to meshtopod (one-rings,
  * valences, face neighbours, edge faces, boundary loops, components, the
- * report, the defect lists, dihedral angles, angle deficits, convexity) and
+ * report, the defect lists, dihedral angles, angle deficits, convexity,
+ * self-intersections) and
  * its answer, one line per item (fans and sides labelled) or one JSON object
  * per item. The reply is read through the client's accessors
  * (meshtopo/client_reply.h), which the client checked before handing it out. */
@@ -9,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "inspect.h"
 #include "meshtopo/geometry.h"
 #include "meshtopo/report.h"
 #include "remote.h"
@@ -37,7 +39,14 @@ static const query_kind kinds[] = {
     {"dihedral", MESHTOPO_QUERY_T_DIHEDRAL_ANGLES, IDS_NEEDED, "edge"},
     {"deficit", MESHTOPO_QUERY_T_ANGLE_DEFICITS, IDS_NEEDED, "vertex"},
     {"convexity", MESHTOPO_QUERY_T_CONVEXITY, IDS_NONE, "mesh"},
+    {"self-intersections", MESHTOPO_QUERY_T_SELF_INTERSECTIONS, IDS_NONE, "mesh"},
 };
+
+/* Kinds answered by one item about the whole mesh. */
+static bool about_mesh(int32_t kind)
+{
+    return kind == MESHTOPO_QUERY_T_CONVEXITY || kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS;
+}
 
 /* Kinds whose ids are vertex pairs naming edges. */
 static bool takes_pairs(int32_t kind)
@@ -70,7 +79,8 @@ static bool reply_fits(const meshtopo_reply_t *r, const query_kind *qk, const mt
     if (qk->kind == MESHTOPO_QUERY_T_REPORT && r->num_reports != 1) return false;
     if (takes_pairs(qk->kind) && items * 2 != ids->count) return false;
     if (ids->count > 0 && !takes_pairs(qk->kind) && items != ids->count) return false;
-    if (qk->kind == MESHTOPO_QUERY_T_CONVEXITY && items != 1) return false;
+    if (about_mesh(qk->kind) && items != 1) return false;
+    if (qk->kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS) return true; /* checked when read */
     return r->num_reals == expected_reals(qk->kind, r->num_items);
 }
 
@@ -111,6 +121,44 @@ static const char *shape_name(int32_t shape)
                                                      : "unknown";
 }
 
+/* A SELF_INTERSECTIONS item as the lists of `inspect --self-intersections`
+ * (msgs/reply_t.lcm: three groups, one real per non-simple face); false
+ * when the groups do not have that shape. Free with mt_inspect_geometry_free. */
+static bool read_self_intersections(const meshtopo_reply_t *r, const mt_client_item *item,
+                                    mt_inspect_geometry *g)
+{
+    *g = (mt_inspect_geometry){.ms = -1};
+    mt_client_group pairs = group_of(r, item, 0), faces = group_of(r, item, 1),
+                    loops = group_of(r, item, 2);
+    if (item->num_groups != 3 || pairs.num_values % 2 || faces.num_values % 4 ||
+        loops.num_values % 5 || (size_t)r->num_reals != faces.num_values / 4)
+        return false;
+    g->num_pairs = pairs.num_values / 2;
+    g->num_faces = faces.num_values / 4;
+    g->num_loops = loops.num_values / 5;
+    g->pairs = calloc(g->num_pairs + 1, sizeof *g->pairs);
+    g->faces = calloc(g->num_faces + 1, sizeof *g->faces);
+    g->loops = calloc(g->num_loops + 1, sizeof *g->loops);
+    if (!g->pairs || !g->faces || !g->loops) {
+        mt_inspect_geometry_free(g);
+        return false;
+    }
+    for (size_t i = 0; i < g->num_pairs; i++)
+        g->pairs[i] =
+            (mt_face_pair){(uint32_t)pairs.values[2 * i], (uint32_t)pairs.values[2 * i + 1]};
+    for (size_t i = 0; i < g->num_faces; i++) {
+        const int32_t *v = faces.values + 4 * i;
+        g->faces[i] = (mt_face_shape){(uint32_t)v[0], (mt_face_shape_kind)v[1], (uint32_t)v[2],
+                                      (uint32_t)v[3], mt_client_reply_real(r, i)};
+    }
+    for (size_t i = 0; i < g->num_loops; i++) {
+        const int32_t *v = loops.values + 5 * i;
+        g->loops[i] = (mt_loop_crossing){
+            (uint32_t)v[0], {(uint32_t)v[1], (uint32_t)v[2]}, {(uint32_t)v[3], (uint32_t)v[4]}};
+    }
+    return true;
+}
+
 /* The rest of a geometry item's line (after its label); false for other kinds. */
 static bool print_geometry_text(const meshtopo_reply_t *r, int32_t kind, size_t i,
                                 const mt_client_item *item)
@@ -129,6 +177,17 @@ static bool print_geometry_text(const meshtopo_reply_t *r, int32_t kind, size_t 
     if (kind == MESHTOPO_QUERY_T_ANGLE_DEFICITS) {
         printf(" angle deficit %.9g rad%s\n", mt_client_reply_real(r, i),
                first.boundary ? " (boundary: pi minus the corner angles)" : "");
+        return true;
+    }
+    if (kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS) {
+        mt_inspect_geometry g;
+        if (!read_self_intersections(r, item, &g)) {
+            printf(" malformed answer\n");
+            return true;
+        }
+        putchar('\n');
+        mt_inspect_geometry_text(stdout, &g, 0);
+        mt_inspect_geometry_free(&g);
         return true;
     }
     if (kind != MESHTOPO_QUERY_T_CONVEXITY) return false;
@@ -159,7 +218,7 @@ static void print_item_text(const meshtopo_reply_t *r, const query_kind *qk, con
     int64_t subject = item_subject(ids, qk->kind, i);
     if (takes_pairs(qk->kind))
         printf("edge %" PRId64 "-%" PRIu32 ":", subject, ids->ids[2 * i + 1]);
-    else if (qk->kind == MESHTOPO_QUERY_T_CONVEXITY)
+    else if (about_mesh(qk->kind))
         printf("mesh:");
     else if (qk->kind == MESHTOPO_QUERY_T_DEFECTS)
         printf("%s:", defect_name(subject));
@@ -253,6 +312,17 @@ static bool write_geometry_json(mt_json *j, const meshtopo_reply_t *r, int32_t k
         mt_json_bool(j, first.boundary);
         return true;
     }
+    if (kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS) {
+        mt_inspect_geometry g;
+        if (!read_self_intersections(r, item, &g)) {
+            mt_json_key(j, "malformed");
+            mt_json_bool(j, true);
+            return true;
+        }
+        mt_inspect_geometry_json(j, &g);
+        mt_inspect_geometry_free(&g);
+        return true;
+    }
     if (kind != MESHTOPO_QUERY_T_CONVEXITY) return false;
     mt_client_group edges = group_of(r, item, 1);
     const int32_t *head = first.num_values == 4 ? first.values : NULL;
@@ -294,7 +364,7 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
         mt_json_string(j, defect_name(subject));
         mt_json_key(j, "kind_id");
         mt_json_int(j, subject);
-    } else if (qk->kind != MESHTOPO_QUERY_T_CONVEXITY) {
+    } else if (!about_mesh(qk->kind)) {
         mt_json_key(j, qk->of);
         mt_json_int(j, subject);
     }
@@ -450,7 +520,7 @@ static int run_query(const mt_cli_args *args)
         mt_cli_error("query",
                      "unknown kind '%s' (ring, valence, face-neighbors, edge-faces, "
                      "boundary-loops, components, report, defects, dihedral, deficit, "
-                     "convexity)",
+                     "convexity, self-intersections)",
                      args->positionals[1]);
         return MT_CLI_EXIT_USAGE;
     }
@@ -548,11 +618,15 @@ const mt_cli_command mt_cli_cmd_query = {
         "                  minus them on the boundary)\n"
         "  convexity       no ids: whether the mesh bounds a convex polytope, why not, its\n"
         "                  reflex edges and enclosed volume\n"
+        "  self-intersections  no ids: faces passing through or touching each other (exact),\n"
+        "                  faces crossing themselves or warped, boundary loops crossing\n"
+        "                  themselves (as `meshtopo inspect --self-intersections`)\n"
         "An item the build left out (a rejected face, an edge no face has) prints\n"
         "\"not found\". --json prints {mesh_id, version, kind, items: [an object per item]}\n"
         "({..., report} for report).\n"
         "\n"
-        "The geometry kinds (dihedral, deficit, convexity) need a mesh sent with positions.\n"
+        "The geometry kinds (dihedral, deficit, convexity, self-intersections) need a mesh\n"
+        "sent with positions.\n"
         "\n"
         "exit codes: 0 answered, 2 usage error, 5 meshtopod refused the query (unknown mesh\n"
         "or version, id out of range, no positions, ...), 6 no answer from meshtopod.\n",

@@ -10,18 +10,46 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "json_writer.h"
+#include "meshtopo/geometry.h"
 #include "meshtopo/mesh.h"
 #include "meshtopo/query.h"
 #include "meshtopo/report.h"
 
+/* The geometric checks of --self-intersections (whole-mesh queries of
+ * meshtopo/geometry.h) and how long they took. */
+typedef struct mt_inspect_geometry {
+    mt_face_pair *pairs; /* faces passing through or touching each other */
+    size_t num_pairs;
+    mt_face_shape *faces; /* self-crossing or warped faces */
+    size_t num_faces;
+    mt_loop_crossing *loops; /* boundary loops crossing themselves */
+    size_t num_loops;
+    double ms; /* how long the checks took, negative when not known */
+} mt_inspect_geometry;
+
+/* Runs the three checks; on failure returns the library's status (diag
+ * says why) and leaves *g empty. */
+mt_status mt_inspect_geometry_compute(const mt_mesh *mesh, mt_inspect_geometry *g, mt_diag *diag);
+void mt_inspect_geometry_free(mt_inspect_geometry *g);
+/* Pairs, faces and loops found: what --fail-on-defect counts. */
+size_t mt_inspect_geometry_findings(const mt_inspect_geometry *g);
+/* The three counts (self_intersecting_pairs, non_simple_faces,
+ * self_intersecting_boundary_loops) and the "self_intersections" lists as
+ * members of the open JSON object. */
+void mt_inspect_geometry_json(mt_json *j, const mt_inspect_geometry *g);
+/* Readable: counts, then up to limit items of each list (0 = all). */
+void mt_inspect_geometry_text(FILE *out, const mt_inspect_geometry *g, size_t limit);
+
 /* What to print and about which elements. */
 typedef struct mt_inspect_request {
-    const char *path;        /* as given on the command line */
-    const mt_cli_mesh *mesh; /* read and built */
-    mt_id_list vertices;     /* queried vertices, in order */
-    mt_id_list faces;        /* queried faces, in order */
-    bool json_defects;       /* --json-defects: add the defect list to the JSON */
-    size_t limit;            /* items per list in the readable output, 0 = all */
+    const char *path;                    /* as given on the command line */
+    const mt_cli_mesh *mesh;             /* read and built */
+    mt_id_list vertices;                 /* queried vertices, in order */
+    mt_id_list faces;                    /* queried faces, in order */
+    bool json_defects;                   /* --json-defects: add the defect list to the JSON */
+    const mt_inspect_geometry *geometry; /* --self-intersections, else NULL */
+    size_t limit;                        /* items per list in the readable output, 0 = all */
 } mt_inspect_request;
 
 /* Growable buffers for mt_face_neighbors and mt_face_verts. */

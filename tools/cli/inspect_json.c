@@ -218,6 +218,7 @@ int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
             mt_json_key(&j, "weld");
             write_weld(&j, &req->mesh->weld);
         }
+        if (req->geometry) mt_inspect_geometry_json(&j, req->geometry);
         if (req->json_defects) {
             mt_json_key(&j, "defects");
             mt_json_array_begin(&j);

@@ -442,5 +442,6 @@ int mt_inspect_print_text(const mt_inspect_request *req, FILE *out)
         fprintf(out, "genus: undefined%s\n",
                 r->connected_components != 1 ? " (not exactly one component)" : "");
     print_defects(out, req, r);
+    if (req->geometry) mt_inspect_geometry_text(out, req->geometry, req->limit);
     return print_queries(out, req);
 }

@@ -44,7 +44,7 @@ static mt_status check_query(const char *mesh_id, int32_t version, int32_t kind,
     if (version < 0)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "version %d is negative (0 = latest)",
                                (int)version);
-    if (kind < MESHTOPO_QUERY_T_VERTEX_RING || kind > MESHTOPO_QUERY_T_CONVEXITY)
+    if (kind < MESHTOPO_QUERY_T_VERTEX_RING || kind > MESHTOPO_QUERY_T_SELF_INTERSECTIONS)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "query kind %d is not one of query_t's",
                                (int)kind);
     if (num_ids > 0 && !ids)

@@ -1434,6 +1434,73 @@ static void test_geometry_kinds(void)
     fixture_free(&fx);
 }
 
+/* SELF_INTERSECTIONS over the wire equals the three geometry.h lists on
+ * the same mesh: an octahedron with its top apex pushed out through a
+ * bottom face (three face pairs) next to a pentagram face (crossing itself,
+ * and so does its boundary loop). Answered by a worker; bad requests and a
+ * mesh without positions refused. */
+static void test_self_intersections_kind(void)
+{
+    fixture fx;
+    fixture_init(&fx);
+    double pos[33] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0.5, 0.5, -0.5, 0, 0, -1};
+    for (int i = 0; i < 5; i++) { /* the pentagram, at z = 5 */
+        double angle = 2 * 3.14159265358979323846 * (2 * i % 5) / 5;
+        pos[18 + 3 * i] = cos(angle), pos[19 + 3 * i] = sin(angle), pos[20 + 3 * i] = 5;
+    }
+    uint32_t indices[] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5,
+                          1, 2, 5, 3, 1, 5, 0, 3, 5, 6, 7, 8, 9, 10};
+    uint32_t sizes[] = {3, 3, 3, 3, 3, 3, 3, 3, 5};
+    mt_face_list list = {11, 9, 29, pos, sizes, indices};
+    mt_mesh *mesh = NULL;
+    CHECK_OK(mt_mesh_build(&list, NULL, &mesh, NULL));
+    mt_face_pair pairs[8];
+    mt_face_shape faces[4];
+    mt_loop_crossing loops[4];
+    size_t num_pairs = 0, num_faces = 0, num_loops = 0;
+    CHECK_OK(mt_mesh_self_intersections(mesh, pairs, 8, &num_pairs, NULL));
+    CHECK_OK(mt_mesh_nonsimple_faces(mesh, faces, 4, &num_faces, NULL));
+    CHECK_OK(mt_mesh_boundary_loop_crossings(mesh, loops, 4, &num_loops, NULL));
+    CHECK(num_pairs == 3 && num_faces == 1 && num_loops == 1);
+    meshtopo_reply_t r;
+    if (submit_ok(&fx, "pushed", &list) &&
+        query(&fx, "pushed", 0, MESHTOPO_QUERY_T_SELF_INTERSECTIONS, NULL, 0, &r) == 0) {
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.num_items, 1);
+        CHECK_EQ(r.num_groups, 3);
+        CHECK_EQ(r.num_reals, 1);
+        CHECK_EQ(r.num_values, 2 * 3 + 4 + 5);
+        if (r.num_groups == 3 && r.num_values == 15 && r.num_reals == 1) {
+            CHECK(r.value_offsets[1] == 6 && r.value_offsets[2] == 10);
+            for (size_t i = 0; i < num_pairs; i++) {
+                CHECK_EQ(r.values[2 * i], (int32_t)pairs[i].a);
+                CHECK_EQ(r.values[2 * i + 1], (int32_t)pairs[i].b);
+            }
+            const int32_t *f = r.values + 6, *l = r.values + 10;
+            CHECK(f[0] == 8 && f[0] == (int32_t)faces[0].face);
+            CHECK_EQ(f[1], MT_FACE_SELF_CROSSING);
+            CHECK(f[2] == (int32_t)faces[0].side_a && f[3] == (int32_t)faces[0].side_b);
+            CHECK(memcmp(&r.reals[0], &faces[0].warp, sizeof(double)) == 0);
+            CHECK_EQ(l[0], (int32_t)loops[0].loop);
+            CHECK(l[1] == (int32_t)loops[0].edge_a[0] && l[2] == (int32_t)loops[0].edge_a[1]);
+            CHECK(l[3] == (int32_t)loops[0].edge_b[0] && l[4] == (int32_t)loops[0].edge_b[1]);
+        }
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    mt_mesh_destroy(mesh);
+    int32_t ids[] = {0};
+    check_query_error(&fx, "pushed", 0, MESHTOPO_QUERY_T_SELF_INTERSECTIONS, ids, 1,
+                      MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "takes no ids", __LINE__);
+    list.positions = NULL;
+    CHECK_EQ(submit_ok(&fx, "bare", &list), 1);
+    check_query_error(&fx, "bare", 0, MESHTOPO_QUERY_T_SELF_INTERSECTIONS, NULL, 0,
+                      MESHTOPO_STATUS_CODE_T_NO_GEOMETRY, "positions", __LINE__);
+    check_query_error(&fx, "absent", 0, MESHTOPO_QUERY_T_SELF_INTERSECTIONS, NULL, 0,
+                      MESHTOPO_STATUS_CODE_T_UNKNOWN_MESH, "absent", __LINE__);
+    check_still_serving(&fx, "pushed");
+    fixture_free(&fx);
+}
+
 static void test_nan_positions(void)
 {
     fixture fx;
@@ -1762,6 +1829,7 @@ static const mt_test_case cases[] = {
     {"bad_mesh_ids", test_bad_mesh_ids},
     {"bad_queries", test_bad_queries},
     {"geometry_kinds", test_geometry_kinds},
+    {"self_intersections_kind", test_self_intersections_kind},
     {"nan_positions", test_nan_positions},
     {"duplicate_request", test_duplicate_request},
     {"request_id_shared_by_kinds", test_request_id_shared_by_kinds},
