@@ -96,7 +96,7 @@ def main():
             # The half-edge arrays (format 2) read without meshtopo: the ring of
             # each kept face, from face_halfedge along next, passes through the
             # face's vertices in order (tail of h = head of its twin h ^ 1).
-            expect(int(m.attrs["format_version"]) == 4, "format_version 4")
+            expect(int(m.attrs["format_version"]) == 5, "format_version 5")
             h = m["halfedge"]
             for key in ("head", "next", "face", "face_halfedge", "vertex_halfedge",
                         "copy_original", "copies_sorted", "bundle_offsets", "bundle_edges",

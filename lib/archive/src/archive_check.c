@@ -317,6 +317,20 @@ mt_status mt__archive_check(hid_t file, const char *file_name, mt__check *c, mt_
     } else {
         c->restored = true;
     }
+    /* Damaged attributes leave the mesh servable without them (the rest of
+     * the file vouches for it): a derived fault, which verification reports. */
+    {
+        mt_diag why;
+        mt_status as = mt__attributes_read(g, file_name, c->mesh, c->restored, &why);
+        if (as != MT_OK && system_failure(as)) {
+            st = mt__archive_fail(diag, as, "%s", why.message);
+            goto fail;
+        }
+        if (as != MT_OK) {
+            if (c->fallback.status == MT_OK) c->fallback = why;
+            c->fault = MT_ARCHIVE_FAULT_DERIVED;
+        }
+    }
     mt_mesh_destroy(legacy);
     if (g >= 0) H5Gclose(g);
     if (!c->keep_faces) {

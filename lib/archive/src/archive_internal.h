@@ -358,6 +358,17 @@ mt_status mt__archive_read_entry(const mt_archive *archive, const char *file_nam
 /* ---- What a load and a verification check (archive_check.c) ---- */
 
 /* One file checked: its record, the mesh to serve and what was wrong. */
+/* ---- Attributes (archive_attributes.c) ---- */
+
+/* Writes the mesh's attributes into /meshtopo (g) when it has any. */
+mt_status mt__attributes_write(hid_t g, const mt_mesh *mesh, const mt__h5_layout *layout,
+                               const char *file, mt_diag *diag);
+
+/* Adds the attributes stored in /meshtopo (g) to mesh; edge and half-edge
+ * ones only when `restored` (the mesh's ids are the stored arrays'). */
+mt_status mt__attributes_read(hid_t g, const char *file, mt_mesh *mesh, bool restored,
+                              mt_diag *diag);
+
 typedef struct mt__check {
     /* In. */
     mt_archive_hash_fn hash; /* NULL: the content hash is not checked */

@@ -217,7 +217,8 @@ static mt_status write_meshtopo(hid_t file, const mt_archive_meta *meta, const m
         "meshtopo archive of one mesh version: the face list exactly as submitted "
         "(positions, face_vertex_counts, face_vertex_indices; rejected faces included), "
         "provenance attributes, the build's topology report (group report) and the "
-        "half-edge arrays (group halfedge) that a reload restores without a rebuild. /VTKHDF "
+        "half-edge arrays (group halfedge) that a reload restores without a rebuild, and the "
+        "elements' user attributes (group attributes) when there are any. /VTKHDF "
         "holds the faces the build kept; its CellData/original_face_id maps cells back.",
         name, diag);
     if (st == MT_OK)
@@ -264,6 +265,7 @@ static mt_status write_meshtopo(hid_t file, const mt_archive_meta *meta, const m
     if (st == MT_OK) st = mt__report_write(rg, mt_mesh_report(mesh), name, diag);
     if (rg >= 0) H5Gclose(rg);
     if (st == MT_OK) st = mt__halfedge_write(g, mesh, meta->content_hash, layout, name, diag);
+    if (st == MT_OK) st = mt__attributes_write(g, mesh, layout, name, diag);
     H5Gclose(g);
     return st;
 }

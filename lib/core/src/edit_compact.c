@@ -9,6 +9,44 @@
 #include "edit_internal.h"
 #include "meshtopo/edit.h"
 
+/* The half-edge of fresh from caller vertex a to b, looked for in every
+ * fan of a (a non-manifold vertex has copies); MT_NONE when there is none. */
+static uint32_t find_half_edge(const mt_mesh *fresh, uint32_t a, uint32_t b)
+{
+    const uint32_t *copies = NULL;
+    const uint32_t num_copies = mt__vert_copies(fresh, a, &copies);
+    for (uint32_t i = 0; i <= num_copies; i++) {
+        const uint32_t start = fresh->vert_he[i == 0 ? a : copies[i - 1]];
+        if (start == MT_NONE) continue;
+        uint32_t h = start, steps = 0;
+        do {
+            if (mt__original(fresh, fresh->he_head[h]) == b) return h;
+            h = fresh->he_next[h ^ 1u];
+        } while (h != start && ++steps < fresh->num_half_edges);
+    }
+    return MT_NONE;
+}
+
+/* The attributes of m carried to fresh, its compaction: each live
+ * half-edge of m goes to the half-edge joining its mapped ends in fresh. */
+static mt_status carry_attributes(const mt_mesh *m, mt_mesh *fresh, const uint32_t *vmap,
+                                  const uint32_t *fmap)
+{
+    if (!m->attributes) return MT_OK;
+    uint32_t *hemap = mt__malloc(((size_t)m->num_half_edges + 1) * sizeof *hemap);
+    if (!hemap) return MT_ERR_NOMEM;
+    for (uint32_t h = 0; h < m->num_half_edges; h++) {
+        hemap[h] = MT_NONE;
+        if (m->he_head[h] == MT_NONE) continue; /* deleted */
+        const uint32_t a = vmap[mt__original(m, m->he_head[h ^ 1u])];
+        const uint32_t b = vmap[mt__original(m, m->he_head[h])];
+        if (a != MT_NONE && b != MT_NONE) hemap[h] = find_half_edge(fresh, a, b);
+    }
+    mt_status s = mt__attributes_remap(m, fresh, vmap, fmap, hemap);
+    mt__free(hemap);
+    return s;
+}
+
 /* Face list of the live faces in new ids; fills the maps. */
 static mt_status export_faces(const mt_mesh *m, uint32_t *vmap, uint32_t *fmap, mt_face_list *out,
                               mt_diag *diag)
@@ -73,7 +111,10 @@ mt_status mt_mesh_compact(mt_mesh *mesh, uint32_t *out_vert_map, size_t vert_map
     mt_mesh *fresh = NULL;
     if (s == MT_OK) s = mt_mesh_build(&list, NULL, &fresh, diag);
     mt_face_list_free(&list);
+    if (s == MT_OK && carry_attributes(mesh, fresh, vmap, fmap) != MT_OK)
+        s = mt__fail(diag, MT_ERR_NOMEM, MT_NONE, "compact: no memory for the attributes");
     if (s != MT_OK) {
+        mt_mesh_destroy(fresh);
         mt__free(vmap);
         return s;
     }

@@ -54,7 +54,7 @@ static mt_status grow_half_edges(mt_mesh *m, uint32_t need)
     m->he_next = block + cap;
     m->he_face = block + 2 * (size_t)cap;
     m->cap_half_edges = cap;
-    return MT_OK;
+    return mt__attributes_fit(m);
 }
 
 static mt_status grow_faces(mt_mesh *m, uint32_t need)
@@ -67,7 +67,7 @@ static mt_status grow_faces(mt_mesh *m, uint32_t need)
     if (!p) return MT_ERR_NOMEM;
     m->face_he = p;
     m->cap_faces = cap;
-    return MT_OK;
+    return mt__attributes_fit(m);
 }
 
 /* Each per-vertex array is reallocated in turn; the capacity is raised only
@@ -98,7 +98,7 @@ static mt_status grow_verts(mt_mesh *m, mt__edit_state *s, uint32_t need)
         s->vert_deleted = d;
     }
     m->cap_verts = cap;
-    return MT_OK;
+    return mt__attributes_fit(m);
 }
 
 mt_status mt__edit_begin(mt__edit *e, mt_mesh *m, mt_diag *diag, const char *what)

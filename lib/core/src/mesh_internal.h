@@ -58,11 +58,26 @@ struct mt_mesh {
     uint32_t cap_half_edges;
     uint32_t cap_faces;
     uint32_t cap_verts;
-    struct mt__edit_state *edit; /* NULL until the first edit */
+    struct mt__edit_state *edit;          /* NULL until the first edit */
+    struct mt__attribute_set *attributes; /* NULL until the first attribute (attributes.c) */
 };
 
 /* Frees the edit bookkeeping (edit_state.c). NULL-safe. */
 void mt__edit_state_free(struct mt__edit_state *state);
+
+/* Frees the attributes (attributes.c). NULL-safe. */
+void mt__attribute_set_free(struct mt__attribute_set *set);
+
+/* Makes every attribute array hold as many elements as the mesh's arrays
+ * now have room for (the new ones zero): called after an edit grows them.
+ * MT_ERR_NOMEM leaves the arrays that could not grow as they were. */
+mt_status mt__attributes_fit(mt_mesh *m);
+
+/* Carries the attributes of `old` to `fresh`, its compaction: vertex, face
+ * and half-edge i of old becomes vmap[i], fmap[i], hemap[i] of fresh
+ * (MT_NONE: dropped; edges follow their first half-edge). */
+mt_status mt__attributes_remap(const mt_mesh *old, mt_mesh *fresh, const uint32_t *vmap,
+                               const uint32_t *fmap, const uint32_t *hemap);
 
 /* Caller id of an internal vertex. */
 static inline uint32_t mt__original(const mt_mesh *m, uint32_t v)

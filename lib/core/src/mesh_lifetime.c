@@ -32,6 +32,7 @@ void mt_mesh_destroy(mt_mesh *m)
     mt__free(m->vert_component);
     report_free(&m->report);
     mt__edit_state_free(m->edit);
+    mt__attribute_set_free(m->attributes);
     mt__free(m);
 }
 

@@ -42,8 +42,10 @@ extern "C" {
  * hash (FNV-1a), which verification does not check. 4 adds the digest
  * attribute of /meshtopo/halfedge, which lets a load check the stored arrays
  * and report without a rebuild; files of versions 2 and 3 have none, and a
- * load checks their arrays against a rebuild (as slow as version 1's). */
-#define MT_ARCHIVE_FORMAT_VERSION 4
+ * load checks their arrays against a rebuild (as slow as version 1's). 5
+ * adds the group /meshtopo/attributes (meshtopo/attributes.h), present when
+ * the archived mesh has attributes: a load gives them back. */
+#define MT_ARCHIVE_FORMAT_VERSION 5
 
 /* Oldest format version whose content_hash verification checks. */
 #define MT_ARCHIVE_FORMAT_VERSION_HASHED 3
@@ -222,7 +224,9 @@ typedef enum mt_archive_fault {
      * matches, or its rebuild gives the stored report). A load succeeds
      * with the mesh rebuilt from the face list (with the rebuild's report)
      * and says why in mt_archive_load_info.fallback; verification fails
-     * with MT_ERR_CORRUPT. The file is left as it is: the caller logs it. */
+     * with MT_ERR_CORRUPT. The file is left as it is: the caller logs it.
+     * Damaged user attributes (/meshtopo/attributes) count here too: the
+     * mesh loads with those that could be read. */
     MT_ARCHIVE_FAULT_DERIVED,
     /* The VTKHDF datasets (what ParaView reads) disagree with the face
      * list. Only verification reads them (MT_ERR_PARSE); loads succeed. */

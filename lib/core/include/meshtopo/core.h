@@ -2,6 +2,7 @@
 #ifndef MESHTOPO_CORE_H
 #define MESHTOPO_CORE_H
 
+#include "meshtopo/attributes.h"
 #include "meshtopo/edit.h"
 #include "meshtopo/face_list.h"
 #include "meshtopo/generate.h"
