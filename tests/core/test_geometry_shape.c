@@ -113,6 +113,14 @@ static void test_shape_crossing(void)
     /* Two corners at one position. */
     const double pinch[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0.5, 0.5, 0, 0, 1, 0, 0.5, 0.5, 0};
     CHECK_EQ(shape_of(pinch, 6).kind, MT_FACE_SELF_CROSSING);
+    /* Two consecutive corners at one position: the empty side 1 between
+     * them has no line to order it by; sides 0 and 2 touch there. */
+    const double repeated[] = {0, 0, 0, 0, 1, 0, 0, 1, 0, 2, 1, 0};
+    CHECK_SHAPE(repeated, 4, MT_FACE_SELF_CROSSING, 0, 2);
+    /* Corner 3 lies 7e-18 below side 0's line (exactly; in doubles the
+     * orientation rounds to 0): simple. */
+    const double near[] = {0, 0, 0, 3, 1, 0, 3, -1, 0, 0.1, 0.03333333333333333, 0};
+    CHECK_EQ(shape_of(near, 4).kind, MT_FACE_SIMPLE);
 }
 
 static void test_shape_warped(void)

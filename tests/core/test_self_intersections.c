@@ -166,6 +166,19 @@ static void test_selfx_degenerate(void)
     mt_mesh *mesh = mesh_of(pos, 11, faces, NULL, 5);
     CHECK_PAIRS(mesh, "0-2 1-2 3-4");
     mt_mesh_destroy(mesh);
+    /* The shared side 0-1 is one point (both at the origin), so faces
+     * (0, 1, 2) and (1, 0, 3) are segments from it, along +x and along the
+     * diagonal: they meet only there. Along one line the same way, they
+     * overlap. */
+    double tip[] = {0, 0, 0, 0, 0, 0, 1, 0, 0, 1, 1, 0};
+    const uint32_t tip_faces[] = {0, 1, 2, 1, 0, 3};
+    mesh = mesh_of(tip, 4, tip_faces, NULL, 2);
+    CHECK_PAIRS(mesh, "");
+    mt_mesh_destroy(mesh);
+    tip[10] = 0, tip[9] = 2;
+    mesh = mesh_of(tip, 4, tip_faces, NULL, 2);
+    CHECK_PAIRS(mesh, "0-1");
+    mt_mesh_destroy(mesh);
 }
 
 static void test_selfx_polygons(void)

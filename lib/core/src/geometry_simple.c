@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "geometry_internal.h"
+#include "meshtopo/predicates.h"
 #include "meshtopo/query.h"
 
 typedef struct side {
@@ -32,9 +33,19 @@ typedef struct sweep {
     uint32_t num_active;
 } sweep;
 
-static double orient(const double *a, const double *b, const double *c)
+/* The exact sign of (b - a) x (c - a): rounding never decides a crossing. */
+static int orient(const double *a, const double *b, const double *c)
 {
-    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    return mt_orient2d(a, b, c);
+}
+
+/* Whether a and b, on one line with q, lie on the same side of it (both
+ * different from q). Compares coordinates, so it is exact. */
+static bool same_direction(const double *q, const double *a, const double *b)
+{
+    for (int k = 0; k < 2; k++)
+        if (a[k] != q[k]) return b[k] != q[k] && (a[k] > q[k]) == (b[k] > q[k]);
+    return false;
 }
 
 static int before(const double *a, const double *b)
@@ -67,11 +78,10 @@ static bool sides_meet(const sweep *s, uint32_t i, uint32_t j)
     if ((i + 1) % n == j || (j + 1) % n == i) {
         uint32_t first = (i + 1) % n == j ? i : j, second = first == i ? j : i;
         const double *q = p[second], *a = p[first], *b = p[(second + 1) % n];
-        return orient(q, a, b) == 0 &&
-               (a[0] - q[0]) * (b[0] - q[0]) + (a[1] - q[1]) * (b[1] - q[1]) > 0;
+        return orient(q, a, b) == 0 && same_direction(q, a, b);
     }
     const double *a = p[i], *b = p[(i + 1) % n], *c = p[j], *d = p[(j + 1) % n];
-    double d1 = orient(c, d, a), d2 = orient(c, d, b), d3 = orient(a, b, c), d4 = orient(a, b, d);
+    int d1 = orient(c, d, a), d2 = orient(c, d, b), d3 = orient(a, b, c), d4 = orient(a, b, d);
     if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
         return true;
     return (d1 == 0 && within(c, d, a)) || (d2 == 0 && within(c, d, b)) ||
@@ -82,7 +92,7 @@ static bool sides_meet(const sweep *s, uint32_t i, uint32_t j)
 static bool below(const sweep *s, uint32_t j, uint32_t i)
 {
     const side *t = &s->sides[j], *u = &s->sides[i];
-    double o = orient(t->lo, t->hi, u->lo);
+    int o = orient(t->lo, t->hi, u->lo);
     if (o == 0) o = orient(t->lo, t->hi, u->hi);
     return o > 0;
 }
@@ -140,6 +150,23 @@ static bool find_crossing(sweep *s, event *events, uint32_t *out_a, uint32_t *ou
             memmove(&s->active[k], &s->active[k + 1], (s->num_active - k - 1) * sizeof *s->active);
             s->num_active--;
         }
+    }
+    return false;
+}
+
+/* Two consecutive corners at one point: the sides before and after the
+ * empty side between them touch there, which the sweep, ordering sides by
+ * their lines, can miss (an empty side has no line). True with those two
+ * sides, *out_a < *out_b. n >= 4. */
+static bool repeated_corner(const double (*p)[2], uint32_t n, uint32_t *out_a, uint32_t *out_b)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        const double *a = p[i], *b = p[(i + 1) % n];
+        if (a[0] != b[0] || a[1] != b[1]) continue;
+        const uint32_t prev = (i + n - 1) % n, next = (i + 1) % n;
+        *out_a = prev < next ? prev : next;
+        *out_b = prev < next ? next : prev;
+        return true;
     }
     return false;
 }
@@ -225,7 +252,7 @@ static mt_status shape_of(const double *const *corner, uint32_t n, mt_face_shape
     out->warp = diag > 0 ? warp / diag : 0;
     sweep s = {(const double(*)[2])pts, n, sides, active, 0};
     uint32_t a = 0, b = 0;
-    if (find_crossing(&s, events, &a, &b)) {
+    if (repeated_corner(s.pts, n, &a, &b) || find_crossing(&s, events, &a, &b)) {
         out->kind = MT_FACE_SELF_CROSSING;
         out->side_a = a;
         out->side_b = b;

@@ -135,6 +135,15 @@ bool mt_triangles_intersect(const double a[3][3], const double b[3][3])
  * beyond u-w when both third corners lie past the same end. */
 static bool fold_across_side(const double *u, const double *w, const double *a3, const double *b3)
 {
+    if (u[0] == w[0] && u[1] == w[1] && u[2] == w[2]) {
+        /* The shared side is one point: each triangle is the segment from
+         * it to its third corner, and they overlap when those leave it in
+         * the same direction along one line. */
+        if (plane_projection(u, a3, b3) >= 0) return false;
+        for (int k = 0; k < 3; k++)
+            if (a3[k] != u[k]) return b3[k] != u[k] && (a3[k] > u[k]) == (b3[k] > u[k]);
+        return false;
+    }
     if (mt_orient3d(u, w, a3, b3) != 0) return false;
     int drop = plane_projection(u, w, a3);
     if (drop < 0) drop = plane_projection(u, w, b3);

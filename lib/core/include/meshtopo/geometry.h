@@ -140,7 +140,9 @@ typedef struct mt_face_pair {
  * of their ear-clipping triangulation in their best-fit plane; the triangles
  * of one face are not checked against each other (mt_face_shape_of judges a
  * face on its own). Closed triangles; one whose corners are on a line (or
- * coincide) is the union of its sides, judged by the same rules.
+ * coincide) is the union of its sides, judged by the same rules (so such a
+ * triangle whose side opposite a shared corner passes through that corner
+ * counts as meeting the other face).
  *
  * Exact: every decision is an exact orientation test (meshtopo/predicates.h)
  * on the double coordinates, so the answer does not depend on rounding.
