@@ -3,7 +3,9 @@
  * hidden flags; values kept through edits (split, flip, collapse,
  * triangulate, face split, deletions), new elements starting at zero, a
  * refused edit and an edit failing for memory leaving everything as it
- * was; and compaction carrying each value to its element's new id. */
+ * was; compaction carrying each value to its element's new id; and the
+ * seed's closed rectangle, whose queries leave its hidden faces and
+ * diagonal out once asked to. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -339,11 +341,101 @@ static void test_attributes_compaction(void)
     mt_mesh_destroy(mesh);
 }
 
+/* Sorted ids of a list, as text ("1 3"). */
+static void ids_text(const uint32_t *ids, size_t n, char *out, size_t size)
+{
+    uint32_t sorted[64];
+    for (size_t i = 0; i < n && i < 64; i++) sorted[i] = ids[i];
+    for (size_t i = 1; i < n && i < 64; i++)
+        for (size_t j = i; j > 0 && sorted[j - 1] > sorted[j]; j--) {
+            uint32_t t = sorted[j];
+            sorted[j] = sorted[j - 1];
+            sorted[j - 1] = t;
+        }
+    size_t used = 0;
+    out[0] = '\0';
+    for (size_t i = 0; i < n && i < 64; i++)
+        used += (size_t)snprintf(out + used, size - used, "%s%u", i ? " " : "", sorted[i]);
+}
+
+/* The neighbours and faces of vertex v's ring, sorted, as "1 3 | 0 1". */
+static void ring_text(const mt_mesh *mesh, uint32_t v, char *out, size_t size)
+{
+    uint32_t neighbors[32], faces[32];
+    mt_fan fans[8];
+    mt_ring ring = {neighbors, 32, faces, 32, fans, 8, 0, 0, 0};
+    CHECK_OK(mt_vert_ring(mesh, v, &ring));
+    char a[128], b[128];
+    ids_text(neighbors, ring.num_neighbors, a, sizeof a);
+    ids_text(faces, ring.num_faces, b, sizeof b);
+    snprintf(out, size, "%s | %s", a, b);
+}
+
+#define CHECK_TEXT(got, want)                                                               \
+    do {                                                                                    \
+        if (strcmp((got), (want)) != 0)                                                     \
+            mt_test_fail(__FILE__, __LINE__, "got \"%s\", expected \"%s\"", (got), (want)); \
+    } while (0)
+
+static void test_attributes_closed_rectangle_skips_hidden(void)
+{
+    mt_mesh *mesh = NULL;
+    mt_diag diag;
+    CHECK_OK(mt_gen_closed_rectangle(2, 1, &mesh, &diag));
+    if (!mesh) return;
+    const mt_report *r = mt_mesh_report(mesh);
+    CHECK(r->num_verts == 4 && r->num_edges == 6 && r->num_faces_valid == 4);
+    CHECK(r->closed && r->manifold && r->consistently_oriented && r->euler_characteristic == 2);
+    CHECK(mt_is_hidden(mesh, MT_ELEMENT_FACE, 2) && mt_is_hidden(mesh, MT_ELEMENT_FACE, 3));
+    CHECK(!mt_is_hidden(mesh, MT_ELEMENT_FACE, 0) && !mt_is_hidden(mesh, MT_ELEMENT_FACE, 1));
+    size_t hidden_edges = 0;
+    for (uint32_t e = 0; e < mt_mesh_num_elements(mesh, MT_ELEMENT_EDGE); e++)
+        hidden_edges += mt_is_hidden(mesh, MT_ELEMENT_EDGE, e);
+    CHECK_EQ(hidden_edges, 1);
+    char text[512];
+    /* Everything is listed until the mesh is asked to skip. */
+    ring_text(mesh, 0, text, sizeof text);
+    CHECK_TEXT(text, "1 2 3 | 0 1 2");
+    CHECK_OK(mt_mesh_skip_hidden(mesh, true));
+    /* Vertex 0: the diagonal to 2 and face 2 behind are left out. */
+    ring_text(mesh, 0, text, sizeof text);
+    CHECK_TEXT(text, "1 3 | 0 1");
+    uint32_t valence = 0;
+    CHECK_OK(mt_vert_valence(mesh, 0, &valence));
+    CHECK_EQ(valence, 2);
+    ring_text(mesh, 1, text, sizeof text); /* 1-3 is shown: only faces behind hold it */
+    CHECK_TEXT(text, "0 2 3 | 0");
+    /* Face 0 (0, 1, 2): nothing shown across 0-1 and 1-2, face 1 across 2-0. */
+    uint32_t across[8], offsets[4];
+    size_t num_faces = 0, num_sides = 0;
+    CHECK_OK(mt_face_neighbors(mesh, 0, across, 8, offsets, 4, &num_faces, &num_sides));
+    CHECK(num_sides == 3 && num_faces == 1 && offsets[2] == 0 && across[0] == 1);
+    size_t n = 0;
+    CHECK_STATUS(mt_face_neighbors(mesh, 2, across, 8, offsets, 4, &num_faces, &num_sides),
+                 MT_ERR_NOT_FOUND);
+    CHECK_STATUS(mt_face_verts(mesh, 3, across, 8, &n), MT_ERR_NOT_FOUND);
+    CHECK_STATUS(mt_edge_faces(mesh, 0, 2, across, 8, &n), MT_ERR_NOT_FOUND); /* hidden edge */
+    CHECK_OK(mt_edge_faces(mesh, 0, 1, across, 8, &n));
+    CHECK(n == 1 && across[0] == 0);
+    CHECK_STATUS(mt_edge_faces(mesh, 1, 3, across, 8, &n), MT_ERR_NOT_FOUND); /* faces hidden */
+    /* The setting survives compaction. */
+    CHECK_OK(mt_mesh_compact(mesh, NULL, 0, NULL, 0, &diag));
+    ring_text(mesh, 0, text, sizeof text);
+    CHECK_TEXT(text, "1 3 | 0 1");
+    CHECK_OK(mt_mesh_skip_hidden(mesh, false));
+    ring_text(mesh, 0, text, sizeof text);
+    CHECK_TEXT(text, "1 2 3 | 0 1 2");
+    CHECK_STATUS(mt_mesh_skip_hidden(NULL, true), MT_ERR_INVALID_ARG);
+    CHECK_STATUS(mt_gen_closed_rectangle(0, 1, &mesh, &diag), MT_ERR_INVALID_ARG);
+    mt_mesh_destroy(mesh);
+}
+
 static const mt_test_case cases[] = {
     {"attributes_api", test_attributes_api},
     {"attributes_hidden", test_attributes_hidden},
     {"attributes_survive_edits", test_attributes_survive_edits},
     {"attributes_edit_out_of_memory", test_attributes_edit_out_of_memory},
     {"attributes_compaction", test_attributes_compaction},
+    {"attributes_closed_rectangle_skips_hidden", test_attributes_closed_rectangle_skips_hidden},
 };
 const mt_test_table mt_tests_attributes = {cases, sizeof cases / sizeof cases[0]};

@@ -5,8 +5,8 @@
  * element count are never written. */
 #include <string.h>
 
-#include "mesh_internal.h"
 #include "meshtopo/attributes.h"
+#include "query_internal.h"
 
 typedef struct mt__attribute {
     char name[MT_ATTRIBUTE_NAME_MAX + 1];
@@ -282,6 +282,20 @@ mt_status mt_set_hidden(mt_mesh *mesh, mt_element_kind kind, uint32_t id, bool h
     }
     const uint8_t flag = hidden ? 1 : 0;
     return mt_attribute_set(mesh, kind, MT_ATTRIBUTE_HIDDEN, id, &flag, 1, diag);
+}
+
+mt_status mt_mesh_skip_hidden(mt_mesh *mesh, bool skip)
+{
+    if (!mesh) return MT_ERR_INVALID_ARG;
+    mesh->skip_hidden = skip;
+    return MT_OK;
+}
+
+const uint8_t *mt__skipped_flags(const mt_mesh *m, int kind)
+{
+    if (!m->skip_hidden) return NULL;
+    const mt__attribute *a = find(m, (mt_element_kind)kind, MT_ATTRIBUTE_HIDDEN);
+    return a && a->value_bytes == 1 ? a->values : NULL;
 }
 
 bool mt_is_hidden(const mt_mesh *mesh, mt_element_kind kind, uint32_t id)

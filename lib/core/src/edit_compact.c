@@ -121,6 +121,7 @@ mt_status mt_mesh_compact(mt_mesh *mesh, uint32_t *out_vert_map, size_t vert_map
     if (out_vert_map) memcpy(out_vert_map, vmap, (size_t)mesh->num_verts * sizeof(uint32_t));
     if (out_face_map) memcpy(out_face_map, fmap, (size_t)mesh->num_faces * sizeof(uint32_t));
     mt__free(vmap);
+    fresh->skip_hidden = mesh->skip_hidden;
     /* The caller keeps its pointer: swap the contents and free the old ones. */
     mt_mesh old = *mesh;
     *mesh = *fresh;

@@ -5,6 +5,7 @@
 #define MESHTOPO_MESH_INTERNAL_H
 
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -60,6 +61,7 @@ struct mt_mesh {
     uint32_t cap_verts;
     struct mt__edit_state *edit;          /* NULL until the first edit */
     struct mt__attribute_set *attributes; /* NULL until the first attribute (attributes.c) */
+    bool skip_hidden;                     /* queries leave hidden elements out */
 };
 
 /* Frees the edit bookkeeping (edit_state.c). NULL-safe. */

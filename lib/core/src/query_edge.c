@@ -5,6 +5,7 @@
  * O(valence of a + faces on the edge * log); no allocation. */
 #include <stdlib.h>
 
+#include "meshtopo/attributes.h"
 #include "meshtopo/query.h"
 #include "query_internal.h"
 
@@ -34,9 +35,10 @@ static mt_status find_side(const mt_mesh *m, uint32_t a, uint32_t b, uint32_t *o
     return MT_OK;
 }
 
-/* Faces on the edge of half-edge h (its bundle's when bundled), written to
- * out when not NULL; returns how many, SIZE_MAX on a corrupt bundle table. */
-static size_t edge_faces(const mt_mesh *m, uint32_t h, uint32_t *out)
+/* Faces on the edge of half-edge h (its bundle's when bundled), but none
+ * that `hidden` (the skipped flags, or NULL) marks, written to out when not
+ * NULL; returns how many, SIZE_MAX on a corrupt bundle table. */
+static size_t edge_faces(const mt_mesh *m, uint32_t h, const uint8_t *hidden, uint32_t *out)
 {
     uint32_t b = mt__edge_bundle(m, h >> 1);
     uint32_t first_edge = h >> 1, begin = 0, end = 1;
@@ -47,7 +49,7 @@ static size_t edge_faces(const mt_mesh *m, uint32_t h, uint32_t *out)
         if (e >= m->num_half_edges / 2) return SIZE_MAX;
         for (uint32_t side = 0; side < 2; side++) {
             uint32_t f = m->he_face[2 * e + side];
-            if (f == MT_NONE) continue;
+            if (f == MT_NONE || mt__skipped(hidden, m->num_faces, f)) continue;
             if (out) out[n] = f;
             n++;
         }
@@ -71,13 +73,16 @@ mt_status mt_edge_faces(const mt_mesh *mesh, uint32_t a, uint32_t b, uint32_t *o
     mt_status s = find_side(mesh, a, b, &h);
     if (s != MT_OK) return s;
     if (h == MT_NONE) return MT_ERR_NOT_FOUND;
-    size_t n = edge_faces(mesh, h, NULL);
+    if (mt__skipped(mt__skipped_flags(mesh, MT_ELEMENT_EDGE), mesh->num_half_edges / 2, h >> 1))
+        return MT_ERR_NOT_FOUND;
+    const uint8_t *hidden = mt__skipped_flags(mesh, MT_ELEMENT_FACE);
+    size_t n = edge_faces(mesh, h, hidden, NULL);
     if (n == SIZE_MAX) return MT_ERR_CORRUPT;
     if (n == 0) return MT_ERR_NOT_FOUND;
     *out_count = n;
     if (mt__buffer_absent(out_faces, capacity)) return MT_OK;
     if (capacity < n) return MT_ERR_BUFFER_TOO_SMALL;
-    edge_faces(mesh, h, out_faces);
+    edge_faces(mesh, h, hidden, out_faces);
     if (n == 2) {
         if (out_faces[0] > out_faces[1]) {
             uint32_t t = out_faces[0];

@@ -4,15 +4,19 @@
  * unchanged. Across a bundled side every other face of the bundle is listed.
  * Time linear in the output (plus a binary search per side when the mesh has
  * bundles); no allocation. */
+#include "meshtopo/attributes.h"
 #include "meshtopo/query.h"
 #include "query_internal.h"
 
-/* First half-edge of a face record, or the status to return. */
+/* First half-edge of a face record, or the status to return (a hidden face
+ * the queries skip is not found). */
 static mt_status face_start(const mt_mesh *m, uint32_t face, uint32_t *out_he)
 {
     if (face >= m->num_faces) return MT_ERR_OUT_OF_RANGE;
     uint32_t h = m->face_he[face];
     if (h == MT_NONE) return MT_ERR_NOT_FOUND;
+    if (mt__skipped(mt__skipped_flags(m, MT_ELEMENT_FACE), m->num_faces, face))
+        return MT_ERR_NOT_FOUND;
     if (!mt__he_ok(m, h)) return MT_ERR_CORRUPT;
     *out_he = h;
     return MT_OK;
@@ -47,16 +51,18 @@ mt_status mt_face_verts(const mt_mesh *mesh, uint32_t face, uint32_t *out_verts,
 }
 
 /* Faces across the side of `face` held by half-edge h: every face of the
- * bundle but `face` when the side is bundled, else the twin's face. Writes
- * them to out (when not NULL) and returns how many, or SIZE_MAX on a corrupt
- * bundle table. */
-static size_t side_neighbors(const mt_mesh *m, uint32_t face, uint32_t h, uint32_t *out)
+ * bundle but `face` when the side is bundled, else the twin's face; none
+ * that `hidden` (the skipped flags, or NULL) marks. Writes them to out
+ * (when not NULL) and returns how many, or SIZE_MAX on a corrupt bundle
+ * table. */
+static size_t side_neighbors(const mt_mesh *m, uint32_t face, uint32_t h, const uint8_t *hidden,
+                             uint32_t *out)
 {
     size_t n = 0;
     uint32_t b = mt__edge_bundle(m, h >> 1);
     if (b == MT_NONE) {
         uint32_t g = m->he_face[h ^ 1u];
-        if (g != MT_NONE && g != face) {
+        if (g != MT_NONE && g != face && !mt__skipped(hidden, m->num_faces, g)) {
             if (out) out[n] = g;
             n++;
         }
@@ -69,7 +75,7 @@ static size_t side_neighbors(const mt_mesh *m, uint32_t face, uint32_t h, uint32
         if (e >= m->num_half_edges / 2) return SIZE_MAX;
         for (uint32_t side = 0; side < 2; side++) {
             uint32_t g = m->he_face[2 * e + side];
-            if (g == MT_NONE || g == face) continue;
+            if (g == MT_NONE || g == face || mt__skipped(hidden, m->num_faces, g)) continue;
             if (out) out[n] = g;
             n++;
         }
@@ -86,10 +92,11 @@ mt_status mt_face_neighbors(const mt_mesh *mesh, uint32_t face, uint32_t *out_fa
     mt_status s = face_start(mesh, face, &start);
     if (s != MT_OK) return s;
 
+    const uint8_t *hidden = mt__skipped_flags(mesh, MT_ELEMENT_FACE);
     size_t edges = 0, total = 0;
     uint32_t h = start, steps = 0;
     do {
-        size_t n = side_neighbors(mesh, face, h, NULL);
+        size_t n = side_neighbors(mesh, face, h, hidden, NULL);
         if (n == SIZE_MAX) return MT_ERR_CORRUPT;
         total += n;
         edges++;
@@ -115,7 +122,7 @@ mt_status mt_face_neighbors(const mt_mesh *mesh, uint32_t face, uint32_t *out_fa
     do {
         /* Same walk as the counting pass over a mesh that cannot change in
          * between, so the sides add up to `total` again. */
-        written += side_neighbors(mesh, face, h, out_faces ? out_faces + written : NULL);
+        written += side_neighbors(mesh, face, h, hidden, out_faces ? out_faces + written : NULL);
         out_offsets[++i] = (uint32_t)written;
         if (!mt__ring_step(mesh, &h, &steps)) return MT_ERR_CORRUPT;
     } while (h != start && i < edges);

@@ -70,6 +70,17 @@ static inline bool mt__bundle_range(const mt_mesh *m, uint32_t b, uint32_t *out_
     return true;
 }
 
+/* The hidden flags of element kind `kind` (mt_element_kind) that queries
+ * leave out: the kind's hidden attribute when the mesh skips hidden
+ * elements (mt_mesh_skip_hidden), else NULL (attributes.c). */
+const uint8_t *mt__skipped_flags(const mt_mesh *m, int kind);
+
+/* Whether element id of a kind with those flags (counted `count`) is left out. */
+static inline bool mt__skipped(const uint8_t *flags, uint32_t count, uint32_t id)
+{
+    return flags && id < count && flags[id] != 0;
+}
+
 /* The caller passed no buffer (NULL or capacity 0): a size query. */
 static inline bool mt__buffer_absent(const void *buf, size_t capacity)
 {

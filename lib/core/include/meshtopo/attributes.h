@@ -98,6 +98,24 @@ mt_status mt_set_hidden(mt_mesh *mesh, mt_element_kind kind, uint32_t id, bool h
  * id out of range. */
 bool mt_is_hidden(const mt_mesh *mesh, mt_element_kind kind, uint32_t id);
 
+/* Makes the queries of meshtopo/query.h leave hidden elements out (skip
+ * true) or list them like any other (false, the default). While skipping:
+ *  - mt_vert_ring lists a neighbour only when it, the edge to it and the
+ *    half-edge from the vertex to it are shown, and a face only when it is
+ *    shown; a fan left with neither is not listed. Each fan keeps its
+ *    counter-clockwise order, but once something is left out the k-th face
+ *    no longer lies between the k-th and (k+1)-th neighbours.
+ *  - mt_vert_valence counts the neighbours mt_vert_ring lists.
+ *  - mt_face_verts, mt_face_neighbors and mt_face_component answer
+ *    MT_ERR_NOT_FOUND for a hidden face; mt_face_neighbors leaves hidden
+ *    faces out of what is across each side.
+ *  - mt_edge_faces answers MT_ERR_NOT_FOUND for a hidden edge and leaves
+ *    hidden faces out (MT_ERR_NOT_FOUND when none is left).
+ * Boundary loops, components and the report describe the whole mesh. The
+ * setting is the mesh's: set it before sharing the mesh between threads.
+ * MT_ERR_INVALID_ARG for a NULL mesh. */
+mt_status mt_mesh_skip_hidden(mt_mesh *mesh, bool skip);
+
 #ifdef __cplusplus
 }
 #endif

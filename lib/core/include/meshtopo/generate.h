@@ -1,5 +1,6 @@
 /* Test and demo meshes as face lists: the Platonic solids, the seed
- * rectangle, grids, tori, spheres, a genus-2 surface, the classic defective
+ * rectangle (also closed into a sphere, as a built mesh with hidden
+ * elements), grids, tori, spheres, a genus-2 surface, the classic defective
  * shapes, and the dual of a built mesh. Every generator allocates *out (free it with
  * mt_face_list_free) and returns MT_OK, MT_ERR_INVALID_ARG for sizes out of
  * its documented range, MT_ERR_TOO_LARGE when the counts would not fit in
@@ -33,6 +34,15 @@ mt_status mt_gen_platonic(mt_platonic kind, mt_face_list *out);
 /* The seed article's rectangle: vertices (0,0,0), (w,0,0), (w,h,0), (0,h,0)
  * and two triangles (0,1,2), (0,2,3) sharing the diagonal v0-v2. */
 mt_status mt_gen_rectangle(double width, double height, mt_face_list *out);
+
+/* The seed's rectangle closed into a sphere, built: its two triangles
+ * (0, 1, 2), (0, 2, 3) in front and two more, (1, 0, 3), (3, 2, 1), behind on
+ * the same four corners (4 faces, 6 edges, Euler characteristic 2), with the
+ * two faces behind and the front diagonal 0-2 hidden (meshtopo/attributes.h),
+ * so that what is shown is the rectangle. On MT_OK *out_mesh is the
+ * caller's (mt_mesh_destroy). MT_ERR_INVALID_ARG for sizes that are not
+ * finite and positive, MT_ERR_NOMEM. */
+mt_status mt_gen_closed_rectangle(double width, double height, mt_mesh **out_mesh, mt_diag *diag);
 
 /* A flat grid of nx by ny unit cells in the z = 0 plane with one boundary loop.
  * triangles: each cell split into two triangles (2*nx*ny faces); otherwise
