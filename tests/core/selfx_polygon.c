@@ -8,6 +8,8 @@
 #include <assert.h>
 #include <math.h>
 
+#include "geometry_internal.h"
+
 uint32_t sx_num_candidates(uint32_t n)
 {
     return n * (n - 1) * (n - 2) / 6;
@@ -82,77 +84,12 @@ bool sx_each_triangulation(uint32_t n, bool (*visit)(const uint32_t *tris, void 
     return enumerate(&e);
 }
 
-/* ---- the library's plane (lib/core/src/geometry_simple.c, fit_plane and
- * shape_of), kept operation for operation ---------------------------------- */
-
-static double dot3(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void fit_plane(const double *const *corner, uint32_t n, double normal[3], double centre[3])
-{
-    centre[0] = centre[1] = centre[2] = 0;
-    for (uint32_t i = 0; i < n; i++)
-        for (int d = 0; d < 3; d++) centre[d] += corner[i][d] / n;
-    double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
-    for (uint32_t i = 0; i < n; i++) {
-        double x = corner[i][0] - centre[0], y = corner[i][1] - centre[1],
-               z = corner[i][2] - centre[2];
-        xx += x * x;
-        xy += x * y;
-        xz += x * z;
-        yy += y * y;
-        yz += y * z;
-        zz += z * z;
-    }
-    double det_x = yy * zz - yz * yz, det_y = xx * zz - xz * xz, det_z = xx * yy - xy * xy;
-    double best = fmax(det_x, fmax(det_y, det_z));
-    normal[0] = normal[1] = normal[2] = 0;
-    if (!(best > 0)) return;
-    if (best == det_x) {
-        normal[0] = det_x;
-        normal[1] = xz * yz - xy * zz;
-        normal[2] = xy * yz - xz * yy;
-    } else if (best == det_y) {
-        normal[0] = xz * yz - xy * zz;
-        normal[1] = det_y;
-        normal[2] = xy * xz - yz * xx;
-    } else {
-        normal[0] = xy * yz - xz * yy;
-        normal[1] = xy * xz - yz * xx;
-        normal[2] = det_z;
-    }
-    double len = sqrt(dot3(normal, normal));
-    for (int d = 0; d < 3; d++) normal[d] = len > 0 ? normal[d] / len : 0;
-}
+/* ---- the library's plane: the projection is the library's choice, taken
+ * from it (mt__polygon_plane); the crossings are decided here ------------- */
 
 void sx_polygon_plane(const double *const *corner, uint32_t n, int *out_drop, double *out_warp)
 {
-    double normal[3], centre[3], lo[3], hi[3];
-    fit_plane(corner, n, normal, centre);
-    for (int d = 0; d < 3; d++) lo[d] = hi[d] = corner[0][d];
-    for (uint32_t i = 1; i < n; i++)
-        for (int d = 0; d < 3; d++) {
-            lo[d] = fmin(lo[d], corner[i][d]);
-            hi[d] = fmax(hi[d], corner[i][d]);
-        }
-    int drop = 0;
-    for (int d = 1; d < 3; d++) {
-        bool larger = normal[0] || normal[1] || normal[2] ? fabs(normal[d]) > fabs(normal[drop])
-                                                          : hi[d] - lo[d] < hi[drop] - lo[drop];
-        if (larger) drop = d;
-    }
-    double warp = 0;
-    for (uint32_t i = 0; i < n; i++) {
-        double off[3] = {corner[i][0] - centre[0], corner[i][1] - centre[1],
-                         corner[i][2] - centre[2]};
-        warp = fmax(warp, fabs(dot3(off, normal)));
-    }
-    double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
-    *out_drop = drop;
-    *out_warp = diag > 0 ? warp / diag : 0;
+    mt__polygon_plane(corner, n, out_drop, out_warp);
 }
 
 /* ---- crossings, exactly ----------------------------------------------------- */

@@ -32,9 +32,8 @@ bool sx_has_unmarked_triangulation(uint32_t n, const bool *marked);
 bool sx_each_triangulation(uint32_t n, bool (*visit)(const uint32_t *tris, void *ctx), void *ctx);
 
 /* The coordinate the library drops to project a polygon onto its best-fit
- * plane, and its warp (geometry_simple.c's least-squares fit, repeated
- * operation for operation in doubles so that the choice is the library's;
- * only the crossing decisions below are re-derived exactly). */
+ * plane, and its warp: the library's own choice (mt__polygon_plane), so
+ * that only the crossing decisions below are re-derived, exactly. */
 void sx_polygon_plane(const double *const *corner, uint32_t n, int *out_drop, double *out_warp);
 
 /* Whether sides i and j (side i runs from corner i to corner i + 1) of the

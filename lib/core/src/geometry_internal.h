@@ -80,6 +80,12 @@ typedef void (*mt__edge_visit)(void *user, uint32_t a, uint32_t b, mt_edge_shape
 mt_status mt__edge_sweep(const mt_mesh *m, double tol, const char *what, mt__edge_visit visit,
                          void *user, mt_diag *diag);
 
+/* The plane a polygon's shape is judged in (geometry_simple.c): the axis
+ * to drop to project onto its least-squares plane (the normal's largest;
+ * for corners on one line, the bounding box's smallest), and how far the
+ * corners leave that plane over the diagonal of their bounding box. n >= 3. */
+void mt__polygon_plane(const double *const *corner, uint32_t n, int *out_drop, double *out_warp);
+
 /* Whether the diagonal between corners i and j of a polygon may be cut. */
 typedef bool (*mt__diagonal_ok)(void *user, uint32_t i, uint32_t j);
 

@@ -210,8 +210,7 @@ static void fit_plane(const double *const *corner, uint32_t n, double normal[3],
     for (int d = 0; d < 3; d++) normal[d] = len > 0 ? normal[d] / len : 0;
 }
 
-/* The shape of a face whose n >= 4 corners are `corner`. */
-static mt_status shape_of(const double *const *corner, uint32_t n, mt_face_shape *out)
+void mt__polygon_plane(const double *const *corner, uint32_t n, int *out_drop, double *out_warp)
 {
     double normal[3], centre[3], lo[3], hi[3];
     fit_plane(corner, n, normal, centre);
@@ -228,6 +227,23 @@ static mt_status shape_of(const double *const *corner, uint32_t n, mt_face_shape
                                                           : hi[d] - lo[d] < hi[drop] - lo[drop];
         if (larger) drop = d;
     }
+    double warp = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        double off[3];
+        mt__v3_sub(corner[i], centre, off);
+        warp = fmax(warp, fabs(mt__v3_dot(off, normal)));
+    }
+    double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    *out_drop = drop;
+    *out_warp = diag > 0 ? warp / diag : 0;
+}
+
+/* The shape of a face whose n >= 4 corners are `corner`. */
+static mt_status shape_of(const double *const *corner, uint32_t n, mt_face_shape *out)
+{
+    int drop = 0;
+    mt__polygon_plane(corner, n, &drop, &out->warp);
     double(*pts)[2] = malloc(n * sizeof *pts);
     side *sides = malloc(n * sizeof *sides);
     uint32_t *active = malloc(n * sizeof *active);
@@ -239,17 +255,10 @@ static mt_status shape_of(const double *const *corner, uint32_t n, mt_face_shape
         free(events);
         return MT_ERR_NOMEM;
     }
-    double warp = 0;
     for (uint32_t i = 0; i < n; i++) {
         pts[i][0] = corner[i][drop == 0 ? 1 : 0];
         pts[i][1] = corner[i][drop == 2 ? 1 : 2];
-        double off[3];
-        mt__v3_sub(corner[i], centre, off);
-        warp = fmax(warp, fabs(mt__v3_dot(off, normal)));
     }
-    double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
-    out->warp = diag > 0 ? warp / diag : 0;
     sweep s = {(const double(*)[2])pts, n, sides, active, 0};
     uint32_t a = 0, b = 0;
     if (repeated_corner(s.pts, n, &a, &b) || find_crossing(&s, events, &a, &b)) {
