@@ -114,28 +114,11 @@ static mt_status confirm_count(void *ctx, mt_diag *diag)
     return check_length(c->src, c->count, diag);
 }
 
-static mt_status read_binary(mt__io_src *src, mt__builder *b, mt_diag *diag)
+/* The count triangles of a binary STL after its header, into b. */
+static mt_status read_triangles(mt__io_src *src, mt__builder *b, uint32_t count, mt_diag *diag)
 {
-    mt__src_binary(src);
-    size_t i = 0;
-    if (!mt__src_need(src, &i, STL_HEADER))
-        return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_BYTE, src->base + src->size, MT_NONE,
-                           "binary STL ends in its 84-byte header (%llu bytes)",
-                           (unsigned long long)(src->base + src->size));
-    uint32_t count = load32(src->data + 80);
-    /* A count past the limits is judged against the length first, as it
-     * is when the length is known from the start. */
-    if ((uint64_t)count * 3 > MT__IO_MAX_VERTS) mt__src_learn_length(src);
-    mt_status status = check_length(src, count, diag);
-    if (status != MT_OK) return status;
-    if ((uint64_t)count * 3 > MT__IO_MAX_VERTS)
-        return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_BYTE, 80, MT_NONE,
-                           "%u triangles: more than meshtopo's limit of %u vertices", count,
-                           MT__IO_MAX_VERTS);
-    i = STL_HEADER;
-    stl_confirm confirm = {src, count};
-    b->confirm = confirm_count;
-    b->confirm_ctx = &confirm;
+    size_t i = STL_HEADER;
+    mt_status status = MT_OK;
     size_t cap = 0;
     for (uint32_t t = 0; t < count; t++) {
         if (t == cap) {
@@ -164,6 +147,35 @@ static mt_status read_binary(mt__io_src *src, mt__builder *b, mt_diag *diag)
     }
     if (mt__src_need(src, &i, 1)) return fail_trailing(src, count, diag);
     return MT_OK;
+}
+
+static mt_status read_binary(mt__io_src *src, mt__builder *b, mt_diag *diag)
+{
+    mt__src_binary(src);
+    size_t i = 0;
+    if (!mt__src_need(src, &i, STL_HEADER))
+        return mt__io_fail(diag, MT_ERR_PARSE, src, MT__POS_BYTE, src->base + src->size, MT_NONE,
+                           "binary STL ends in its 84-byte header (%llu bytes)",
+                           (unsigned long long)(src->base + src->size));
+    uint32_t count = load32(src->data + 80);
+    /* A count past the limits is judged against the length first, as it
+     * is when the length is known from the start. */
+    if ((uint64_t)count * 3 > MT__IO_MAX_VERTS) mt__src_learn_length(src);
+    mt_status status = check_length(src, count, diag);
+    if (status != MT_OK) return status;
+    if ((uint64_t)count * 3 > MT__IO_MAX_VERTS)
+        return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_BYTE, 80, MT_NONE,
+                           "%u triangles: more than meshtopo's limit of %u vertices", count,
+                           MT__IO_MAX_VERTS);
+    /* The builder asks confirm_count, with the count, before growing large;
+     * the pointer to this frame's confirmation is taken back before return. */
+    stl_confirm confirm = {src, count};
+    b->confirm = confirm_count;
+    b->confirm_ctx = &confirm;
+    status = read_triangles(src, b, count, diag);
+    b->confirm = NULL;
+    b->confirm_ctx = NULL;
+    return status;
 }
 
 mt_status mt__read_stl_binary(mt__io_src *src, mt_face_list *out, mt_diag *diag)
