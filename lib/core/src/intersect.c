@@ -6,6 +6,7 @@
  * or, lying in that plane, meets it in a projection that keeps the plane
  * one to one. Degenerate triangles (three points on a line, or one point)
  * are the union of their sides. */
+#include <math.h>
 #include <stdbool.h>
 
 #include "geometry_internal.h"
@@ -41,10 +42,25 @@ static bool segments_meet_2d(const double p[2], const double q[2], const double 
 
 /* A coordinate to drop that keeps the plane of a, b, c one to one (one
  * where their projections are not collinear); -1 when a, b, c are on one
- * line (or coincide) and span no plane. */
+ * line (or coincide) and span no plane. The axes are tried largest normal
+ * component first (the normal in doubles only orders the tries), so the
+ * first try usually decides with the fast filter of mt_orient2d. */
 static int plane_projection(const double a[3], const double b[3], const double c[3])
 {
-    for (int drop = 0; drop < 3; drop++) {
+    double u[3], v[3], n[3];
+    for (int k = 0; k < 3; k++) u[k] = b[k] - a[k], v[k] = c[k] - a[k];
+    n[0] = fabs(u[1] * v[2] - u[2] * v[1]);
+    n[1] = fabs(u[2] * v[0] - u[0] * v[2]);
+    n[2] = fabs(u[0] * v[1] - u[1] * v[0]);
+    int order[3] = {0, 1, 2};
+    for (int i = 1; i < 3; i++)
+        for (int j = i; j > 0 && n[order[j]] > n[order[j - 1]]; j--) {
+            int t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+    for (int i = 0; i < 3; i++) {
+        const int drop = order[i];
         double pa[2], pb[2], pc[2];
         project(a, drop, pa);
         project(b, drop, pb);
@@ -118,8 +134,54 @@ bool mt_segment_hits_triangle(const double s[3], const double e[3], const double
     return !(negative && positive);
 }
 
+/* Signs of three orientations all strictly the same: the points lie on one
+ * side of the plane (or line). */
+static bool one_side(int s0, int s1, int s2)
+{
+    return (s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0);
+}
+
+/* Two coplanar proper triangles a and b, seen in projection `drop` (one to
+ * one on their plane): whether they share a point. Convex polygons are
+ * apart exactly when one's corners all lie strictly outside a side of the
+ * other (the separating axis theorem), which exact orientations decide. */
+static bool coplanar_overlap(const double a[3][3], const double b[3][3], int drop)
+{
+    double p[2][3][2];
+    for (int i = 0; i < 3; i++) {
+        project(a[i], drop, p[0][i]);
+        project(b[i], drop, p[1][i]);
+    }
+    for (int t = 0; t < 2; t++) {
+        const double(*own)[2] = p[t], (*other)[2] = p[1 - t];
+        const int inside = mt_orient2d(own[0], own[1], own[2]);
+        for (int i = 0; i < 3; i++) {
+            const double *s = own[i], *e = own[(i + 1) % 3];
+            const int o0 = mt_orient2d(s, e, other[0]) * inside,
+                      o1 = mt_orient2d(s, e, other[1]) * inside,
+                      o2 = mt_orient2d(s, e, other[2]) * inside;
+            if (o0 < 0 && o1 < 0 && o2 < 0) return false;
+        }
+    }
+    return true;
+}
+
 bool mt_triangles_intersect(const double a[3][3], const double b[3][3])
 {
+    /* Apart when one lies strictly on one side of the other's plane (a
+     * degenerate triangle gives orientations 0, never one side); proper
+     * coplanar ones are judged in their plane. */
+    const int sb[3] = {mt_orient3d(a[0], a[1], a[2], b[0]), mt_orient3d(a[0], a[1], a[2], b[1]),
+                       mt_orient3d(a[0], a[1], a[2], b[2])};
+    if (one_side(sb[0], sb[1], sb[2])) return false;
+    if (one_side(mt_orient3d(b[0], b[1], b[2], a[0]), mt_orient3d(b[0], b[1], b[2], a[1]),
+                 mt_orient3d(b[0], b[1], b[2], a[2])))
+        return false;
+    if (sb[0] == 0 && sb[1] == 0 && sb[2] == 0) {
+        const int drop = plane_projection(a[0], a[1], a[2]);
+        if (drop >= 0 && plane_projection(b[0], b[1], b[2]) >= 0)
+            return coplanar_overlap(a, b, drop);
+    }
     for (int i = 0; i < 3; i++)
         if (mt_segment_hits_triangle(a[i], a[(i + 1) % 3], b) ||
             mt_segment_hits_triangle(b[i], b[(i + 1) % 3], a))
@@ -170,6 +232,56 @@ static void copy_corners(const double *const p[3], double out[3][3])
         for (int k = 0; k < 3; k++) out[i][k] = p[i][k];
 }
 
+/* Whether direction x - v lies in the closed wedge at v from l - v
+ * counter-clockwise to r - v (an angle below pi), in a projection. */
+static bool in_wedge(const double v[2], const double l[2], const double r[2], const double x[2])
+{
+    return mt_orient2d(v, l, x) >= 0 && mt_orient2d(v, x, r) >= 0;
+}
+
+/* Coplanar proper triangles (v, a1, a2) and (v, b1, b2) seen in projection
+ * `drop`: whether they share more than v. Near v each is its wedge, and two
+ * wedges below pi share a ray exactly when one holds a side of the other. */
+static bool wedges_overlap(const double *v, const double *a1, const double *a2, const double *b1,
+                           const double *b2, int drop)
+{
+    double pv[2], pa[2][2], pb[2][2];
+    project(v, drop, pv);
+    project(a1, drop, pa[0]);
+    project(a2, drop, pa[1]);
+    project(b1, drop, pb[0]);
+    project(b2, drop, pb[1]);
+    const int ka = mt_orient2d(pv, pa[0], pa[1]) > 0 ? 0 : 1; /* a's right side first */
+    const int kb = mt_orient2d(pv, pb[0], pb[1]) > 0 ? 0 : 1;
+    const double *al = pa[ka], *ar = pa[1 - ka], *bl = pb[kb], *br = pb[1 - kb];
+    return in_wedge(pv, al, ar, bl) || in_wedge(pv, al, ar, br) || in_wedge(pv, bl, br, al) ||
+           in_wedge(pv, bl, br, ar);
+}
+
+/* Triangles a = (v, a1, a2) and b = (v, b1, b2) sharing corner v: whether
+ * they meet beyond it. Proper ones do not when either lies strictly on one
+ * side of the other's plane but for v; coplanar ones are judged by their
+ * wedges at v; otherwise the side opposite v of one meets the other. */
+static bool corner_pair_cross(const double *const pa[3], int ka, const double *const pb[3], int kb)
+{
+    const double *v = pa[ka], *a1 = pa[(ka + 1) % 3], *a2 = pa[(ka + 2) % 3];
+    const double *b1 = pb[(kb + 1) % 3], *b2 = pb[(kb + 2) % 3];
+    /* A degenerate triangle gives orientations 0, never one side. */
+    const int s1 = mt_orient3d(v, a1, a2, b1), s2 = mt_orient3d(v, a1, a2, b2);
+    if (s1 * s2 > 0) return false;
+    const int t1 = mt_orient3d(v, b1, b2, a1), t2 = mt_orient3d(v, b1, b2, a2);
+    if (t1 * t2 > 0) return false;
+    if (s1 == 0 && s2 == 0) {
+        const int drop = plane_projection(v, a1, a2);
+        if (drop >= 0 && plane_projection(v, b1, b2) >= 0)
+            return wedges_overlap(v, a1, a2, b1, b2, drop);
+    }
+    double a[3][3], b[3][3];
+    copy_corners(pa, a);
+    copy_corners(pb, b);
+    return mt_segment_hits_triangle(a1, a2, b) || mt_segment_hits_triangle(b1, b2, a);
+}
+
 bool mt__triangles_cross(const uint32_t ia[3], const double *const pa[3], const uint32_t ib[3],
                          const double *const pb[3])
 {
@@ -181,16 +293,16 @@ bool mt__triangles_cross(const uint32_t ia[3], const double *const pa[3], const 
         shared += in_b[k] >= 0;
     }
     if (shared == 3) return true;
-    if (shared < 2) {
+    if (shared == 0) {
         double a[3][3], b[3][3];
         copy_corners(pa, a);
         copy_corners(pb, b);
-        if (shared == 0) return mt_triangles_intersect(a, b);
+        return mt_triangles_intersect(a, b);
+    }
+    if (shared == 1) {
         int k = 0;
         while (in_b[k] < 0) k++;
-        const int j = in_b[k];
-        return mt_segment_hits_triangle(pa[(k + 1) % 3], pa[(k + 2) % 3], b) ||
-               mt_segment_hits_triangle(pb[(j + 1) % 3], pb[(j + 2) % 3], a);
+        return corner_pair_cross(pa, k, pb, in_b[k]);
     }
     int k = 0, j = 0; /* the unshared corners */
     while (in_b[k] >= 0) k++;

@@ -23,9 +23,10 @@
 #define ORIENT2D_BOUND ((3.0 + 16.0 * EPS) * EPS)
 #define ORIENT3D_BOUND ((7.0 + 56.0 * EPS) * EPS)
 
-/* Longest expansion an exact orient3d builds: 3 x (16-term minor times a
- * 2-term difference) = 192 components. */
-#define MAX_TERMS 256
+/* Longest expansion an exact orient3d builds: a difference has at most 2
+ * components, a product of two differences 8, a 2x2 minor 16, a minor times
+ * a difference 64, and the sum of three such terms 192. */
+#define MAX_TERMS 192
 
 /* a + b = *x + *y exactly, *x = fl(a + b). */
 static void two_sum(double a, double b, double *x, double *y)
@@ -45,95 +46,112 @@ static void two_product(double a, double b, double *x, double *y)
     *x = p;
 }
 
-/* An expansion: n components, increasing in magnitude, none zero (n == 0
- * is the number zero). */
-typedef struct expansion {
-    double c[MAX_TERMS];
-    int n;
-} expansion;
+/* Expansions are arrays of components, increasing in magnitude, none zero
+ * (length 0 is the number zero). Each operation writes a new array, which
+ * never aliases its inputs, and returns its length. */
 
 /* h = e + b. */
-static void grow(const expansion *e, double b, expansion *h)
+static int grow(const double *e, int n, double b, double *h)
 {
     double q = b;
     int m = 0;
-    for (int i = 0; i < e->n; i++) {
+    for (int i = 0; i < n; i++) {
         double s, err;
-        two_sum(q, e->c[i], &s, &err);
-        if (err != 0) h->c[m++] = err;
+        two_sum(q, e[i], &s, &err);
+        if (err != 0) h[m++] = err;
         q = s;
     }
-    if (q != 0) h->c[m++] = q;
-    h->n = m;
+    if (q != 0) h[m++] = q;
+    return m;
 }
 
-/* *e += f (sign: +1 or -1 times f). */
-static void add(expansion *e, const expansion *f, double sign)
+/* h = e + sign * f, by growing e with each component of f in turn (the
+ * expansions here are short: quadratic time costs less than merging). */
+static int sum(const double *e, int ne, const double *f, int nf, double sign, double *h)
 {
-    expansion t;
-    for (int j = 0; j < f->n; j++) {
-        grow(e, sign * f->c[j], &t);
-        *e = t;
+    double spare[MAX_TERMS];
+    /* Alternate between h and spare so that the last grow writes into h. */
+    double *out = nf % 2 ? h : spare, *other = nf % 2 ? spare : h;
+    const double *in = e;
+    int n = ne;
+    if (nf == 0) {
+        for (int i = 0; i < ne; i++) h[i] = e[i];
+        return ne;
     }
+    for (int j = 0; j < nf; j++) {
+        n = grow(in, n, sign * f[j], out);
+        in = out;
+        double *t = out;
+        out = other;
+        other = t;
+    }
+    return n;
 }
 
 /* h = e * b. */
-static void scale(const expansion *e, double b, expansion *h)
+static int scale(const double *e, int n, double b, double *h)
 {
+    if (n == 0 || b == 0) return 0;
     int m = 0;
-    if (e->n == 0 || b == 0) {
-        h->n = 0;
-        return;
-    }
     double q, low;
-    two_product(e->c[0], b, &q, &low);
-    if (low != 0) h->c[m++] = low;
-    for (int i = 1; i < e->n; i++) {
+    two_product(e[0], b, &q, &low);
+    if (low != 0) h[m++] = low;
+    for (int i = 1; i < n; i++) {
         double hi, lo, s, err;
-        two_product(e->c[i], b, &hi, &lo);
+        two_product(e[i], b, &hi, &lo);
         two_sum(q, lo, &s, &err);
-        if (err != 0) h->c[m++] = err;
+        if (err != 0) h[m++] = err;
         two_sum(hi, s, &q, &err);
-        if (err != 0) h->c[m++] = err;
+        if (err != 0) h[m++] = err;
     }
-    if (q != 0) h->c[m++] = q;
-    h->n = m;
+    if (q != 0) h[m++] = q;
+    return m;
 }
 
 /* h = e * f. */
-static void multiply(const expansion *e, const expansion *f, expansion *h)
+static int multiply(const double *e, int ne, const double *f, int nf, double *h)
 {
-    expansion part;
-    h->n = 0;
-    for (int j = 0; j < f->n; j++) {
-        scale(e, f->c[j], &part);
-        add(h, &part, 1.0);
+    double part[MAX_TERMS], acc[MAX_TERMS];
+    int n = 0;
+    for (int j = 0; j < nf; j++) {
+        const int np = scale(e, ne, f[j], part);
+        n = sum(j % 2 ? acc : h, n, part, np, 1.0, j % 2 ? h : acc);
     }
+    /* After the loop the result is in acc when nf is odd. */
+    if (nf % 2)
+        for (int i = 0; i < n; i++) h[i] = acc[i];
+    return n;
 }
 
-/* The exact difference a - b as an expansion. */
-static void difference(double a, double b, expansion *out)
+/* The exact difference a - b (at most 2 components). */
+static int difference(double a, double b, double out[2])
 {
     double x, y;
     two_sum(a, -b, &x, &y);
-    out->n = 0;
-    if (y != 0) out->c[out->n++] = y;
-    if (x != 0) out->c[out->n++] = x;
+    int n = 0;
+    if (y != 0) out[n++] = y;
+    if (x != 0) out[n++] = x;
+    return n;
 }
 
-static int sign_of(const expansion *e)
+static int sign_of(const double *e, int n)
 {
-    return e->n == 0 ? 0 : e->c[e->n - 1] > 0 ? 1 : -1;
+    return n == 0 ? 0 : e[n - 1] > 0 ? 1 : -1;
 }
 
-/* ux vy - uy vx, exactly. */
-static void cross2(const expansion *ux, const expansion *uy, const expansion *vx,
-                   const expansion *vy, expansion *out)
+/* A difference as an expansion. */
+typedef struct diff {
+    double c[2];
+    int n;
+} diff;
+
+/* ux vy - uy vx, exactly (at most 16 components). */
+static int cross2(const diff *ux, const diff *uy, const diff *vx, const diff *vy, double *out)
 {
-    expansion right;
-    multiply(ux, vy, out);
-    multiply(uy, vx, &right);
-    add(out, &right, -1.0);
+    double left[8], right[8];
+    const int nl = multiply(ux->c, ux->n, vy->c, vy->n, left);
+    const int nr = multiply(uy->c, uy->n, vx->c, vx->n, right);
+    return sum(left, nl, right, nr, -1.0, out);
 }
 
 static bool finite2(const double *p)
@@ -148,24 +166,29 @@ static bool finite3(const double *p)
 
 int mt_orient2d(const double a[2], const double b[2], const double c[2])
 {
-    if (!finite2(a) || !finite2(b) || !finite2(c)) return 0;
     double left = (b[0] - a[0]) * (c[1] - a[1]);
     double right = (b[1] - a[1]) * (c[0] - a[0]);
     double det = left - right;
     double bound = ORIENT2D_BOUND * (fabs(left) + fabs(right));
+    /* A NaN or infinite coordinate makes a difference, and so the bound,
+     * NaN or infinite; so does an overflowing product, decided exactly. */
+    if (!isfinite(bound) && (!finite2(a) || !finite2(b) || !finite2(c))) return 0;
     if (det > bound || -det > bound) return det > 0 ? 1 : -1;
-    expansion ux, uy, vx, vy, d;
-    difference(b[0], a[0], &ux);
-    difference(b[1], a[1], &uy);
-    difference(c[0], a[0], &vx);
-    difference(c[1], a[1], &vy);
-    cross2(&ux, &uy, &vx, &vy, &d);
-    return sign_of(&d);
+    /* A product of differences is 0 in doubles only when a difference is
+     * exactly 0 (within the range of exactness nothing underflows): then
+     * both exact products are 0 too. Points on an axis-aligned line. */
+    if (bound == 0) return 0;
+    diff ux, uy, vx, vy;
+    ux.n = difference(b[0], a[0], ux.c);
+    uy.n = difference(b[1], a[1], uy.c);
+    vx.n = difference(c[0], a[0], vx.c);
+    vy.n = difference(c[1], a[1], vy.c);
+    double d[16];
+    return sign_of(d, cross2(&ux, &uy, &vx, &vy, d));
 }
 
 int mt_orient3d(const double a[3], const double b[3], const double c[3], const double d[3])
 {
-    if (!finite3(a) || !finite3(b) || !finite3(c) || !finite3(d)) return 0;
     double u[3], v[3], w[3];
     for (int k = 0; k < 3; k++) {
         u[k] = b[k] - a[k];
@@ -180,22 +203,29 @@ int mt_orient3d(const double a[3], const double b[3], const double c[3], const d
     double permanent = (fabs(m0a) + fabs(m0b)) * fabs(u[0]) + (fabs(m1a) + fabs(m1b)) * fabs(u[1]) +
                        (fabs(m2a) + fabs(m2b)) * fabs(u[2]);
     double bound = ORIENT3D_BOUND * permanent;
+    /* As in mt_orient2d: a coordinate that is not finite shows in the bound. */
+    if (!isfinite(bound) && (!finite3(a) || !finite3(b) || !finite3(c) || !finite3(d))) return 0;
     if (det > bound || -det > bound) return det > 0 ? 1 : -1;
+    /* As in mt_orient2d: every product has an exactly zero factor, so the
+     * determinant is exactly 0 (points on an axis-aligned plane). */
+    if (bound == 0) return 0;
 
-    expansion eu[3], ev[3], ew[3];
+    diff eu[3], ev[3], ew[3];
     for (int k = 0; k < 3; k++) {
-        difference(b[k], a[k], &eu[k]);
-        difference(c[k], a[k], &ev[k]);
-        difference(d[k], a[k], &ew[k]);
+        eu[k].n = difference(b[k], a[k], eu[k].c);
+        ev[k].n = difference(c[k], a[k], ev[k].c);
+        ew[k].n = difference(d[k], a[k], ew[k].c);
     }
-    expansion total, minor, term;
-    total.n = 0;
     /* u0 (v1 w2 - v2 w1) + u1 (v2 w0 - v0 w2) + u2 (v0 w1 - v1 w0) */
+    double total[MAX_TERMS], next[MAX_TERMS];
+    int n = 0;
     for (int k = 0; k < 3; k++) {
-        int i = (k + 1) % 3, j = (k + 2) % 3;
-        cross2(&ev[i], &ev[j], &ew[i], &ew[j], &minor);
-        multiply(&minor, &eu[k], &term);
-        add(&total, &term, 1.0);
+        const int i = (k + 1) % 3, j = (k + 2) % 3;
+        double minor[16], term[64];
+        const int nm = cross2(&ev[i], &ev[j], &ew[i], &ew[j], minor);
+        const int nt = multiply(minor, nm, eu[k].c, eu[k].n, term);
+        n = sum(total, n, term, nt, 1.0, next);
+        for (int t = 0; t < n; t++) total[t] = next[t];
     }
-    return sign_of(&total);
+    return sign_of(total, n);
 }

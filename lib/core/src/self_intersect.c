@@ -3,11 +3,12 @@
  * Morton curve of their centroids so that neighbours in space are neighbours
  * in memory, and a bounding-volume hierarchy is laid over them as a complete
  * binary tree (node k has children 2k and 2k + 1, leaves hold LEAF_SIZE
- * consecutive triangles). Each triangle then looks in the tree for the later
- * triangles whose boxes overlap its own, so every pair is met once, and the
- * exact narrow phase (mt__triangles_cross) decides. The queries are
- * independent: threads take chunks of triangles from a shared counter.
- * Boxes are floats rounded outwards, so they never miss a pair. */
+ * consecutive triangles). The tree is then traversed against itself, pairs
+ * of nodes whose boxes overlap down to pairs of leaves, so every pair of
+ * triangles is met once, and the exact narrow phase (mt__triangles_cross)
+ * decides. The pairs of subtrees a few levels down are independent tasks
+ * that threads take from a shared counter. Boxes are floats rounded
+ * outwards, so they never miss a pair. */
 #include <float.h>
 #include <math.h>
 #include <pthread.h>
@@ -19,12 +20,12 @@
 #include "geometry_internal.h"
 
 enum {
-    LEAF_SIZE = 4,        /* triangles per leaf of the tree */
-    CHUNK = 1024,         /* triangles a thread takes at once */
-    MAX_THREADS = 8,      /* the most threads the queries use */
-    MIN_PARALLEL = 20000, /* fewer triangles than this are checked on one thread */
-    MORTON_BITS = 10,     /* bits per axis of a centroid's cell */
-    RADIX_BITS = 10       /* bits per pass of the sort */
+    LEAF_SIZE = 4,         /* triangles per leaf of the tree */
+    TASKS_PER_THREAD = 64, /* pairs of subtrees the threads share, per thread */
+    MAX_THREADS = 8,       /* the most threads the queries use */
+    MIN_PARALLEL = 20000,  /* fewer triangles than this are checked on one thread */
+    MORTON_BITS = 10,      /* bits per axis of a centroid's cell */
+    RADIX_BITS = 10        /* bits per pass of the sort */
 };
 
 typedef struct tri {
@@ -41,6 +42,12 @@ typedef struct sorted_tri {
     uint32_t index;
 } sorted_tri;
 
+/* Two nodes of the tree at the same depth whose triangles are to be
+ * checked against each other (a == b: a node against itself). */
+typedef struct node_pair {
+    uint32_t a, b;
+} node_pair;
+
 typedef struct check {
     const mt_mesh *m;
     tri *tris; /* in Morton order */
@@ -48,8 +55,10 @@ typedef struct check {
     uint32_t num_tris;
     box *nodes;          /* [2 * num_leaves]; node 0 unused */
     uint32_t num_leaves; /* a power of two */
-    atomic_uint next;    /* first triangle of the next chunk */
-    atomic_bool failed;  /* a thread ran out of memory */
+    node_pair *tasks;    /* pairs of subtrees to traverse, shared by the threads */
+    uint32_t num_tasks;
+    atomic_uint next;   /* the next task to take */
+    atomic_bool failed; /* a thread ran out of memory */
 } check;
 
 typedef struct worker {
@@ -92,8 +101,8 @@ static void box_empty(box *b)
 static void box_add(box *b, const box *o)
 {
     for (int k = 0; k < 3; k++) {
-        b->lo[k] = fminf(b->lo[k], o->lo[k]);
-        b->hi[k] = fmaxf(b->hi[k], o->hi[k]);
+        b->lo[k] = o->lo[k] < b->lo[k] ? o->lo[k] : b->lo[k];
+        b->hi[k] = o->hi[k] > b->hi[k] ? o->hi[k] : b->hi[k];
     }
 }
 
@@ -218,10 +227,10 @@ static void tri_box(const mt_mesh *m, const tri *t, box *b)
 {
     for (int k = 0; k < 3; k++) {
         double lo = INFINITY, hi = -INFINITY;
-        for (int i = 0; i < 3; i++) {
+        for (int i = 0; i < 3; i++) { /* finite: faces with other corners are not judged */
             const double x = m->positions[3 * (size_t)t->v[i] + k];
-            lo = fmin(lo, x);
-            hi = fmax(hi, x);
+            lo = x < lo ? x : lo;
+            hi = x > hi ? x : hi;
         }
         b->lo[k] = down(lo);
         b->hi[k] = up(hi);
@@ -233,25 +242,28 @@ static mt_status order_triangles(check *c, tri *unsorted)
 {
     const uint32_t n = c->num_tris;
     sorted_tri *order = mt__malloc((size_t)n * sizeof *order);
-    if (!order) return MT_ERR_NOMEM;
-    /* The cells span the first corners' bounds; centroids beyond go to the edge cells. */
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (uint32_t i = 0; i < n; i++)
-        for (int k = 0; k < 3; k++) {
-            const double x = c->m->positions[3 * (size_t)unsorted[i].v[0] + k];
-            lo[k] = fmin(lo[k], x);
-            hi[k] = fmax(hi[k], x);
-        }
+    box *boxes = mt__malloc((size_t)n * sizeof *boxes);
+    if (!order || !boxes) {
+        mt__free(order);
+        mt__free(boxes);
+        return MT_ERR_NOMEM;
+    }
+    /* Boxes in the faces' order (reading the positions in the order they
+     * were given, which is usually coherent), then keys from their centres. */
+    box all;
+    box_empty(&all);
+    for (uint32_t i = 0; i < n; i++) {
+        tri_box(c->m, &unsorted[i], &boxes[i]);
+        box_add(&all, &boxes[i]);
+    }
     const double cells = (double)((1u << MORTON_BITS) - 1);
     for (uint32_t i = 0; i < n; i++) {
         uint32_t key = 0;
         for (int k = 0; k < 3; k++) {
-            double centroid = 0;
-            for (int j = 0; j < 3; j++)
-                centroid += c->m->positions[3 * (size_t)unsorted[i].v[j] + k] / 3;
-            const double extent = hi[k] - lo[k];
-            double cell = extent > 0 ? (centroid - lo[k]) / extent * cells : 0;
-            cell = cell >= 0 ? (cell <= cells ? cell : cells) : 0; /* NaN too */
+            const double centre = 0.5 * ((double)boxes[i].lo[k] + (double)boxes[i].hi[k]);
+            const double extent = (double)all.hi[k] - (double)all.lo[k];
+            double cell = extent > 0 ? (centre - all.lo[k]) / extent * cells : 0;
+            cell = cell >= 0 ? (cell <= cells ? cell : cells) : 0; /* NaN and overflow too */
             key |= spread3((uint32_t)cell) << k;
         }
         order[i] = (sorted_tri){key, i};
@@ -260,9 +272,10 @@ static mt_status order_triangles(check *c, tri *unsorted)
     if (s == MT_OK)
         for (uint32_t i = 0; i < n; i++) {
             c->tris[i] = unsorted[order[i].index];
-            tri_box(c->m, &c->tris[i], &c->boxes[i]);
+            c->boxes[i] = boxes[order[i].index];
         }
     mt__free(order);
+    mt__free(boxes);
     return s;
 }
 
@@ -282,11 +295,6 @@ static void build_tree(check *c)
     }
 }
 
-/* A node of the tree to visit, with the range of leaves it covers. */
-typedef struct frame {
-    uint32_t node, first, end;
-} frame;
-
 /* Narrow phase of triangles i and j (different faces). */
 static mt_status test_pair(const check *c, uint32_t i, uint32_t j, mt__vec *pairs)
 {
@@ -303,52 +311,103 @@ static mt_status test_pair(const check *c, uint32_t i, uint32_t j, mt__vec *pair
     return mt__vec_push(pairs, &p);
 }
 
-/* Triangle i against every later triangle whose box overlaps its own. */
-static mt_status query(const check *c, uint32_t i, mt__vec *pairs)
+/* The triangles of leaf node k: [*first, *end). */
+static void leaf_range(const check *c, uint32_t k, uint32_t *first, uint32_t *end)
 {
-    frame stack[64]; /* two per level of at most 31 */
+    const uint64_t lo = (uint64_t)(k - c->num_leaves) * LEAF_SIZE, hi = lo + LEAF_SIZE;
+    *first = lo < c->num_tris ? (uint32_t)lo : c->num_tris;
+    *end = hi < c->num_tris ? (uint32_t)hi : c->num_tris;
+}
+
+/* Every triangle of leaf a against every one of leaf b (each pair once
+ * when a == b) whose boxes overlap. */
+static mt_status leaf_pairs(const check *c, uint32_t a, uint32_t b, mt__vec *pairs)
+{
+    uint32_t a0, a1, b0, b1;
+    leaf_range(c, a, &a0, &a1);
+    leaf_range(c, b, &b0, &b1);
+    for (uint32_t i = a0; i < a1; i++)
+        for (uint32_t j = a == b ? i + 1 : b0; j < b1; j++) {
+            if (c->tris[i].face == c->tris[j].face || !overlap(&c->boxes[i], &c->boxes[j]))
+                continue;
+            mt_status s = test_pair(c, i, j, pairs);
+            if (s != MT_OK) return s;
+        }
+    return MT_OK;
+}
+
+/* The pairs of children of p whose boxes overlap, into out; their count. */
+static int children(const check *c, node_pair p, node_pair out[4])
+{
+    int n = 0;
+    const uint32_t a = 2 * p.a, b = 2 * p.b;
+    const node_pair all[4] = {{a, b}, {a, b + 1}, {a + 1, b + 1}, {a + 1, b}};
+    for (int i = 0; i < (p.a == p.b ? 3 : 4); i++) /* a node with itself: 3 pairs */
+        if (overlap(&c->nodes[all[i].a], &c->nodes[all[i].b])) out[n++] = all[i];
+    return n;
+}
+
+/* Depth first from one pair of nodes down to pairs of leaves. */
+static mt_status traverse(const check *c, node_pair start, mt__vec *pairs)
+{
+    node_pair stack[4 * 32]; /* up to 3 more per level, 31 levels at most */
     int top = 0;
-    stack[top++] = (frame){1, 0, c->num_leaves};
-    const box *mine = &c->boxes[i];
+    stack[top++] = start;
     while (top > 0) {
-        const uint32_t k = stack[top - 1].node, first = stack[top - 1].first,
-                       end = stack[top - 1].end;
-        top--;
-        const uint64_t stop =
-            (uint64_t)end * LEAF_SIZE < c->num_tris ? (uint64_t)end * LEAF_SIZE : c->num_tris;
-        if (stop <= (uint64_t)i + 1) continue; /* no later triangle */
-        if (!overlap(&c->nodes[k], mine)) continue;
-        if (k >= c->num_leaves) {
-            const uint32_t from = first * LEAF_SIZE > i ? first * LEAF_SIZE : i + 1;
-            for (uint32_t j = from; j < stop; j++) {
-                if (c->tris[j].face == c->tris[i].face || !overlap(&c->boxes[j], mine)) continue;
-                mt_status s = test_pair(c, i, j, pairs);
-                if (s != MT_OK) return s;
-            }
+        const node_pair p = stack[--top];
+        if (p.a >= c->num_leaves) {
+            mt_status s = leaf_pairs(c, p.a, p.b, pairs);
+            if (s != MT_OK) return s;
             continue;
         }
-        const uint32_t mid = first + (end - first) / 2;
-        stack[top++] = (frame){2 * k + 1, mid, end};
-        stack[top++] = (frame){2 * k, first, mid};
+        top += children(c, p, stack + top);
     }
     return MT_OK;
 }
 
-static void *run_queries(void *arg)
+static void *run_tasks(void *arg)
 {
     worker *w = arg;
     check *c = w->c;
     for (;;) {
-        const uint32_t first = atomic_fetch_add(&c->next, CHUNK);
-        if (first >= c->num_tris || atomic_load(&c->failed)) break;
-        const uint32_t end = c->num_tris - first < CHUNK ? c->num_tris : first + CHUNK;
-        for (uint32_t i = first; i < end; i++)
-            if (query(c, i, &w->pairs) != MT_OK) {
-                atomic_store(&c->failed, true);
-                return NULL;
-            }
+        const uint32_t t = atomic_fetch_add(&c->next, 1);
+        if (t >= c->num_tasks || atomic_load(&c->failed)) break;
+        if (traverse(c, c->tasks[t], &w->pairs) != MT_OK) {
+            atomic_store(&c->failed, true);
+            break;
+        }
     }
     return NULL;
+}
+
+/* The pairs of nodes at the first depth with at least `want` of them (or
+ * the leaves' depth), for the threads to share. */
+static mt_status make_tasks(check *c, uint32_t want)
+{
+    mt__vec level = {.elem_size = sizeof(node_pair)}, next = {.elem_size = sizeof(node_pair)};
+    const node_pair root = {1, 1};
+    mt_status s = overlap(&c->nodes[1], &c->nodes[1]) ? mt__vec_push(&level, &root) : MT_OK;
+    uint32_t depth_first = 1; /* first node id of the current depth */
+    while (s == MT_OK && level.len > 0 && level.len < want && depth_first < c->num_leaves) {
+        next.len = 0;
+        for (size_t i = 0; i < level.len && s == MT_OK; i++) {
+            node_pair kids[4];
+            const int n = children(c, ((const node_pair *)level.data)[i], kids);
+            for (int k = 0; k < n && s == MT_OK; k++) s = mt__vec_push(&next, &kids[k]);
+        }
+        mt__vec t = level;
+        level = next;
+        next = t;
+        depth_first *= 2;
+    }
+    mt__vec_free(&next);
+    if (s != MT_OK) {
+        mt__vec_free(&level);
+        return s;
+    }
+    c->tasks = level.data;
+    c->num_tasks = (uint32_t)level.len;
+    return MT_OK;
 }
 
 static int compare_pairs(const void *pa, const void *pb)
@@ -365,13 +424,15 @@ static mt_status run_all(check *c, mt__vec *out)
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     uint32_t threads = c->num_tris < MIN_PARALLEL || cores < 2 ? 1 : (uint32_t)cores;
     if (threads > MAX_THREADS) threads = MAX_THREADS;
+    mt_status made = make_tasks(c, TASKS_PER_THREAD * threads);
+    if (made != MT_OK) return made;
     worker workers[MAX_THREADS];
     bool started[MAX_THREADS] = {false};
     for (uint32_t t = 0; t < threads; t++)
         workers[t] = (worker){.c = c, .pairs = {.elem_size = sizeof(mt_face_pair)}};
     for (uint32_t t = 1; t < threads; t++)
-        started[t] = pthread_create(&workers[t].thread, NULL, run_queries, &workers[t]) == 0;
-    run_queries(&workers[0]); /* a thread that did not start leaves its share to this one */
+        started[t] = pthread_create(&workers[t].thread, NULL, run_tasks, &workers[t]) == 0;
+    run_tasks(&workers[0]); /* a thread that did not start leaves its share to this one */
     mt_status s = MT_OK;
     for (uint32_t t = 0; t < threads; t++) {
         if (started[t]) pthread_join(workers[t].thread, NULL);
@@ -418,6 +479,7 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
     mt__free(c.tris);
     mt__free(c.boxes);
     mt__free(c.nodes);
+    mt__free(c.tasks);
     return s;
 }
 
