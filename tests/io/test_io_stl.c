@@ -69,7 +69,7 @@ static void round_trip(const mt_face_list *list, const char *name, mt_format for
     check_soup(list, &back, rounded);
     mt_face_list_free(&back);
     unsigned char *data;
-    size_t size;
+    size_t size = 0;
     if (!io_test_slurp(path, &data, &size)) {
         mt_test_fail(__FILE__, __LINE__, "cannot read %s back", path);
         return;
@@ -90,7 +90,7 @@ static void test_stl_ascii_round_trip(void)
     /* the file reads as the format says */
     const char *path = io_test_path("mesh_ascii.stl");
     unsigned char *data;
-    size_t size;
+    size_t size = 0;
     if (io_test_slurp(path, &data, &size)) {
         CHECK(size > 15 && memcmp(data, "solid meshtopo\n", 15) == 0);
         /* the quad's two triangles, in the xy plane */
@@ -109,7 +109,7 @@ static void test_stl_binary_round_trip(void)
     round_trip(&list, "mesh_auto.stl", MT_FORMAT_AUTO, 1); /* .stl: binary */
     round_trip(&list, "mesh_binary.stl.gz", MT_FORMAT_AUTO, 1);
     unsigned char *data;
-    size_t size;
+    size_t size = 0;
     if (io_test_slurp(io_test_path("mesh_binary.stl"), &data, &size)) {
         CHECK_EQ(size, 84 + 50 * 6);
         CHECK_EQ(data[80], 6);
@@ -179,7 +179,7 @@ static void test_stl_binary_attribute_count(void)
 static void test_stl_binary_solid_header(void)
 {
     /* A binary file whose header starts with "solid": its length tells. */
-    size_t size;
+    size_t size = 0;
     unsigned char *data = binary_stl("solid exported by a CAD tool", 3, 3, 0, &size);
     mt_face_list list;
     mt_diag diag;
@@ -202,7 +202,7 @@ static void test_stl_binary_solid_header(void)
 
 static void test_stl_binary_truncated(void)
 {
-    size_t size;
+    size_t size = 0;
     unsigned char *data = binary_stl("cut", 10, 7, 0, &size);
     EXPECT_PARSE_ERROR(data, size, MT_FORMAT_AUTO, "t.stl", 0, 84 + 350,
                        "binary STL ends after 7 of 10 triangles");
@@ -338,7 +338,7 @@ static void test_stl_write_refusals(void)
     CHECK_STATUS(mt_write_file(path, MT_FORMAT_STL_ASCII, &list, &diag), MT_ERR_UNSUPPORTED);
     CHECK(strstr(diag.message, "face 4 has 2 entries: STL stores triangles") != NULL);
     unsigned char *data;
-    size_t size;
+    size_t size = 0;
     CHECK(!io_test_slurp(path, &data, &size)); /* no file was created */
     mt_face_list_free(&list);
 }

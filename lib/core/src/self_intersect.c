@@ -50,13 +50,16 @@ typedef struct node_pair {
 
 typedef struct check {
     const mt_mesh *m;
-    tri *tris; /* in Morton order */
+    tri *tris;       /* in Morton order */
+    double *corners; /* [9 * num_tris]: each triangle's corner positions, in that order,
+                        so that the narrow phase reads memory in order */
     box *boxes;
     uint32_t num_tris;
     box *nodes;          /* [2 * num_leaves]; node 0 unused */
     uint32_t num_leaves; /* a power of two */
     node_pair *tasks;    /* pairs of subtrees to traverse, shared by the threads */
     uint32_t num_tasks;
+    uint32_t threads;   /* how many share the work */
     atomic_uint next;   /* the next task to take */
     atomic_bool failed; /* a thread ran out of memory */
 } check;
@@ -106,6 +109,21 @@ static void box_add(box *b, const box *o)
     }
 }
 
+/* The box of triangle t, rounded outwards. */
+static void tri_box(const mt_mesh *m, const tri *t, box *b)
+{
+    for (int k = 0; k < 3; k++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (int i = 0; i < 3; i++) { /* finite: faces with other corners are not judged */
+            const double x = m->positions[3 * (size_t)t->v[i] + k];
+            lo = x < lo ? x : lo;
+            hi = x > hi ? x : hi;
+        }
+        b->lo[k] = down(lo);
+        b->hi[k] = up(hi);
+    }
+}
+
 /* The corners of valid face f as caller ids into verts (grown as needed);
  * their count, or 0 on a broken ring (MT_ERR_CORRUPT) or no memory. */
 static uint32_t face_corners(const mt_mesh *m, uint32_t f, mt__vec *verts, mt_status *status)
@@ -144,13 +162,17 @@ static bool finite_corners(const mt_mesh *m, const uint32_t *verts, uint32_t n)
     return true;
 }
 
-/* Appends the triangles of face f (corners verts[0..n)) to tris. */
+/* Appends the triangles of face f (corners verts[0..n)) to tris and their
+ * boxes to boxes (while the corners just read are in the cache). */
 static mt_status add_face(const mt_mesh *m, uint32_t f, const uint32_t *verts, uint32_t n,
-                          mt__vec *tris)
+                          mt__vec *tris, mt__vec *boxes)
 {
     if (n == 3) {
         const tri t = {{verts[0], verts[1], verts[2]}, f};
-        return mt__vec_push(tris, &t);
+        box b;
+        tri_box(m, &t, &b);
+        mt_status s = mt__vec_push(tris, &t);
+        return s == MT_OK ? mt__vec_push(boxes, &b) : s;
     }
     const double **pos = mt__malloc(n * sizeof *pos);
     uint32_t *scratch = mt__malloc((size_t)(n + 3 * (n - 2)) * sizeof *scratch);
@@ -162,7 +184,10 @@ static mt_status add_face(const mt_mesh *m, uint32_t f, const uint32_t *verts, u
         for (uint32_t t = 0; t < n - 2 && s == MT_OK; t++) {
             const uint32_t *c = corners + 3 * t;
             const tri one = {{verts[c[0]], verts[c[1]], verts[c[2]]}, f};
+            box b;
+            tri_box(m, &one, &b);
             s = mt__vec_push(tris, &one);
+            if (s == MT_OK) s = mt__vec_push(boxes, &b);
         }
     }
     mt__free(pos);
@@ -170,24 +195,79 @@ static mt_status add_face(const mt_mesh *m, uint32_t f, const uint32_t *verts, u
     return s;
 }
 
-/* Every judged face's triangles into tris. */
-static mt_status collect(const mt_mesh *m, mt__vec *tris, mt_diag *diag, const char *what)
+/* The triangles and boxes of the judged faces among [first, end). Faces
+ * are read in parallel ranges: their half-edges and corners are scattered
+ * in memory when the mesh came shuffled, and waiting on memory is what
+ * two threads overlap best. */
+typedef struct collector {
+    pthread_t thread;
+    const mt_mesh *m;
+    uint32_t first, end;
+    mt__vec tris, boxes;
+    mt_status status;
+    uint32_t failed_face;
+} collector;
+
+static void *collect_range(void *arg)
 {
+    collector *c = arg;
     mt__vec verts = {.elem_size = sizeof(uint32_t)};
-    mt_status s = MT_OK;
-    for (uint32_t f = 0; f < m->num_faces && s == MT_OK; f++) {
-        if (m->face_he[f] == MT_NONE) continue; /* rejected or deleted */
-        const uint32_t n = face_corners(m, f, &verts, &s);
-        if (n == 0) {
-            mt__fail(diag, s, f, "%s: %s face %u", what,
-                     s == MT_ERR_NOMEM ? "no memory for" : "broken ring of", f);
-            break;
-        }
-        if (n < 3 || !finite_corners(m, verts.data, n)) continue;
-        s = add_face(m, f, verts.data, n, tris);
-        if (s != MT_OK) mt__fail(diag, s, f, "%s: no memory for the triangles of face %u", what, f);
+    for (uint32_t f = c->first; f < c->end && c->status == MT_OK; f++) {
+        if (c->m->face_he[f] == MT_NONE) continue; /* rejected or deleted */
+        const uint32_t n = face_corners(c->m, f, &verts, &c->status);
+        if (n >= 3 && finite_corners(c->m, verts.data, n))
+            c->status = add_face(c->m, f, verts.data, n, &c->tris, &c->boxes);
+        if (c->status != MT_OK) c->failed_face = f;
     }
     mt__vec_free(&verts);
+    return NULL;
+}
+
+/* Threads for a mesh of `faces` faces: one below MIN_PARALLEL, else one
+ * per core up to MAX_THREADS. */
+static uint32_t threads_for(uint32_t faces)
+{
+    const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    if (faces < MIN_PARALLEL || cores < 2) return 1;
+    return cores < MAX_THREADS ? (uint32_t)cores : MAX_THREADS;
+}
+
+/* Every judged face's triangles and boxes, in face order. */
+static mt_status collect(const mt_mesh *m, uint32_t threads, mt__vec *tris, mt__vec *boxes,
+                         mt_diag *diag, const char *what)
+{
+    collector parts[MAX_THREADS];
+    bool started[MAX_THREADS] = {false};
+    for (uint32_t t = 0; t < threads; t++)
+        parts[t] = (collector){.m = m,
+                               .first = (uint32_t)((uint64_t)m->num_faces * t / threads),
+                               .end = (uint32_t)((uint64_t)m->num_faces * (t + 1) / threads),
+                               .tris = {.elem_size = sizeof(tri)},
+                               .boxes = {.elem_size = sizeof(box)}};
+    for (uint32_t t = 1; t < threads; t++)
+        started[t] = pthread_create(&parts[t].thread, NULL, collect_range, &parts[t]) == 0;
+    collect_range(&parts[0]);
+    for (uint32_t t = 1; t < threads; t++) {
+        if (started[t])
+            pthread_join(parts[t].thread, NULL);
+        else
+            collect_range(&parts[t]); /* a thread that did not start: its range here */
+    }
+    mt_status s = MT_OK;
+    for (uint32_t t = 0; t < threads; t++) {
+        if (s == MT_OK && parts[t].status != MT_OK) {
+            s = parts[t].status;
+            const uint32_t f = parts[t].failed_face;
+            mt__fail(diag, s, f, "%s: %s face %u", what,
+                     s == MT_ERR_NOMEM ? "no memory for the triangles of" : "broken ring of", f);
+        }
+        if (s == MT_OK) s = mt__vec_append(tris, &parts[t].tris);
+        if (s == MT_OK) s = mt__vec_append(boxes, &parts[t].boxes);
+        if (s != MT_OK && parts[t].status == MT_OK)
+            mt__fail(diag, s, MT_NONE, "%s: no memory for the triangles", what);
+        mt__vec_free(&parts[t].tris);
+        mt__vec_free(&parts[t].boxes);
+    }
     return s;
 }
 
@@ -223,39 +303,15 @@ static mt_status radix_sort(sorted_tri *items, uint32_t n)
     return MT_OK;
 }
 
-static void tri_box(const mt_mesh *m, const tri *t, box *b)
-{
-    for (int k = 0; k < 3; k++) {
-        double lo = INFINITY, hi = -INFINITY;
-        for (int i = 0; i < 3; i++) { /* finite: faces with other corners are not judged */
-            const double x = m->positions[3 * (size_t)t->v[i] + k];
-            lo = x < lo ? x : lo;
-            hi = x > hi ? x : hi;
-        }
-        b->lo[k] = down(lo);
-        b->hi[k] = up(hi);
-    }
-}
-
-/* Sorts the triangles along the Morton curve and computes their boxes. */
-static mt_status order_triangles(check *c, tri *unsorted)
+/* Sorts the triangles along the Morton curve. */
+static mt_status order_triangles(check *c, const tri *unsorted, const box *boxes)
 {
     const uint32_t n = c->num_tris;
     sorted_tri *order = mt__malloc((size_t)n * sizeof *order);
-    box *boxes = mt__malloc((size_t)n * sizeof *boxes);
-    if (!order || !boxes) {
-        mt__free(order);
-        mt__free(boxes);
-        return MT_ERR_NOMEM;
-    }
-    /* Boxes in the faces' order (reading the positions in the order they
-     * were given, which is usually coherent), then keys from their centres. */
+    if (!order) return MT_ERR_NOMEM;
     box all;
     box_empty(&all);
-    for (uint32_t i = 0; i < n; i++) {
-        tri_box(c->m, &unsorted[i], &boxes[i]);
-        box_add(&all, &boxes[i]);
-    }
+    for (uint32_t i = 0; i < n; i++) box_add(&all, &boxes[i]);
     const double cells = (double)((1u << MORTON_BITS) - 1);
     for (uint32_t i = 0; i < n; i++) {
         uint32_t key = 0;
@@ -271,11 +327,14 @@ static mt_status order_triangles(check *c, tri *unsorted)
     mt_status s = radix_sort(order, n);
     if (s == MT_OK)
         for (uint32_t i = 0; i < n; i++) {
-            c->tris[i] = unsorted[order[i].index];
+            const tri *t = &unsorted[order[i].index];
+            c->tris[i] = *t;
             c->boxes[i] = boxes[order[i].index];
+            for (int k = 0; k < 3; k++)
+                memcpy(c->corners + 9 * (size_t)i + 3 * k, c->m->positions + 3 * (size_t)t->v[k],
+                       3 * sizeof(double));
         }
     mt__free(order);
-    mt__free(boxes);
     return s;
 }
 
@@ -299,12 +358,8 @@ static void build_tree(check *c)
 static mt_status test_pair(const check *c, uint32_t i, uint32_t j, mt__vec *pairs)
 {
     const tri *a = &c->tris[i], *b = &c->tris[j];
-    const double *const pa[3] = {c->m->positions + 3 * (size_t)a->v[0],
-                                 c->m->positions + 3 * (size_t)a->v[1],
-                                 c->m->positions + 3 * (size_t)a->v[2]};
-    const double *const pb[3] = {c->m->positions + 3 * (size_t)b->v[0],
-                                 c->m->positions + 3 * (size_t)b->v[1],
-                                 c->m->positions + 3 * (size_t)b->v[2]};
+    const double *ca = c->corners + 9 * (size_t)i, *cb = c->corners + 9 * (size_t)j;
+    const double *const pa[3] = {ca, ca + 3, ca + 6}, *const pb[3] = {cb, cb + 3, cb + 6};
     if (!mt__triangles_cross(a->v, pa, b->v, pb)) return MT_OK;
     const mt_face_pair p = {a->face < b->face ? a->face : b->face,
                             a->face < b->face ? b->face : a->face};
@@ -421,9 +476,7 @@ static int compare_pairs(const void *pa, const void *pb)
  * sorted and without repeats, into out. */
 static mt_status run_all(check *c, mt__vec *out)
 {
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    uint32_t threads = c->num_tris < MIN_PARALLEL || cores < 2 ? 1 : (uint32_t)cores;
-    if (threads > MAX_THREADS) threads = MAX_THREADS;
+    const uint32_t threads = c->threads;
     mt_status made = make_tasks(c, TASKS_PER_THREAD * threads);
     if (made != MT_OK) return made;
     worker workers[MAX_THREADS];
@@ -453,13 +506,15 @@ static mt_status run_all(check *c, mt__vec *out)
 /* Every intersecting pair into pairs (sorted, no repeats). */
 static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, const char *what)
 {
-    mt__vec unsorted = {.elem_size = sizeof(tri)};
-    mt_status s = collect(m, &unsorted, diag, what);
+    mt__vec unsorted = {.elem_size = sizeof(tri)}, boxes = {.elem_size = sizeof(box)};
+    const uint32_t threads = threads_for(m->num_faces);
+    mt_status s = collect(m, threads, &unsorted, &boxes, diag, what);
     if (s != MT_OK || unsorted.len < 2) {
         mt__vec_free(&unsorted);
+        mt__vec_free(&boxes);
         return s;
     }
-    check c = {.m = m, .num_tris = (uint32_t)unsorted.len, .num_leaves = 1};
+    check c = {.m = m, .num_tris = (uint32_t)unsorted.len, .num_leaves = 1, .threads = threads};
     const uint64_t blocks = ((uint64_t)c.num_tris + LEAF_SIZE - 1) / LEAF_SIZE;
     while (c.num_leaves < blocks) c.num_leaves *= 2;
     atomic_init(&c.next, 0);
@@ -467,8 +522,11 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
     c.tris = mt__malloc((size_t)c.num_tris * sizeof *c.tris);
     c.boxes = mt__malloc((size_t)c.num_tris * sizeof *c.boxes);
     c.nodes = mt__malloc(2 * (size_t)c.num_leaves * sizeof *c.nodes);
-    s = c.tris && c.boxes && c.nodes ? order_triangles(&c, unsorted.data) : MT_ERR_NOMEM;
+    c.corners = mt__malloc(9 * (size_t)c.num_tris * sizeof *c.corners);
+    s = c.tris && c.boxes && c.nodes && c.corners ? order_triangles(&c, unsorted.data, boxes.data)
+                                                  : MT_ERR_NOMEM;
     mt__vec_free(&unsorted);
+    mt__vec_free(&boxes);
     if (s == MT_OK) {
         build_tree(&c);
         s = run_all(&c, pairs);
@@ -479,6 +537,7 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
     mt__free(c.tris);
     mt__free(c.boxes);
     mt__free(c.nodes);
+    mt__free(c.corners);
     mt__free(c.tasks);
     return s;
 }
