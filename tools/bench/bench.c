@@ -162,38 +162,6 @@ static int parse_options(int argc, char **argv, mt__bench_options *o)
     return 0;
 }
 
-static bool is_executable(const char *dir, const char *name, char *out, size_t size)
-{
-    int n = snprintf(out, size, "%s/%s", dir, name);
-    return n > 0 && (size_t)n < size && access(out, X_OK) == 0;
-}
-
-/* Looks for a peer program: --peer-dir, next to this program, in
- * ../libexec/meshtopo from it (installed), then in the build tree. */
-static bool peer_find(const mt__bench_options *o, const char *name, char *out, size_t size)
-{
-    if (o->peer_dir) return is_executable(o->peer_dir, name, out, size);
-    char self[PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    if (n > 0) {
-        self[n] = '\0';
-        char *slash = strrchr(self, '/');
-        if (slash) {
-            *slash = '\0';
-            if (is_executable(self, name, out, size)) return true;
-            char libexec[PATH_MAX];
-            int m = snprintf(libexec, sizeof libexec, "%s/../libexec/meshtopo", self);
-            if (m > 0 && (size_t)m < sizeof libexec && is_executable(libexec, name, out, size)) {
-                return true;
-            }
-        }
-    }
-#ifdef MESHTOPO_BENCH_BUILD_PEER_DIR
-    if (is_executable(MESHTOPO_BENCH_BUILD_PEER_DIR, name, out, size)) return true;
-#endif
-    return false;
-}
-
 static void result_fail(mt__bench_runner *runner, mt__bench_result *result)
 {
     result->state = MT__BENCH_FAILED;
@@ -374,7 +342,8 @@ static void case_run(const mt__bench_options *o, mt__bench_case *bench_case,
             for (size_t p = 0; p < MT__BENCH_NUM_PEERS; p++) {
                 if (strcmp(peer_names[p][0], runner->library) == 0) exe_name = peer_names[p][1];
             }
-            if (!exe_name || !peer_find(o, exe_name, runner->exe, sizeof runner->exe)) {
+            if (!exe_name ||
+                !mt__bench_peer_find(o->peer_dir, exe_name, runner->exe, sizeof runner->exe)) {
                 runner->exe[0] = '\0';
                 result->state = MT__BENCH_SKIPPED;
                 snprintf(result->message, sizeof result->message,

@@ -11,6 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <sys/types.h>
 #include <time.h>
 
 #include "meshtopo/face_list.h"
@@ -162,6 +163,35 @@ void mt__bench_case_remove_file(mt__bench_case *bench_case);
  * tables. */
 void mt__bench_case_release(mt__bench_case *bench_case);
 bool mt__bench_input_write(const mt_face_list *list, const char *path, char *err, size_t err_size);
+
+/* bench_child.c: a peer program as a child process speaking one line at a
+ * time over its stdin and stdout. */
+typedef struct mt__bench_child {
+    pid_t pid;
+    FILE *to_child;   /* its stdin */
+    FILE *from_child; /* its stdout */
+} mt__bench_child;
+
+/* Finds the peer program `name`: in peer_dir when given, else next to this
+ * program, in ../libexec/meshtopo from it (installed), then in the build
+ * tree. Its path goes to out. */
+bool mt__bench_peer_find(const char *peer_dir, const char *name, char *out, size_t size);
+/* Starts argv[0] with argv (NULL-terminated) on two pipes. */
+bool mt__bench_child_start(mt__bench_child *child, char *const argv[], char *err, size_t err_size);
+/* Sends one line (the newline is added). */
+bool mt__bench_child_send(mt__bench_child *child, const char *line, char *err, size_t err_size);
+/* Reads one line into buf, newline removed; false at the end of its output
+ * or on an "error ..." line (err says which). */
+bool mt__bench_child_read_line(mt__bench_child *child, char *buf, size_t size, char *err,
+                               size_t err_size);
+/* Sends "quit", closes both pipes, waits for this child only and reports
+ * (under `name`) a non-zero exit or a signal. Safe on a child never started. */
+void mt__bench_child_stop(mt__bench_child *child, const char *name);
+/* key=value in a protocol line (keys are whole words): the value, or NULL. */
+const char *mt__bench_field(const char *line, const char *key);
+bool mt__bench_field_u64(const char *line, const char *key, uint64_t *out);
+bool mt__bench_field_i64(const char *line, const char *key, int64_t *out);
+bool mt__bench_field_double(const char *line, const char *key, double *out);
 
 /* bench_meshtopo.c, bench_peer.c and bench_floor.c */
 void mt__bench_runner_meshtopo(mt__bench_runner *out, uint32_t threads, bool recycle);

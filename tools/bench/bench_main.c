@@ -5,13 +5,15 @@
  *   meshtopo-bench archive [options]   archive write and reload vs bare HDF5
  *                                      (bench_archive.c)
  *   meshtopo-bench soak [options]      meshtopod under normal and hostile traffic (soak.c)
- *   meshtopo-bench cluster [options]   1 vs 2 members of a cluster, failover (bench_cluster.c) */
+ *   meshtopo-bench cluster [options]   1 vs 2 members of a cluster, failover (bench_cluster.c)
+ *   meshtopo-bench selfx [options]     self-intersections vs CGAL (bench_selfx.c) */
 #include <stdio.h>
 #include <string.h>
 
 #include "bench.h"
 #include "bench_archive.h"
 #include "bench_cluster.h"
+#include "bench_selfx.h"
 #include "bench_transfer.h"
 #include "rtt.h"
 #include "soak.h"
@@ -26,6 +28,8 @@ int main(int argc, char **argv)
     if (argc > 1 && strcmp(argv[1], "soak") == 0) return mt__bench_soak_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "cluster") == 0)
         return mt__bench_cluster_command(argc - 1, argv + 1);
+    if (argc > 1 && strcmp(argv[1], "selfx") == 0)
+        return mt__bench_selfx_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "build") == 0) return mt__bench_command(argc - 1, argv + 1);
     return mt__bench_command(argc, argv);
 }
