@@ -86,6 +86,12 @@ mt_status mt__edge_sweep(const mt_mesh *m, double tol, const char *what, mt__edg
  * corners leave that plane over the diagonal of their bounding box. n >= 3. */
 void mt__polygon_plane(const double *const *corner, uint32_t n, int *out_drop, double *out_warp);
 
+/* The orientations of points q[0..n) against the plane through a, b, c,
+ * as mt_orient3d(a, b, c, q[i]) gives them (predicates.c), the plane's
+ * share of the work done once. */
+void mt__orient3d_points(const double a[3], const double b[3], const double c[3],
+                         const double *const *q, int n, int *out);
+
 /* Whether the diagonal between corners i and j of a polygon may be cut. */
 typedef bool (*mt__diagonal_ok)(void *user, uint32_t i, uint32_t j);
 

@@ -171,12 +171,12 @@ bool mt_triangles_intersect(const double a[3][3], const double b[3][3])
     /* Apart when one lies strictly on one side of the other's plane (a
      * degenerate triangle gives orientations 0, never one side); proper
      * coplanar ones are judged in their plane. */
-    const int sb[3] = {mt_orient3d(a[0], a[1], a[2], b[0]), mt_orient3d(a[0], a[1], a[2], b[1]),
-                       mt_orient3d(a[0], a[1], a[2], b[2])};
+    const double *const pa[3] = {a[0], a[1], a[2]}, *const pb[3] = {b[0], b[1], b[2]};
+    int sb[3], sa[3];
+    mt__orient3d_points(a[0], a[1], a[2], pb, 3, sb);
     if (one_side(sb[0], sb[1], sb[2])) return false;
-    if (one_side(mt_orient3d(b[0], b[1], b[2], a[0]), mt_orient3d(b[0], b[1], b[2], a[1]),
-                 mt_orient3d(b[0], b[1], b[2], a[2])))
-        return false;
+    mt__orient3d_points(b[0], b[1], b[2], pa, 3, sa);
+    if (one_side(sa[0], sa[1], sa[2])) return false;
     if (sb[0] == 0 && sb[1] == 0 && sb[2] == 0) {
         const int drop = plane_projection(a[0], a[1], a[2]);
         if (drop >= 0 && plane_projection(b[0], b[1], b[2]) >= 0)
@@ -267,11 +267,13 @@ static bool corner_pair_cross(const double *const pa[3], int ka, const double *c
     const double *v = pa[ka], *a1 = pa[(ka + 1) % 3], *a2 = pa[(ka + 2) % 3];
     const double *b1 = pb[(kb + 1) % 3], *b2 = pb[(kb + 2) % 3];
     /* A degenerate triangle gives orientations 0, never one side. */
-    const int s1 = mt_orient3d(v, a1, a2, b1), s2 = mt_orient3d(v, a1, a2, b2);
-    if (s1 * s2 > 0) return false;
-    const int t1 = mt_orient3d(v, b1, b2, a1), t2 = mt_orient3d(v, b1, b2, a2);
-    if (t1 * t2 > 0) return false;
-    if (s1 == 0 && s2 == 0) {
+    int s[2], t[2];
+    const double *const bq[2] = {b1, b2}, *const aq[2] = {a1, a2};
+    mt__orient3d_points(v, a1, a2, bq, 2, s);
+    if (s[0] * s[1] > 0) return false;
+    mt__orient3d_points(v, b1, b2, aq, 2, t);
+    if (t[0] * t[1] > 0) return false;
+    if (s[0] == 0 && s[1] == 0) {
         const int drop = plane_projection(v, a1, a2);
         if (drop >= 0 && plane_projection(v, b1, b2) >= 0)
             return wedges_overlap(v, a1, a2, b1, b2, drop);

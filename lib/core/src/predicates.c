@@ -16,6 +16,8 @@
  * -ffp-contract=off, and -ffast-math must never reach it. */
 #include "meshtopo/predicates.h"
 
+#include "geometry_internal.h"
+
 #include <math.h>
 #include <stdbool.h>
 
@@ -185,6 +187,34 @@ int mt_orient2d(const double a[2], const double b[2], const double c[2])
     vy.n = difference(c[1], a[1], vy.c);
     double d[16];
     return sign_of(d, cross2(&ux, &uy, &vx, &vy, d));
+}
+
+void mt__orient3d_points(const double a[3], const double b[3], const double c[3],
+                         const double *const *q, int n, int *out)
+{
+    /* mt_orient3d(a, q, b, c) has the sign of mt_orient3d(a, b, c, q) (a
+     * cyclic permutation of the rows) and its minors come from b - a and
+     * c - a alone: computed once, its filter is mt_orient3d's own. */
+    double v[3], w[3];
+    for (int k = 0; k < 3; k++) {
+        v[k] = b[k] - a[k];
+        w[k] = c[k] - a[k];
+    }
+    const double m0a = v[1] * w[2], m0b = v[2] * w[1];
+    const double m1a = v[2] * w[0], m1b = v[0] * w[2];
+    const double m2a = v[0] * w[1], m2b = v[1] * w[0];
+    const double d0 = m0a - m0b, d1 = m1a - m1b, d2 = m2a - m2b;
+    const double p0 = fabs(m0a) + fabs(m0b), p1 = fabs(m1a) + fabs(m1b), p2 = fabs(m2a) + fabs(m2b);
+    for (int i = 0; i < n; i++) {
+        double u[3];
+        for (int k = 0; k < 3; k++) u[k] = q[i][k] - a[k];
+        const double det = u[0] * d0 + u[1] * d1 + u[2] * d2;
+        const double bound = ORIENT3D_BOUND * (p0 * fabs(u[0]) + p1 * fabs(u[1]) + p2 * fabs(u[2]));
+        if (isfinite(bound) && (det > bound || -det > bound))
+            out[i] = det > 0 ? 1 : -1;
+        else
+            out[i] = mt_orient3d(a, q[i], b, c);
+    }
 }
 
 int mt_orient3d(const double a[3], const double b[3], const double c[3], const double d[3])

@@ -24,7 +24,7 @@ enum {
     TASKS_PER_THREAD = 64, /* pairs of subtrees the threads share, per thread */
     MAX_THREADS = 8,       /* the most threads the queries use */
     MIN_PARALLEL = 20000,  /* fewer triangles than this are checked on one thread */
-    MORTON_BITS = 10,      /* bits per axis of a centroid's cell */
+    MORTON_BITS = 10,      /* bits per axis of a cell of the Morton curve (spread3 takes 10) */
     RADIX_BITS = 10        /* bits per pass of the sort */
 };
 
@@ -109,19 +109,12 @@ static void box_add(box *b, const box *o)
     }
 }
 
-/* The box of triangle t, rounded outwards. */
-static void tri_box(const mt_mesh *m, const tri *t, box *b)
+/* Appends x to a vector of uint32_t, in place while it has room. */
+static mt_status push_u32(mt__vec *v, uint32_t x)
 {
-    for (int k = 0; k < 3; k++) {
-        double lo = INFINITY, hi = -INFINITY;
-        for (int i = 0; i < 3; i++) { /* finite: faces with other corners are not judged */
-            const double x = m->positions[3 * (size_t)t->v[i] + k];
-            lo = x < lo ? x : lo;
-            hi = x > hi ? x : hi;
-        }
-        b->lo[k] = down(lo);
-        b->hi[k] = up(hi);
-    }
+    if (v->len == v->cap) return mt__vec_push(v, &x);
+    ((uint32_t *)v->data)[v->len++] = x;
+    return MT_OK;
 }
 
 /* The corners of valid face f as caller ids into verts (grown as needed);
@@ -137,16 +130,12 @@ static uint32_t face_corners(const mt_mesh *m, uint32_t f, mt__vec *verts, mt_st
     }
     do {
         const uint32_t v = mt__original_checked(m, m->he_head[h ^ 1u]);
-        if (v == MT_NONE) {
+        if (v == MT_NONE || !mt__ring_step(m, &h, &steps)) {
             *status = MT_ERR_CORRUPT;
             return 0;
         }
-        if (mt__vec_push(verts, &v) != MT_OK) {
+        if (push_u32(verts, v) != MT_OK) {
             *status = MT_ERR_NOMEM;
-            return 0;
-        }
-        if (!mt__ring_step(m, &h, &steps)) {
-            *status = MT_ERR_CORRUPT;
             return 0;
         }
     } while (h != start);
@@ -162,18 +151,59 @@ static bool finite_corners(const mt_mesh *m, const uint32_t *verts, uint32_t n)
     return true;
 }
 
-/* Appends the triangles of face f (corners verts[0..n)) to tris and their
- * boxes to boxes (while the corners just read are in the cache). */
-static mt_status add_face(const mt_mesh *m, uint32_t f, const uint32_t *verts, uint32_t n,
-                          mt__vec *tris, mt__vec *boxes)
+/* Triangles with their boxes. */
+typedef struct tri_set {
+    tri *tris;
+    box *boxes;
+    size_t len, cap;
+} tri_set;
+
+static void tri_set_free(tri_set *t)
 {
-    if (n == 3) {
-        const tri t = {{verts[0], verts[1], verts[2]}, f};
-        box b;
-        tri_box(m, &t, &b);
-        mt_status s = mt__vec_push(tris, &t);
-        return s == MT_OK ? mt__vec_push(boxes, &b) : s;
+    mt__free(t->tris);
+    mt__free(t->boxes);
+    *t = (tri_set){0};
+}
+
+/* Room for `cap` triangles (the arrays that could grow keep their room). */
+static mt_status tri_set_reserve(tri_set *t, size_t cap)
+{
+    if (cap <= t->cap) return MT_OK;
+    tri *tris = mt__realloc(t->tris, cap * sizeof *tris);
+    if (tris) t->tris = tris;
+    box *boxes = tris ? mt__realloc(t->boxes, cap * sizeof *boxes) : NULL;
+    if (!boxes) return MT_ERR_NOMEM;
+    t->boxes = boxes;
+    t->cap = cap;
+    return MT_OK;
+}
+
+/* Appends triangle (a, b, c) of face f with its box. */
+static mt_status tri_set_add(tri_set *t, const mt_mesh *m, uint32_t a, uint32_t b, uint32_t c,
+                             uint32_t f)
+{
+    if (t->len == t->cap && tri_set_reserve(t, t->cap ? 2 * t->cap : 64) != MT_OK)
+        return MT_ERR_NOMEM;
+    const tri one = {{a, b, c}, f};
+    const double *pa = m->positions + 3 * (size_t)a, *pb = m->positions + 3 * (size_t)b,
+                 *pc = m->positions + 3 * (size_t)c;
+    box *bx = &t->boxes[t->len];
+    for (int k = 0; k < 3; k++) {
+        const double x0 = pa[k], x1 = pb[k], x2 = pc[k];
+        const double lo = x0 < x1 ? (x0 < x2 ? x0 : x2) : (x1 < x2 ? x1 : x2);
+        const double hi = x0 > x1 ? (x0 > x2 ? x0 : x2) : (x1 > x2 ? x1 : x2);
+        bx->lo[k] = down(lo);
+        bx->hi[k] = up(hi);
     }
+    t->tris[t->len++] = one;
+    return MT_OK;
+}
+
+/* Appends the triangles of face f (corners verts[0..n)). */
+static mt_status add_face(const mt_mesh *m, uint32_t f, const uint32_t *verts, uint32_t n,
+                          tri_set *out)
+{
+    if (n == 3) return tri_set_add(out, m, verts[0], verts[1], verts[2], f);
     const double **pos = mt__malloc(n * sizeof *pos);
     uint32_t *scratch = mt__malloc((size_t)(n + 3 * (n - 2)) * sizeof *scratch);
     mt_status s = pos && scratch ? MT_OK : MT_ERR_NOMEM;
@@ -183,11 +213,7 @@ static mt_status add_face(const mt_mesh *m, uint32_t f, const uint32_t *verts, u
         mt__ear_clip(pos, n, NULL, NULL, scratch, corners);
         for (uint32_t t = 0; t < n - 2 && s == MT_OK; t++) {
             const uint32_t *c = corners + 3 * t;
-            const tri one = {{verts[c[0]], verts[c[1]], verts[c[2]]}, f};
-            box b;
-            tri_box(m, &one, &b);
-            s = mt__vec_push(tris, &one);
-            if (s == MT_OK) s = mt__vec_push(boxes, &b);
+            s = tri_set_add(out, m, verts[c[0]], verts[c[1]], verts[c[2]], f);
         }
     }
     mt__free(pos);
@@ -195,15 +221,15 @@ static mt_status add_face(const mt_mesh *m, uint32_t f, const uint32_t *verts, u
     return s;
 }
 
-/* The triangles and boxes of the judged faces among [first, end). Faces
- * are read in parallel ranges: their half-edges and corners are scattered
- * in memory when the mesh came shuffled, and waiting on memory is what
- * two threads overlap best. */
+/* The triangles of the judged faces among [first, end). Faces are read in
+ * parallel ranges: their half-edges and corners are scattered in memory
+ * when the mesh came shuffled, and waiting on memory is what two threads
+ * overlap best. */
 typedef struct collector {
     pthread_t thread;
     const mt_mesh *m;
     uint32_t first, end;
-    mt__vec tris, boxes;
+    tri_set out;
     mt_status status;
     uint32_t failed_face;
 } collector;
@@ -212,11 +238,12 @@ static void *collect_range(void *arg)
 {
     collector *c = arg;
     mt__vec verts = {.elem_size = sizeof(uint32_t)};
+    c->status = tri_set_reserve(&c->out, c->end - c->first); /* one per triangle face */
     for (uint32_t f = c->first; f < c->end && c->status == MT_OK; f++) {
         if (c->m->face_he[f] == MT_NONE) continue; /* rejected or deleted */
         const uint32_t n = face_corners(c->m, f, &verts, &c->status);
         if (n >= 3 && finite_corners(c->m, verts.data, n))
-            c->status = add_face(c->m, f, verts.data, n, &c->tris, &c->boxes);
+            c->status = add_face(c->m, f, verts.data, n, &c->out);
         if (c->status != MT_OK) c->failed_face = f;
     }
     mt__vec_free(&verts);
@@ -232,18 +259,16 @@ static uint32_t threads_for(uint32_t faces)
     return cores < MAX_THREADS ? (uint32_t)cores : MAX_THREADS;
 }
 
-/* Every judged face's triangles and boxes, in face order. */
-static mt_status collect(const mt_mesh *m, uint32_t threads, mt__vec *tris, mt__vec *boxes,
-                         mt_diag *diag, const char *what)
+/* Every judged face's triangles, in face order: those of parts[0], then
+ * parts[1], ... (one per thread; left in place, not copied together). */
+static mt_status collect(const mt_mesh *m, uint32_t threads, collector *parts, mt_diag *diag,
+                         const char *what)
 {
-    collector parts[MAX_THREADS];
     bool started[MAX_THREADS] = {false};
     for (uint32_t t = 0; t < threads; t++)
         parts[t] = (collector){.m = m,
                                .first = (uint32_t)((uint64_t)m->num_faces * t / threads),
-                               .end = (uint32_t)((uint64_t)m->num_faces * (t + 1) / threads),
-                               .tris = {.elem_size = sizeof(tri)},
-                               .boxes = {.elem_size = sizeof(box)}};
+                               .end = (uint32_t)((uint64_t)m->num_faces * (t + 1) / threads)};
     for (uint32_t t = 1; t < threads; t++)
         started[t] = pthread_create(&parts[t].thread, NULL, collect_range, &parts[t]) == 0;
     collect_range(&parts[0]);
@@ -253,30 +278,25 @@ static mt_status collect(const mt_mesh *m, uint32_t threads, mt__vec *tris, mt__
         else
             collect_range(&parts[t]); /* a thread that did not start: its range here */
     }
-    mt_status s = MT_OK;
-    for (uint32_t t = 0; t < threads; t++) {
-        if (s == MT_OK && parts[t].status != MT_OK) {
-            s = parts[t].status;
-            const uint32_t f = parts[t].failed_face;
-            mt__fail(diag, s, f, "%s: %s face %u", what,
-                     s == MT_ERR_NOMEM ? "no memory for the triangles of" : "broken ring of", f);
-        }
-        if (s == MT_OK) s = mt__vec_append(tris, &parts[t].tris);
-        if (s == MT_OK) s = mt__vec_append(boxes, &parts[t].boxes);
-        if (s != MT_OK && parts[t].status == MT_OK)
-            mt__fail(diag, s, MT_NONE, "%s: no memory for the triangles", what);
-        mt__vec_free(&parts[t].tris);
-        mt__vec_free(&parts[t].boxes);
-    }
-    return s;
+    for (uint32_t t = 0; t < threads; t++)
+        if (parts[t].status != MT_OK)
+            return mt__fail(diag, parts[t].status, parts[t].failed_face, "%s: %s face %u", what,
+                            parts[t].status == MT_ERR_NOMEM ? "no memory for the triangles of"
+                                                            : "broken ring of",
+                            parts[t].failed_face);
+    return MT_OK;
 }
 
-/* Spreads the low MORTON_BITS bits of x to every third bit. */
+/* Spreads the low 10 bits of x to every third bit (bit i to bit 3i), by
+ * the usual shifts and masks of Morton codes. */
 static uint32_t spread3(uint32_t x)
 {
-    uint32_t r = 0;
-    for (int b = 0; b < MORTON_BITS; b++) r |= ((x >> b) & 1u) << (3 * b);
-    return r;
+    x &= 0x3ffu;
+    x = (x | x << 16) & 0x030000ffu;
+    x = (x | x << 8) & 0x0300f00fu;
+    x = (x | x << 4) & 0x030c30c3u;
+    x = (x | x << 2) & 0x09249249u;
+    return x;
 }
 
 /* LSD radix sort of items by key. Written by hand: the C library's qsort
@@ -303,37 +323,43 @@ static mt_status radix_sort(sorted_tri *items, uint32_t n)
     return MT_OK;
 }
 
-/* Sorts the triangles along the Morton curve. */
-static mt_status order_triangles(check *c, const tri *unsorted, const box *boxes)
+/* Sorts the triangles of the parts along the Morton curve of their
+ * boxes' centres into c's arrays, with their corners. */
+static mt_status order_triangles(check *c, const collector *parts, uint32_t num_parts)
 {
     const uint32_t n = c->num_tris;
     sorted_tri *order = mt__malloc((size_t)n * sizeof *order);
     if (!order) return MT_ERR_NOMEM;
     box all;
     box_empty(&all);
-    for (uint32_t i = 0; i < n; i++) box_add(&all, &boxes[i]);
+    for (uint32_t p = 0; p < num_parts; p++)
+        for (size_t i = 0; i < parts[p].out.len; i++) box_add(&all, &parts[p].out.boxes[i]);
     const double cells = (double)((1u << MORTON_BITS) - 1);
-    for (uint32_t i = 0; i < n; i++) {
-        uint32_t key = 0;
-        for (int k = 0; k < 3; k++) {
-            const double centre = 0.5 * ((double)boxes[i].lo[k] + (double)boxes[i].hi[k]);
-            const double extent = (double)all.hi[k] - (double)all.lo[k];
-            double cell = extent > 0 ? (centre - all.lo[k]) / extent * cells : 0;
-            cell = cell >= 0 ? (cell <= cells ? cell : cells) : 0; /* NaN and overflow too */
-            key |= spread3((uint32_t)cell) << k;
+    uint32_t next = 0;
+    for (uint32_t p = 0; p < num_parts; p++)
+        for (size_t i = 0; i < parts[p].out.len; i++, next++) {
+            const box *b = &parts[p].out.boxes[i];
+            uint32_t key = 0;
+            for (int k = 0; k < 3; k++) {
+                const double centre = 0.5 * ((double)b->lo[k] + (double)b->hi[k]);
+                const double extent = (double)all.hi[k] - (double)all.lo[k];
+                double cell = extent > 0 ? (centre - all.lo[k]) / extent * cells : 0;
+                cell = cell >= 0 ? (cell <= cells ? cell : cells) : 0; /* NaN and overflow too */
+                key |= spread3((uint32_t)cell) << k;
+            }
+            order[next] = (sorted_tri){key, next};
         }
-        order[i] = (sorted_tri){key, i};
-    }
     mt_status s = radix_sort(order, n);
-    if (s == MT_OK)
-        for (uint32_t i = 0; i < n; i++) {
-            const tri *t = &unsorted[order[i].index];
-            c->tris[i] = *t;
-            c->boxes[i] = boxes[order[i].index];
-            for (int k = 0; k < 3; k++)
-                memcpy(c->corners + 9 * (size_t)i + 3 * k, c->m->positions + 3 * (size_t)t->v[k],
-                       3 * sizeof(double));
-        }
+    for (uint32_t i = 0; s == MT_OK && i < n; i++) {
+        uint32_t from = order[i].index, p = 0;
+        while (from >= parts[p].out.len) from -= (uint32_t)parts[p++].out.len;
+        const tri *t = &parts[p].out.tris[from];
+        c->tris[i] = *t;
+        c->boxes[i] = parts[p].out.boxes[from];
+        for (int k = 0; k < 3; k++)
+            memcpy(c->corners + 9 * (size_t)i + 3 * k, c->m->positions + 3 * (size_t)t->v[k],
+                   3 * sizeof(double));
+    }
     mt__free(order);
     return s;
 }
@@ -381,13 +407,15 @@ static mt_status leaf_pairs(const check *c, uint32_t a, uint32_t b, mt__vec *pai
     uint32_t a0, a1, b0, b1;
     leaf_range(c, a, &a0, &a1);
     leaf_range(c, b, &b0, &b1);
-    for (uint32_t i = a0; i < a1; i++)
+    for (uint32_t i = a0; i < a1; i++) {
+        if (a != b && !overlap(&c->boxes[i], &c->nodes[b])) continue; /* misses all of b */
         for (uint32_t j = a == b ? i + 1 : b0; j < b1; j++) {
             if (c->tris[i].face == c->tris[j].face || !overlap(&c->boxes[i], &c->boxes[j]))
                 continue;
             mt_status s = test_pair(c, i, j, pairs);
             if (s != MT_OK) return s;
         }
+    }
     return MT_OK;
 }
 
@@ -506,34 +534,33 @@ static mt_status run_all(check *c, mt__vec *out)
 /* Every intersecting pair into pairs (sorted, no repeats). */
 static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, const char *what)
 {
-    mt__vec unsorted = {.elem_size = sizeof(tri)}, boxes = {.elem_size = sizeof(box)};
+    collector parts[MAX_THREADS];
     const uint32_t threads = threads_for(m->num_faces);
-    mt_status s = collect(m, threads, &unsorted, &boxes, diag, what);
-    if (s != MT_OK || unsorted.len < 2) {
-        mt__vec_free(&unsorted);
-        mt__vec_free(&boxes);
-        return s;
+    mt_status s = collect(m, threads, parts, diag, what);
+    size_t total = 0;
+    for (uint32_t t = 0; t < threads; t++) total += parts[t].out.len;
+    check c = {.m = m, .num_tris = (uint32_t)total, .num_leaves = 1, .threads = threads};
+    if (s == MT_OK && total >= 2) {
+        const uint64_t blocks = ((uint64_t)c.num_tris + LEAF_SIZE - 1) / LEAF_SIZE;
+        while (c.num_leaves < blocks) c.num_leaves *= 2;
+        atomic_init(&c.next, 0);
+        atomic_init(&c.failed, false);
+        c.tris = mt__malloc((size_t)c.num_tris * sizeof *c.tris);
+        c.boxes = mt__malloc((size_t)c.num_tris * sizeof *c.boxes);
+        c.nodes = mt__malloc(2 * (size_t)c.num_leaves * sizeof *c.nodes);
+        c.corners = mt__malloc(9 * (size_t)c.num_tris * sizeof *c.corners);
+        s = c.tris && c.boxes && c.nodes && c.corners ? order_triangles(&c, parts, threads)
+                                                      : MT_ERR_NOMEM;
+        for (uint32_t t = 0; t < threads; t++) tri_set_free(&parts[t].out);
+        if (s == MT_OK) {
+            build_tree(&c);
+            s = run_all(&c, pairs);
+        }
+        if (s == MT_ERR_NOMEM)
+            mt__fail(diag, s, MT_NONE, "%s: no memory for %u triangles and their pairs", what,
+                     c.num_tris);
     }
-    check c = {.m = m, .num_tris = (uint32_t)unsorted.len, .num_leaves = 1, .threads = threads};
-    const uint64_t blocks = ((uint64_t)c.num_tris + LEAF_SIZE - 1) / LEAF_SIZE;
-    while (c.num_leaves < blocks) c.num_leaves *= 2;
-    atomic_init(&c.next, 0);
-    atomic_init(&c.failed, false);
-    c.tris = mt__malloc((size_t)c.num_tris * sizeof *c.tris);
-    c.boxes = mt__malloc((size_t)c.num_tris * sizeof *c.boxes);
-    c.nodes = mt__malloc(2 * (size_t)c.num_leaves * sizeof *c.nodes);
-    c.corners = mt__malloc(9 * (size_t)c.num_tris * sizeof *c.corners);
-    s = c.tris && c.boxes && c.nodes && c.corners ? order_triangles(&c, unsorted.data, boxes.data)
-                                                  : MT_ERR_NOMEM;
-    mt__vec_free(&unsorted);
-    mt__vec_free(&boxes);
-    if (s == MT_OK) {
-        build_tree(&c);
-        s = run_all(&c, pairs);
-    }
-    if (s == MT_ERR_NOMEM)
-        mt__fail(diag, s, MT_NONE, "%s: no memory for %u triangles and their pairs", what,
-                 c.num_tris);
+    for (uint32_t t = 0; t < threads; t++) tri_set_free(&parts[t].out);
     mt__free(c.tris);
     mt__free(c.boxes);
     mt__free(c.nodes);
