@@ -78,17 +78,6 @@ static void usage(FILE *out)
             MT__BENCH_QUICK_REPS);
 }
 
-static bool parse_u64(const char *text, uint64_t min, uint64_t max, uint64_t *out)
-{
-    if (!text || !*text || *text == '-') return false;
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(text, &end, 0);
-    if (errno || *end || v < min || v > max) return false;
-    *out = v;
-    return true;
-}
-
 /* Returns 0 when parsed, 1 for --help, 2 on error. */
 static int parse_options(int argc, char **argv, mt__bench_options *o)
 {
@@ -120,17 +109,19 @@ static int parse_options(int argc, char **argv, mt__bench_options *o)
             return 2;
         }
         i++;
-        if (strcmp(a, "--faces") == 0 && parse_u64(next, 2, MT__BENCH_MAX_FACES, &faces)) {
+        if (strcmp(a, "--faces") == 0 &&
+            mt__bench_parse_u64(next, 2, MT__BENCH_MAX_FACES, &faces)) {
             have_faces = true;
         } else if (strcmp(a, "--torus-faces") == 0 &&
-                   parse_u64(next, 18, MT__BENCH_MAX_FACES, &torus)) {
+                   mt__bench_parse_u64(next, 18, MT__BENCH_MAX_FACES, &torus)) {
             have_torus = true;
-        } else if (strcmp(a, "--reps") == 0 && parse_u64(next, 1, MT__BENCH_MAX_REPS, &reps)) {
+        } else if (strcmp(a, "--reps") == 0 &&
+                   mt__bench_parse_u64(next, 1, MT__BENCH_MAX_REPS, &reps)) {
             have_reps = true;
-        } else if (strcmp(a, "--threads") == 0 && parse_u64(next, 0, 1024, &v)) {
+        } else if (strcmp(a, "--threads") == 0 && mt__bench_parse_u64(next, 0, 1024, &v)) {
             o->threads = (uint32_t)v;
             o->threads_given = true;
-        } else if (strcmp(a, "--seed") == 0 && parse_u64(next, 0, UINT64_MAX, &v)) {
+        } else if (strcmp(a, "--seed") == 0 && mt__bench_parse_u64(next, 0, UINT64_MAX, &v)) {
             o->seed = v;
         } else if (strcmp(a, "--csv") == 0) {
             o->csv_path = next;

@@ -134,6 +134,8 @@ int mt__bench_command(int argc, char **argv);
 /* bench_args.c: a decimal count in [min, max] (no sign, no suffix); false
  * when text is not one. */
 bool mt__bench_parse_u32(const char *text, uint32_t min, uint32_t max, uint32_t *out);
+/* The same for 64 bits (NULL text: false). */
+bool mt__bench_parse_u64(const char *text, uint64_t min, uint64_t max, uint64_t *out);
 
 /* bench_stats.c: both sort `values` in place; NaN for n == 0. */
 double mt__bench_median_of(double *values, uint32_t n);

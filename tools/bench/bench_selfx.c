@@ -98,17 +98,6 @@ static void usage(FILE *out)
             DEFAULT_FACES, DEFAULT_REPS, MT__BENCH_MAX_REPS, QUICK_FACES, QUICK_REPS, PEER_NAME);
 }
 
-static bool parse_u64(const char *text, uint64_t min, uint64_t max, uint64_t *out)
-{
-    if (!text || !*text || *text == '-') return false;
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(text, &end, 0);
-    if (errno || *end || v < min || v > max) return false;
-    *out = v;
-    return true;
-}
-
 /* Returns 0, 1 (--help) or 2 (usage error, printed). */
 static int parse_options(int argc, char **argv, options *o)
 {
@@ -127,13 +116,13 @@ static int parse_options(int argc, char **argv, options *o)
         }
         bool ok = v != NULL;
         if (ok && strcmp(a, "--faces") == 0) {
-            ok = parse_u64(v, MIN_FACES, MAX_FACES, &o->faces);
+            ok = mt__bench_parse_u64(v, MIN_FACES, MAX_FACES, &o->faces);
             faces_given = true;
         } else if (ok && strcmp(a, "--reps") == 0) {
             ok = mt__bench_parse_u32(v, 1, MT__BENCH_MAX_REPS, &o->reps);
             reps_given = true;
         } else if (ok && strcmp(a, "--seed") == 0) {
-            ok = parse_u64(v, 0, UINT64_MAX, &o->seed);
+            ok = mt__bench_parse_u64(v, 0, UINT64_MAX, &o->seed);
         } else if (ok && strcmp(a, "--mesh") == 0) {
             o->only = strcmp(v, "grid") == 0 ? 0 : strcmp(v, "torus") == 0 ? 1 : -1;
             ok = o->only >= 0;
