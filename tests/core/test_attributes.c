@@ -426,8 +426,10 @@ static void test_attributes_closed_rectangle_skips_hidden(void)
     ring_text(mesh, 0, text, sizeof text);
     CHECK_TEXT(text, "1 2 3 | 0 1 2");
     CHECK_STATUS(mt_mesh_skip_hidden(NULL, true), MT_ERR_INVALID_ARG);
-    CHECK_STATUS(mt_gen_closed_rectangle(0, 1, &mesh, &diag), MT_ERR_INVALID_ARG);
     mt_mesh_destroy(mesh);
+    mt_mesh *none = mesh;
+    CHECK_STATUS(mt_gen_closed_rectangle(0, 1, &none, &diag), MT_ERR_INVALID_ARG);
+    CHECK(none == NULL);
 }
 
 static const mt_test_case cases[] = {
