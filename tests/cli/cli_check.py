@@ -6,13 +6,16 @@
   usage        help, --version, unknown commands and options, bad id lists
   exit_codes   --fail-on-defect (1), --strict (4), --json-defects, readable output
   self_intersections  inspect --self-intersections, text and JSON
+  stdin        inspect - reads standard input (plain and gzip)
 
 usage: cli_check.py --meshtopo PATH --corpus DIR
                     {read_errors,usage,exit_codes,self_intersections}
 """
 import argparse
+import gzip
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -200,6 +203,30 @@ def check_exit_codes(meshtopo, corpus):
            "--json: a rejected face has adjacent_faces null", code, out, err)
 
 
+def check_stdin(meshtopo, corpus):
+    """inspect - reads standard input: the same report as the file, gzip too;
+    a malformed input names standard input and the line."""
+    path = os.path.join(corpus, "npm_bunny.off")
+    code, want, err = run(meshtopo, "inspect", path, "--json")
+    with open(path, "rb") as f:
+        data = f.read()
+    for what, stdin in (("plain", data), ("gzip", gzip.compress(data))):
+        proc = subprocess.run([meshtopo, "inspect", "-", "--json"], input=stdin,
+                              capture_output=True, timeout=120)
+        got, expected = parse_json(proc.stdout.decode()), parse_json(want)
+        got.pop("file", None)
+        expected.pop("file", None)
+        expect(proc.returncode == 0 and got == expected and got,
+               f"inspect - ({what}) gives the file's report", proc.returncode,
+               proc.stdout.decode(), proc.stderr.decode())
+    proc = subprocess.run([meshtopo, "inspect", "-"], input=b"OFF\n3 1 0\n0 0 0\n1 0 0\n",
+                          capture_output=True, timeout=60)
+    err = proc.stderr.decode()
+    expect(proc.returncode == 3 and re.search(r"standard input:\d+: ", err),
+           "inspect - on a truncated OFF: exit 3 naming standard input and the line",
+           proc.returncode, proc.stdout.decode(), err)
+
+
 def check_self_intersections(meshtopo, corpus):
     """inspect --self-intersections: the JSON counts and lists, the readable
     section, --fail-on-defect counting what it finds; absent without it."""
@@ -231,13 +258,14 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--meshtopo", default=os.environ.get("MESHTOPO_CLI"))
     ap.add_argument("--corpus", default=os.environ.get("MESHTOPO_CORPUS"))
-    ap.add_argument("check", choices=["read_errors", "usage", "exit_codes", "self_intersections"])
+    ap.add_argument("check",
+                    choices=["read_errors", "usage", "exit_codes", "self_intersections", "stdin"])
     args = ap.parse_args()
     if not args.meshtopo or not args.corpus:
         ap.error("need --meshtopo and --corpus (or MESHTOPO_CLI / MESHTOPO_CORPUS)")
     {"read_errors": check_read_errors, "usage": check_usage,
      "exit_codes": check_exit_codes,
-     "self_intersections": check_self_intersections}[args.check](args.meshtopo, args.corpus)
+     "self_intersections": check_self_intersections, "stdin": check_stdin}[args.check](args.meshtopo, args.corpus)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1

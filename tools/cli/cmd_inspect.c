@@ -155,9 +155,10 @@ const mt_cli_command mt_cli_cmd_inspect = {
         "[--weld exact|EPS] [--strict] [--fail-on-defect]",
     .description =
         "Reads FILE (OFF, OBJ, PLY or STL, gzip-compressed too; the format is detected from\n"
-        "the content), builds the half-edge mesh and prints counts, boundary loops, components,\n"
-        "Euler characteristic, genus, the closed/manifold/orientable flags and every defect\n"
-        "with the ids of the elements involved. Nothing is welded or dropped silently.\n"
+        "the content; - reads standard input), builds the half-edge mesh and prints counts,\n"
+        "boundary loops, components, Euler characteristic, genus, the closed/manifold/\n"
+        "orientable flags and every defect with the ids of the elements involved. Nothing\n"
+        "is welded or dropped silently.\n"
         "FILE is parsed as it is read and inflated, so memory follows the mesh, not the\n"
         "file: data past what an OFF or PLY header declares is refused, and so is a FILE\n"
         "longer than --max-input-bytes once inflated.\n"

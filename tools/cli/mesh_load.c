@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "meshtopo/io.h"
@@ -68,13 +69,17 @@ static int face_list_read(const char *command, const char *path, const char *for
     mt_read_options options;
     memset(&options, 0, sizeof options);
     options.max_input_bytes = max_input_bytes;
-    mt_status st = mt_read_file_with(path, format, &options, out_list, &diag);
+    /* "-" is standard input (a pipe: read once, bounded by the limit). */
+    const bool from_stdin = strcmp(path, "-") == 0;
+    mt_status st = from_stdin ? mt_read_fd_with(STDIN_FILENO, "standard input", format, &options,
+                                                out_list, &diag)
+                              : mt_read_file_with(path, format, &options, out_list, &diag);
     if (st != MT_OK) {
         const char *text = diag_text(&diag, st);
         char hint[64] = "";
         if (st == MT_ERR_TOO_LARGE && limit_option && strstr(text, "input limit"))
             snprintf(hint, sizeof hint, " (%s raises it)", limit_option);
-        if (strstr(text, path))
+        if (strstr(text, from_stdin ? "standard input" : path))
             mt_cli_error(command, "%s%s", text, hint);
         else
             mt_cli_error(command, "cannot read %s: %s%s", path, text, hint);

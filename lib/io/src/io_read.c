@@ -158,6 +158,22 @@ static mt_status io_error(mt_diag *diag, const char *path, const char *what, int
     return mt__io_fail(diag, MT_ERR_IO, &src, MT__POS_NONE, 0, MT_NONE, "%s: %s", what, text);
 }
 
+/* Reads the open descriptor fd (named `name` in messages) to its end. */
+static mt_status read_fd(int fd, const char *name, mt_format format, const mt_read_options *options,
+                         mt_face_list *out, mt_diag *diag)
+{
+    struct stat st;
+    int err = fstat(fd, &st) != 0 ? errno : S_ISDIR(st.st_mode) ? EISDIR : 0;
+    if (err) return io_error(diag, name, "cannot read", err);
+    /* A regular file's size is its length (used for the size checks) unless
+     * it is gzip; mt__src_open tells. */
+    uint64_t total = S_ISREG(st.st_mode) ? (uint64_t)st.st_size : MT__UNKNOWN;
+    mt__io_src src;
+    mt_status status = mt__src_open(&src, name, fd, NULL, 0, total, options, diag);
+    if (status == MT_OK) status = read_source(&src, format, out, diag);
+    return status;
+}
+
 mt_status mt_read_file_with(const char *path, mt_format format, const mt_read_options *options,
                             mt_face_list *out, mt_diag *diag)
 {
@@ -171,20 +187,23 @@ mt_status mt_read_file_with(const char *path, mt_format format, const mt_read_op
     do fd = open(path, O_RDONLY | O_CLOEXEC);
     while (fd < 0 && errno == EINTR);
     if (fd < 0) return io_error(diag, path, "cannot open", errno);
-    struct stat st;
-    int err = fstat(fd, &st) != 0 ? errno : S_ISDIR(st.st_mode) ? EISDIR : 0;
-    if (err) {
-        close(fd);
-        return io_error(diag, path, "cannot read", err);
-    }
-    /* A regular file's size is its length (used for the size checks) unless
-     * it is gzip; mt__src_open tells. */
-    uint64_t total = S_ISREG(st.st_mode) ? (uint64_t)st.st_size : MT__UNKNOWN;
-    mt__io_src src;
-    status = mt__src_open(&src, path, fd, NULL, 0, total, options, diag);
-    if (status == MT_OK) status = read_source(&src, format, out, diag);
+    status = read_fd(fd, path, format, options, out, diag);
     close(fd);
     return status;
+}
+
+mt_status mt_read_fd_with(int fd, const char *name, mt_format format,
+                          const mt_read_options *options, mt_face_list *out, mt_diag *diag)
+{
+    char fallback[32];
+    if (!name) {
+        snprintf(fallback, sizeof fallback, "fd %d", fd);
+        name = fallback;
+    }
+    mt_status status = check_args(format, out, name, diag);
+    if (status != MT_OK) return status;
+    if (fd < 0) return io_error(diag, name, "cannot read", EBADF);
+    return read_fd(fd, name, format, options, out, diag);
 }
 
 mt_status mt_read_file(const char *path, mt_format format, mt_face_list *out, mt_diag *diag)

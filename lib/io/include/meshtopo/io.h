@@ -119,6 +119,13 @@ mt_status mt_read_file(const char *path, mt_format format, mt_face_list *out, mt
 mt_status mt_read_file_with(const char *path, mt_format format, const mt_read_options *options,
                             mt_face_list *out, mt_diag *diag);
 
+/* The same from an open file descriptor (a pipe, standard input, a
+ * socket, or a file), read to its end and not closed. `name` is used in
+ * messages only (NULL: "fd N"). A descriptor that is not a regular file is
+ * read once, as a pipe (max_input_bytes bounds it). */
+mt_status mt_read_fd_with(int fd, const char *name, mt_format format,
+                          const mt_read_options *options, mt_face_list *out, mt_diag *diag);
+
 /* The same from a buffer in memory (already decompressed, or gzip: it is
  * recognised and inflated as it is parsed). `name` is used in messages only
  * (may be NULL). */
