@@ -74,6 +74,17 @@ def check_usage(cli):
                   % p.stderr.strip())
 
 
+def check_no_display(cli):
+    env = dict(os.environ)
+    env.pop("DISPLAY", None)
+    env.pop("WAYLAND_DISPLAY", None)
+    p = run([cli, "spy"], env=env)
+    if p:
+        check(p.returncode == 3 and "no display" in p.stderr and "Exception" not in p.stderr,
+              "without a display: exit 3 and a sentence, no Java stack trace (%r)"
+              % p.stderr.strip())
+
+
 def check_bad_jar(cli):
     missing = "/nonexistent/meshtopo-msgs.jar"
     p = run([cli, "spy"], env=env_without_jar(MESHTOPO_MSGS_JAR=missing))
@@ -154,6 +165,7 @@ def main():
     xvfb = shutil.which("xvfb-run")
     if java:
         check_bad_jar(a.meshtopo)
+        check_no_display(a.meshtopo)
     if not java or not xvfb:
         print("skip: %s not found (Debian: %s)" % (
             "java" if not java else "xvfb-run", "default-jre" if not java else "xvfb xauth"))

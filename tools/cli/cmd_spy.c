@@ -108,6 +108,15 @@ static int run_spy(const mt_cli_args *args)
     }
     const char *msgs_jar = msgs_jar_find();
     if (!msgs_jar) return MT_CLI_EXIT_READ;
+    /* lcm-spy opens a window: without a display Java dies with a stack trace. */
+    const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
+    if ((!display || !display[0]) && (!wayland || !wayland[0])) {
+        mt_cli_error("spy",
+                     "no display (DISPLAY is not set): lcm-spy opens a window; run it on a "
+                     "desktop, over ssh -X, or under xvfb-run; `meshtopo watch` prints the "
+                     "same traffic as text");
+        return MT_CLI_EXIT_READ;
+    }
 
     char class_path[3 * SPY_PATH_MAX];
     int n = snprintf(class_path, sizeof class_path, "%s:%s:%s", MESHTOPO_LCM_JAR,
@@ -149,7 +158,8 @@ const mt_cli_command mt_cli_cmd_spy = {
         "build tree's, else the installed one (share/java/meshtopo-msgs.jar).\n"
         "\n"
         "exit codes: 2 usage error, 3 java, lcm.jar, jchart2d.jar or meshtopo-msgs.jar is\n"
-        "missing (the message names the Debian package); otherwise lcm-spy's own.\n",
+        "missing (the message names the Debian package) or there is no display;\n"
+        "otherwise lcm-spy's own.\n",
     .options = options,
     .num_options = sizeof options / sizeof options[0],
     .min_positionals = 0,
