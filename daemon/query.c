@@ -555,18 +555,18 @@ static void check_ids(answer *a, const meshtopo_query_t *q, const mt_mesh *mesh)
 {
     uint32_t verts = mt_mesh_num_verts(mesh), faces = mt_mesh_num_faces(mesh);
     uint32_t limit = 0;
-    const char *what = "";
+    const char *what = "", *whats = "";
     switch (q->kind) {
         case MESHTOPO_QUERY_T_VERTEX_RING:
         case MESHTOPO_QUERY_T_VALENCE:
         case MESHTOPO_QUERY_T_EDGE_FACES:
         case MESHTOPO_QUERY_T_DIHEDRAL_ANGLES:
         case MESHTOPO_QUERY_T_ANGLE_DEFICITS:
-            limit = verts, what = "vertex";
+            limit = verts, what = "vertex", whats = "vertices";
             break;
         case MESHTOPO_QUERY_T_FACE_NEIGHBORS:
         case MESHTOPO_QUERY_T_COMPONENTS:
-            limit = faces, what = "face";
+            limit = faces, what = "face", whats = "faces";
             break;
         default:
             return;
@@ -574,8 +574,8 @@ static void check_ids(answer *a, const meshtopo_query_t *q, const mt_mesh *mesh)
     for (int32_t i = 0; i < q->num_ids; i++) {
         if ((uint32_t)q->ids[i] >= limit) {
             fail(a, MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE,
-                 "ids[%" PRId32 "] = %" PRId32 ": no such %s (mesh '%s' has %" PRIu32 " %ss)", i,
-                 q->ids[i], what, q->mesh_id, limit, what);
+                 "ids[%" PRId32 "] = %" PRId32 ": no such %s (mesh '%s' has %" PRIu32 " %s)", i,
+                 q->ids[i], what, q->mesh_id, limit, whats);
             return;
         }
     }

@@ -111,7 +111,7 @@ static mt_status read_attribute(hid_t kg, const char *name, const read_ctx *c, m
     if (dims[0] != elements || dims[1] == 0 || dims[1] > MT_ATTRIBUTE_VALUE_MAX)
         return mt__archive_fail(diag, MT_ERR_PARSE,
                                 "%s: attributes/%s/%s has shape (%llu, %llu); the mesh has %u "
-                                "%ss and values hold 1 to %d bytes",
+                                "elements of kind %s and values hold 1 to %d bytes",
                                 c->file, kind, name, (unsigned long long)dims[0],
                                 (unsigned long long)dims[1], elements, kind,
                                 MT_ATTRIBUTE_VALUE_MAX);

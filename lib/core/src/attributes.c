@@ -151,8 +151,8 @@ mt_status mt_attribute_add(mt_mesh *mesh, mt_element_kind kind, const char *name
                         "%s: %s attribute '%s': values of %u bytes (1 to %d)", what,
                         mt_element_kind_name(kind), name, value_bytes, MT_ATTRIBUTE_VALUE_MAX);
     if (find(mesh, kind, name))
-        return mt__fail(diag, MT_ERR_INVALID_ARG, MT_NONE, "%s: the %ss already have '%s'", what,
-                        mt_element_kind_name(kind), name);
+        return mt__fail(diag, MT_ERR_INVALID_ARG, MT_NONE, "%s: %s attribute '%s' already exists",
+                        what, mt_element_kind_name(kind), name);
     if (!mesh->attributes) {
         mesh->attributes = mt__calloc(1, sizeof *mesh->attributes);
         if (!mesh->attributes)
@@ -160,8 +160,9 @@ mt_status mt_attribute_add(mt_mesh *mesh, mt_element_kind kind, const char *name
     }
     mt__attribute_set *set = mesh->attributes;
     if (set->count[kind] == MT_ATTRIBUTES_PER_KIND)
-        return mt__fail(diag, MT_ERR_TOO_LARGE, MT_NONE, "%s: the %ss already have %d attributes",
-                        what, mt_element_kind_name(kind), MT_ATTRIBUTES_PER_KIND);
+        return mt__fail(diag, MT_ERR_TOO_LARGE, MT_NONE,
+                        "%s: %d %s attributes already, the most a kind has", what,
+                        MT_ATTRIBUTES_PER_KIND, mt_element_kind_name(kind));
     const uint32_t cap = mesh_capacity(mesh, kind);
     if (cap > set->capacity[kind]) set->capacity[kind] = cap;
     mt__attribute a;

@@ -1425,7 +1425,8 @@ static void test_geometry_kinds(void)
                       MESHTOPO_STATUS_CODE_T_BAD_REQUEST, "takes no ids", __LINE__);
     int32_t far[] = {0, 1000};
     check_query_error(&fx, "grid", 0, MESHTOPO_QUERY_T_ANGLE_DEFICITS, far, 2,
-                      MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "ids[1] = 1000", __LINE__);
+                      MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE,
+                      "ids[1] = 1000: no such vertex (mesh 'grid' has 12 vertices)", __LINE__);
     check_query_error(&fx, "grid", 0, MESHTOPO_QUERY_T_DIHEDRAL_ANGLES, far, 2,
                       MESHTOPO_STATUS_CODE_T_OUT_OF_RANGE, "ids[1] = 1000", __LINE__);
     check_still_serving(&fx, "grid");
