@@ -37,6 +37,11 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/core/include/meshtopo
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.h")
 
+# The LCM message definitions, for lcm-gen in other languages, and the README.
+file(GLOB MESHTOPO_LCM_DEFINITIONS ${PROJECT_SOURCE_DIR}/msgs/*.lcm)
+install(FILES ${MESHTOPO_LCM_DEFINITIONS} DESTINATION ${CMAKE_INSTALL_DATADIR}/meshtopo/lcm)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
 # --- CMake package ----------------------------------------------------------
 # A static install carries its private dependencies in the exported link
 # interface ($<LINK_ONLY:ZLIB::ZLIB>, Threads::Threads, m), so the config file

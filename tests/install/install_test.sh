@@ -56,6 +56,15 @@ for f in include/meshtopo/core.h include/meshtopo/io.h include/meshtopo/status.h
     "$libdir/pkgconfig/meshtopo-io.pc"; do
     [ -f "$prefix/$f" ] || fail "not installed: $f"
 done
+for f in share/meshtopo/lcm/mesh_t.lcm share/meshtopo/lcm/query_t.lcm share/doc/meshtopo/README.md; do
+    [ -f "$prefix/$f" ] || fail "not installed: $f"
+done
+# The unit's documentation is a file URI naming an installed file.
+unit=$prefix/share/meshtopo/systemd/meshtopod.service
+if [ -f "$unit" ]; then
+    doc=$(sed -n 's|^Documentation=file://||p' "$unit")
+    [ -n "$doc" ] && [ -f "$doc" ] || fail "meshtopod.service: Documentation= names no installed file ($doc)"
+fi
 ls "$prefix/$libdir"/libmeshtopo-core.* "$prefix/$libdir"/libmeshtopo-io.* >/dev/null ||
     fail "libraries not installed in $prefix/$libdir"
 # The installed tool runs from the prefix (a shared build finds its libraries
