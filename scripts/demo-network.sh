@@ -21,7 +21,11 @@ meshtopod=$build/daemon/meshtopod
 # net.core.rmem_max).
 export MESHTOPO_LCM_URL="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
 log=$(mktemp /tmp/meshtopod-demo.XXXXXX)
-archive=$(mktemp -d /tmp/meshtopo-demo-archive.XXXXXX)
+# The archive stays after the demo, in the build tree, to be opened with VTK
+# or ParaView; each run starts it afresh.
+archive=$build/demo-archive
+rm -rf "$archive"
+mkdir -p "$archive"
 daemon_pid=
 
 stop_daemon() {
@@ -31,7 +35,7 @@ stop_daemon() {
         daemon_pid=
     fi
 }
-trap 'stop_daemon; rm -f "$log"; rm -rf "$archive"' EXIT
+trap 'stop_daemon; rm -f "$log"' EXIT
 
 run() {
     printf '\n$ meshtopo %s\n' "$*"
@@ -95,3 +99,6 @@ wait "$daemon_pid" || status=$?
 daemon_pid=
 echo "the restarted meshtopod exited with status $status"
 [ "$status" -eq 0 ]
+echo
+echo "== The archive stays in $archive: each file is VTKHDF (VTK's vtkHDFReader,"
+echo "==    h5py), with the face list and the report under /meshtopo."
