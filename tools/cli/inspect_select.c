@@ -56,6 +56,39 @@ typedef struct side_sweep {
     size_t num_valid_faces;
 } side_sweep;
 
+/* A growable list of face ids. */
+typedef struct face_list_buf {
+    uint32_t *ids;
+    size_t capacity, count;
+} face_list_buf;
+
+/* The faces on caller edge {a, b} into buf (grown as needed); none when
+ * no valid face uses the edge. */
+static mt_status faces_on_edge(const mt_mesh *mesh, uint32_t a, uint32_t b, face_list_buf *buf)
+{
+    mt_status st = mt_edge_faces(mesh, a, b, buf->ids, buf->capacity, &buf->count);
+    if (st == MT_ERR_BUFFER_TOO_SMALL || (st == MT_OK && !buf->ids)) {
+        uint32_t *grown = realloc(buf->ids, (buf->count + 1) * sizeof *grown);
+        if (!grown) return MT_ERR_NOMEM;
+        buf->ids = grown;
+        buf->capacity = buf->count + 1;
+        st = mt_edge_faces(mesh, a, b, buf->ids, buf->capacity, &buf->count);
+    }
+    if (st == MT_ERR_NOT_FOUND) buf->count = 0;
+    return st == MT_ERR_NOT_FOUND ? MT_OK : st;
+}
+
+static uint32_t smallest(const uint32_t *ids, size_t n, uint32_t best)
+{
+    for (size_t i = 0; i < n; i++)
+        if (ids[i] < best) best = ids[i];
+    return best;
+}
+
+/* The edges that matter are few: non-manifold and same-direction edges are
+ * the report's defects, and a boundary edge is an internal edge with a
+ * face on one side only that no other face uses. Each is looked up with
+ * mt_edge_faces; no per-face query is needed. */
 static mt_status sweep_sides(const mt_mesh *mesh, side_sweep *s)
 {
     s->min_face_nonmanifold = s->min_face_inconsistent = MT_NONE;
@@ -66,34 +99,37 @@ static mt_status sweep_sides(const mt_mesh *mesh, side_sweep *s)
     /* calloc checks the multiplication for overflow */
     s->valid_faces = calloc((size_t)view.num_faces + 1, sizeof *s->valid_faces);
     if (!s->valid_faces) return MT_ERR_NOMEM;
+    for (uint32_t f = 0; f < view.num_faces; f++)
+        if (view.face_he[f] != MT_NONE) s->valid_faces[s->num_valid_faces++] = f;
 
-    mt_face_corners corners = {0}, other = {0};
-    mt_face_adjacency adj = {0};
+    const mt_report *r = mt_mesh_report(mesh);
+    face_list_buf faces = {0};
     mt_status st = MT_OK;
-    for (uint32_t f = 0; f < view.num_faces && st == MT_OK; f++) {
-        if (view.face_he[f] == MT_NONE) continue; /* rejected record */
-        s->valid_faces[s->num_valid_faces++] = f;
-        st = mt_inspect_face_corners(mesh, f, &corners);
-        if (st == MT_OK) st = mt_inspect_face_adjacency(mesh, f, &adj);
-        for (size_t i = 0; st == MT_OK && i < adj.num_edges && i < corners.count; i++) {
-            size_t across = adj.offsets[i + 1] - adj.offsets[i];
-            if (across == 0) {
-                uint32_t a = corners.verts[i], b = corners.verts[(i + 1) % corners.count];
-                if (s->min_face_boundary == MT_NONE) s->min_face_boundary = f;
-                if (a < s->min_vert_boundary) s->min_vert_boundary = a;
-                if (b < s->min_vert_boundary) s->min_vert_boundary = b;
-            } else if (across >= 2) {
-                if (s->min_face_nonmanifold == MT_NONE) s->min_face_nonmanifold = f;
-            } else if (s->min_face_inconsistent == MT_NONE) {
-                mt_side_use use;
-                st = mt_inspect_side_use(mesh, &corners, &adj, i, &other, &use);
-                if (st == MT_OK && use.same_direction) s->min_face_inconsistent = f;
-            }
-        }
+    for (size_t i = 0; i < r->num_defects && st == MT_OK; i++) {
+        const mt_defect *d = &r->defects[i];
+        if (d->kind != MT_DEFECT_NONMANIFOLD_EDGE && d->kind != MT_DEFECT_SAME_DIRECTION_EDGE)
+            continue;
+        st = faces_on_edge(mesh, d->a, d->b, &faces);
+        if (st != MT_OK) break;
+        if (faces.count > 2)
+            s->min_face_nonmanifold = smallest(faces.ids, faces.count, s->min_face_nonmanifold);
+        else if (faces.count == 2 && d->kind == MT_DEFECT_SAME_DIRECTION_EDGE)
+            s->min_face_inconsistent = smallest(faces.ids, faces.count, s->min_face_inconsistent);
     }
-    mt_inspect_face_corners_free(&corners);
-    mt_inspect_face_corners_free(&other);
-    mt_inspect_face_adjacency_free(&adj);
+    for (uint32_t h = 0; h + 1 < view.num_half_edges && st == MT_OK; h += 2) {
+        if (view.he_head[h] == MT_NONE) continue; /* deleted */
+        const uint32_t f0 = view.he_face[h], f1 = view.he_face[h + 1];
+        if ((f0 == MT_NONE) == (f1 == MT_NONE)) continue; /* interior, or no face */
+        const uint32_t a = mt_vert_original(mesh, view.he_head[h + 1]);
+        const uint32_t b = mt_vert_original(mesh, view.he_head[h]);
+        st = faces_on_edge(mesh, a, b, &faces);
+        if (st != MT_OK || faces.count != 1) continue; /* a seam of a bundled edge */
+        const uint32_t f = f0 != MT_NONE ? f0 : f1;
+        if (f < s->min_face_boundary) s->min_face_boundary = f;
+        if (a < s->min_vert_boundary) s->min_vert_boundary = a;
+        if (b < s->min_vert_boundary) s->min_vert_boundary = b;
+    }
+    free(faces.ids);
     if (st != MT_OK) {
         free(s->valid_faces);
         s->valid_faces = NULL;
