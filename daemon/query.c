@@ -13,6 +13,7 @@
 #include <inttypes.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +32,10 @@ struct mtd_queries {
     mtd_replies *replies;
     mtd_cluster *cluster;  /* NULL without --cluster */
     mtd_fair_share *share; /* the LCM thread's time, per reply channel */
+    /* Self-intersection checks handed to a worker and not yet answered:
+     * at most one, so that senders asking for them (any node may) never
+     * hold more than one worker away from the builds. */
+    atomic_uint self_checks;
 };
 
 /* A growable array of int32_t (int8_t ones are stored widened, then narrowed). */
@@ -784,6 +789,8 @@ static void load_job_run(void *arg, bool cancelled)
     } else {
         answer_query(job->queries, q, true);
     }
+    if (q->kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS)
+        atomic_fetch_sub(&job->queries->self_checks, 1);
     meshtopo_query_t_destroy(job->query);
     free(job);
 }
@@ -822,15 +829,17 @@ static void answer_query(mtd_queries *qs, const meshtopo_query_t *q, bool may_lo
         return;
     }
     /* The self-intersection check takes long enough on a large mesh to hold
-     * up every other request on the LCM thread: a worker answers it, or
-     * nobody when every worker is taken. */
+     * up every other request on the LCM thread: a worker answers it, one
+     * check at a time, or nobody when that one or every worker is taken. */
     if (a.status == MESHTOPO_STATUS_CODE_T_OK && !may_load &&
         q->kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS) {
-        if (defer_to_worker(qs, q)) {
+        if (atomic_fetch_add(&qs->self_checks, 1) == 0 && defer_to_worker(qs, q)) {
             answer_free(&a);
             return;
         }
-        fail(&a, MESHTOPO_STATUS_CODE_T_BUSY, "every worker is busy; ask again later");
+        atomic_fetch_sub(&qs->self_checks, 1);
+        fail(&a, MESHTOPO_STATUS_CODE_T_BUSY,
+             "a self-intersection check is running or every worker is busy; ask again later");
     }
     mtd_mesh_entry *entry = NULL;
     if (a.status == MESHTOPO_STATUS_CODE_T_OK) {
@@ -939,6 +948,7 @@ mt_status mtd_queries_create(mtd_store *store, mtd_pool *pool, mtd_replies *repl
     qs->pool = pool;
     qs->replies = replies;
     qs->cluster = cluster;
+    atomic_init(&qs->self_checks, 0);
     if (mtd_fair_share_create(&qs->share) != MT_OK) {
         free(qs);
         *out_queries = NULL;

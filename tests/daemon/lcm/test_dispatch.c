@@ -1502,6 +1502,48 @@ static void test_self_intersections_kind(void)
     fixture_free(&fx);
 }
 
+/* Any node may ask for self-intersection checks, each long on a large
+ * mesh: one runs at a time (on a worker), a second asked meanwhile is
+ * answered BUSY, the next one after it is served, and so are other
+ * requests throughout. */
+static void test_self_intersections_one_at_a_time(void)
+{
+    fixture fx;
+    fixture_init(&fx);
+    mt_face_list grid;
+    CHECK_OK(mt_gen_grid(300, 300, true, &grid)); /* 180,000 triangles: a check takes a while */
+    CHECK_EQ(submit_ok(&fx, "big", &grid), 1);
+    meshtopo_query_t q;
+    memset(&q, 0, sizeof q);
+    q.reply_channel = REPLY_CHANNEL;
+    q.instance = "";
+    q.mesh_id = "big";
+    q.kind = MESHTOPO_QUERY_T_SELF_INTERSECTIONS;
+    const int64_t first = fx.next_request_id++, second = fx.next_request_id++;
+    q.request_id = first;
+    publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    q.request_id = second;
+    publish(&fx, "MESHTOPO_QUERY", &mt_msgs_type_query, &q);
+    meshtopo_reply_t r;
+    if (wait_for(&fx, &mt_msgs_type_reply, second, &r) == 0) {
+        CHECK_ERROR(r.status, r.error, MESHTOPO_STATUS_CODE_T_BUSY, "self-intersection check");
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    if (wait_for(&fx, &mt_msgs_type_reply, first, &r) == 0) {
+        CHECK_EQ(r.status, MESHTOPO_STATUS_CODE_T_OK);
+        CHECK_EQ(r.num_items, 1);
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    /* The first one answered, the next is served. */
+    if (query(&fx, "big", 0, MESHTOPO_QUERY_T_SELF_INTERSECTIONS, NULL, 0, &r) == 0) {
+        CHECK_EQ(r.status, MESHTOPO_STATUS_CODE_T_OK);
+        meshtopo_reply_t_decode_cleanup(&r);
+    }
+    check_still_serving(&fx, "big");
+    mt_face_list_free(&grid);
+    fixture_free(&fx);
+}
+
 static void test_nan_positions(void)
 {
     fixture fx;
@@ -1831,6 +1873,7 @@ static const mt_test_case cases[] = {
     {"bad_queries", test_bad_queries},
     {"geometry_kinds", test_geometry_kinds},
     {"self_intersections_kind", test_self_intersections_kind},
+    {"self_intersections_one_at_a_time", test_self_intersections_one_at_a_time},
     {"nan_positions", test_nan_positions},
     {"duplicate_request", test_duplicate_request},
     {"request_id_shared_by_kinds", test_request_id_shared_by_kinds},
