@@ -781,6 +781,10 @@ static void load_job_run(void *arg, bool cancelled)
     load_job *job = arg;
     const meshtopo_query_t *q = job->query;
     if (cancelled) {
+        /* A self-intersection check's turn ends before its answer goes
+         * out, so that asking again on the answer is not told it runs. */
+        if (q->kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS)
+            atomic_fetch_sub(&job->queries->self_checks, 1);
         mtd_reply_abandon(job->queries->replies, q->reply_channel, q->request_id,
                           &mt_msgs_type_reply);
         mtd_reply_query_error(job->queries->replies, q->reply_channel, q->request_id, q->mesh_id,
@@ -789,8 +793,6 @@ static void load_job_run(void *arg, bool cancelled)
     } else {
         answer_query(job->queries, q, true);
     }
-    if (q->kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS)
-        atomic_fetch_sub(&job->queries->self_checks, 1);
     meshtopo_query_t_destroy(job->query);
     free(job);
 }
@@ -914,6 +916,8 @@ static void answer_query(mtd_queries *qs, const meshtopo_query_t *q, bool may_lo
             }
         }
     }
+    if (may_load && q->kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS)
+        atomic_fetch_sub(&qs->self_checks, 1); /* its turn ends before its answer goes out */
     send_answer(qs->replies, q, &a, version, have_report ? &report : NULL, NULL);
     if (have_report) mtd_topology_free(&report);
     mtd_entry_release(entry);
