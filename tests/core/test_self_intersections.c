@@ -1,7 +1,8 @@
 /* Tests of mt_mesh_self_intersections on hand-built meshes whose answers
  * are worked out in the comments: an octahedron with one apex pushed out
  * through the opposite face, two interpenetrating tetrahedra, faces that only
- * touch along what they share, coplanar overlaps and folds, a mesh of
+ * touch along what they share, closed fans that wind twice around their
+ * vertex, coplanar overlaps and folds, a mesh of
  * degenerate triangles, polygon faces (a concave one whose notch another face
  * passes through), faces skipped for NaN corners or deletion, the size query
  * and a short buffer; and, on a soup of random triangles large enough to be
@@ -124,6 +125,45 @@ static void test_selfx_touching_not_crossing(void)
     const uint32_t stand_faces[] = {0, 1, 2, 0, 3, 4};
     mesh = mesh_of(stand, 5, stand_faces, NULL, 2);
     CHECK_PAIRS(mesh, "");
+    mt_mesh_destroy(mesh);
+}
+
+/* A double pyramid over the five points a_i at 144 i degrees on the unit
+ * circle (z = 0), apexes v = (0, 0, 1) and w = (0, 0, -1): top faces
+ * T_i = (v, a_i, a_i+1) (ids 0-4), bottom faces B_i = (w, a_i+1, a_i)
+ * (ids 5-9). A closed manifold mesh, every vertex with one closed fan.
+ * With step 72 degrees (`winding` 1) the base is a pentagon and nothing
+ * crosses. With step 144 (winding 2) it is a pentagram: the fans of v and
+ * w wind twice around them, so they are not flat, and chord i of the base
+ * crosses chords i + 2 and i + 3. T_i and T_j of crossing chords share v
+ * and meet along a segment from it (5 pairs), B_i and B_j likewise (5),
+ * and T_i meets B_j where chords i and j cross (10). */
+static mt_mesh *double_pyramid(int winding)
+{
+    double pos[3 * 7] = {0, 0, 1, 0, 0, -1};
+    uint32_t faces[3 * 10];
+    for (uint32_t i = 0; i < 5; i++) {
+        const double angle = winding * 72.0 * i * 3.14159265358979323846 / 180.0;
+        pos[3 * (2 + i)] = cos(angle);
+        pos[3 * (2 + i) + 1] = sin(angle);
+        pos[3 * (2 + i) + 2] = 0;
+        const uint32_t a = 2 + i, b = 2 + (i + 1) % 5;
+        const uint32_t top[3] = {0, a, b}, bottom[3] = {1, b, a};
+        memcpy(faces + 3 * i, top, sizeof top);
+        memcpy(faces + 3 * (5 + i), bottom, sizeof bottom);
+    }
+    return mesh_of(pos, 7, faces, NULL, 10);
+}
+
+static void test_selfx_fans_winding_twice(void)
+{
+    mt_mesh *mesh = double_pyramid(1);
+    CHECK_PAIRS(mesh, "");
+    mt_mesh_destroy(mesh);
+    mesh = double_pyramid(2);
+    CHECK_PAIRS(mesh,
+                "0-2 0-3 0-7 0-8 1-3 1-4 1-8 1-9 2-4 2-5 2-9 3-5 3-6 4-6 4-7 "
+                "5-7 5-8 6-8 6-9 7-9");
     mt_mesh_destroy(mesh);
 }
 
@@ -301,6 +341,7 @@ static const mt_test_case cases[] = {
     {"selfx_octahedron_pushed_through", test_selfx_octahedron_pushed_through},
     {"selfx_interpenetrating_tetrahedra", test_selfx_interpenetrating_tetrahedra},
     {"selfx_touching_not_crossing", test_selfx_touching_not_crossing},
+    {"selfx_fans_winding_twice", test_selfx_fans_winding_twice},
     {"selfx_coplanar", test_selfx_coplanar},
     {"selfx_degenerate", test_selfx_degenerate},
     {"selfx_polygons", test_selfx_polygons},

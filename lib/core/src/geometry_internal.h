@@ -105,6 +105,26 @@ typedef bool (*mt__diagonal_ok)(void *user, uint32_t i, uint32_t j);
 bool mt__ear_clip(const double *const *pos, uint32_t n, mt__diagonal_ok diagonal_ok, void *user,
                   uint32_t *rem, uint32_t *out_tris);
 
+/* The most threads a whole-mesh geometry query uses. */
+enum { MT__MAX_THREADS = 8 };
+
+/* A triangle of a face (polygons give several): its corners' caller ids,
+ * in the face's orientation. */
+typedef struct mt__tri {
+    uint32_t v[3];
+    uint32_t face;
+} mt__tri;
+
+/* Which caller vertices have flat fans (flat_fans.c): flat[v] stays 1 when
+ * v's faces are one closed fan of triangles that projects one-to-one onto a
+ * coordinate plane, so that two of them meet only at v and along the sides
+ * they share (exact tests), and becomes 0 otherwise. On entry flat[v] is 0
+ * for vertices already known not to qualify (corners of polygon faces and
+ * of faces left out), 1 for the others. tris are every triangle of the
+ * mesh's faces, read in the order given; `threads` share the vertices. */
+mt_status mt__flat_fans(const mt_mesh *m, const mt__tri *tris, uint32_t num_tris, uint32_t threads,
+                        uint8_t *flat);
+
 /* Whether triangles a and b of two different faces (caller corner ids ia,
  * ib; corner positions pa, pb) meet other than at the corners they share and
  * along a side they share: the rules of mt_mesh_self_intersections, decided

@@ -5,10 +5,11 @@
  * binary tree (node k has children 2k and 2k + 1, leaves hold LEAF_SIZE
  * consecutive triangles). The tree is then traversed against itself, pairs
  * of nodes whose boxes overlap down to pairs of leaves, so every pair of
- * triangles is met once, and the exact narrow phase (mt__triangles_cross)
- * decides. The pairs of subtrees a few levels down are independent tasks
- * that threads take from a shared counter. Boxes are floats rounded
- * outwards, so they never miss a pair. */
+ * triangles is met once. Pairs sharing a vertex whose fan is flat
+ * (flat_fans.c) cannot cross and are passed over; the exact narrow phase
+ * (mt__triangles_cross) decides the others. The pairs of subtrees a few
+ * levels down are independent tasks that threads take from a shared
+ * counter. Boxes are floats rounded outwards, so they never miss a pair. */
 #include <float.h>
 #include <math.h>
 #include <pthread.h>
@@ -22,16 +23,10 @@
 enum {
     LEAF_SIZE = 4,         /* triangles per leaf of the tree */
     TASKS_PER_THREAD = 64, /* pairs of subtrees the threads share, per thread */
-    MAX_THREADS = 8,       /* the most threads the queries use */
     MIN_PARALLEL = 20000,  /* fewer triangles than this are checked on one thread */
     MORTON_BITS = 10,      /* bits per axis of a cell of the Morton curve (spread3 takes 10) */
     RADIX_BITS = 10        /* bits per pass of the sort */
 };
-
-typedef struct tri {
-    uint32_t v[3]; /* caller vertex ids */
-    uint32_t face;
-} tri;
 
 typedef struct box {
     float lo[3], hi[3];
@@ -50,9 +45,8 @@ typedef struct node_pair {
 
 typedef struct check {
     const mt_mesh *m;
-    tri *tris;       /* in Morton order */
-    double *corners; /* [9 * num_tris]: each triangle's corner positions, in that order,
-                        so that the narrow phase reads memory in order */
+    mt__tri *tris;         /* in Morton order */
+    uint8_t *flat_corners; /* bit k: corner k of the triangle has a flat fan */
     box *boxes;
     uint32_t num_tris;
     box *nodes;          /* [2 * num_leaves]; node 0 unused */
@@ -70,13 +64,26 @@ typedef struct worker {
     mt__vec pairs; /* mt_face_pair, unsorted, possibly repeated */
 } worker;
 
+/* The float next to finite f towards -infinity (step -1) or +infinity
+ * (step +1), by its bits: nextafterf is a library call, and this runs six
+ * times per triangle. */
+static float float_step(float f, int step)
+{
+    if (f == 0) return step < 0 ? -FLT_TRUE_MIN : FLT_TRUE_MIN;
+    uint32_t bits;
+    memcpy(&bits, &f, sizeof bits);
+    bits = (f > 0) == (step > 0) ? bits + 1 : bits - 1; /* away from zero, or towards it */
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
 /* x rounded to a float not above it (not below it: up). */
 static float down(double x)
 {
     if (x >= FLT_MAX) return FLT_MAX;
     if (x < -FLT_MAX) return -INFINITY;
     float f = (float)x;
-    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+    return (double)f > x ? float_step(f, -1) : f;
 }
 
 static float up(double x)
@@ -84,7 +91,7 @@ static float up(double x)
     if (x <= -FLT_MAX) return -FLT_MAX;
     if (x > FLT_MAX) return INFINITY;
     float f = (float)x;
-    return (double)f < x ? nextafterf(f, INFINITY) : f;
+    return (double)f < x ? float_step(f, +1) : f;
 }
 
 static bool overlap(const box *a, const box *b)
@@ -153,7 +160,7 @@ static bool finite_corners(const mt_mesh *m, const uint32_t *verts, uint32_t n)
 
 /* Triangles with their boxes. */
 typedef struct tri_set {
-    tri *tris;
+    mt__tri *tris;
     box *boxes;
     size_t len, cap;
 } tri_set;
@@ -169,7 +176,7 @@ static void tri_set_free(tri_set *t)
 static mt_status tri_set_reserve(tri_set *t, size_t cap)
 {
     if (cap <= t->cap) return MT_OK;
-    tri *tris = mt__realloc(t->tris, cap * sizeof *tris);
+    mt__tri *tris = mt__realloc(t->tris, cap * sizeof *tris);
     if (tris) t->tris = tris;
     box *boxes = tris ? mt__realloc(t->boxes, cap * sizeof *boxes) : NULL;
     if (!boxes) return MT_ERR_NOMEM;
@@ -184,7 +191,7 @@ static mt_status tri_set_add(tri_set *t, const mt_mesh *m, uint32_t a, uint32_t 
 {
     if (t->len == t->cap && tri_set_reserve(t, t->cap ? 2 * t->cap : 64) != MT_OK)
         return MT_ERR_NOMEM;
-    const tri one = {{a, b, c}, f};
+    const mt__tri one = {{a, b, c}, f};
     const double *pa = m->positions + 3 * (size_t)a, *pb = m->positions + 3 * (size_t)b,
                  *pc = m->positions + 3 * (size_t)c;
     box *bx = &t->boxes[t->len];
@@ -229,6 +236,7 @@ typedef struct collector {
     pthread_t thread;
     const mt_mesh *m;
     uint32_t first, end;
+    mt__vec unflat; /* corners of polygon faces and of faces left out (mt__flat_fans) */
     tri_set out;
     mt_status status;
     uint32_t failed_face;
@@ -242,8 +250,10 @@ static void *collect_range(void *arg)
     for (uint32_t f = c->first; f < c->end && c->status == MT_OK; f++) {
         if (c->m->face_he[f] == MT_NONE) continue; /* rejected or deleted */
         const uint32_t n = face_corners(c->m, f, &verts, &c->status);
-        if (n >= 3 && finite_corners(c->m, verts.data, n))
-            c->status = add_face(c->m, f, verts.data, n, &c->out);
+        const bool judged = n >= 3 && finite_corners(c->m, verts.data, n);
+        if (judged) c->status = add_face(c->m, f, verts.data, n, &c->out);
+        for (uint32_t k = 0; k < n && (n > 3 || !judged) && c->status == MT_OK; k++)
+            c->status = push_u32(&c->unflat, ((const uint32_t *)verts.data)[k]);
         if (c->status != MT_OK) c->failed_face = f;
     }
     mt__vec_free(&verts);
@@ -251,24 +261,26 @@ static void *collect_range(void *arg)
 }
 
 /* Threads for a mesh of `faces` faces: one below MIN_PARALLEL, else one
- * per core up to MAX_THREADS. */
+ * per core up to MT__MAX_THREADS. */
 static uint32_t threads_for(uint32_t faces)
 {
     const long cores = sysconf(_SC_NPROCESSORS_ONLN);
     if (faces < MIN_PARALLEL || cores < 2) return 1;
-    return cores < MAX_THREADS ? (uint32_t)cores : MAX_THREADS;
+    return cores < MT__MAX_THREADS ? (uint32_t)cores : MT__MAX_THREADS;
 }
 
 /* Every judged face's triangles, in face order: those of parts[0], then
- * parts[1], ... (one per thread; left in place, not copied together). */
-static mt_status collect(const mt_mesh *m, uint32_t threads, collector *parts, mt_diag *diag,
-                         const char *what)
+ * parts[1], ... (one per thread; left in place, not copied together), and
+ * flat[] as mt__flat_fans takes it. */
+static mt_status collect(const mt_mesh *m, uint32_t threads, collector *parts, uint8_t *flat,
+                         mt_diag *diag, const char *what)
 {
-    bool started[MAX_THREADS] = {false};
+    bool started[MT__MAX_THREADS] = {false};
     for (uint32_t t = 0; t < threads; t++)
         parts[t] = (collector){.m = m,
                                .first = (uint32_t)((uint64_t)m->num_faces * t / threads),
-                               .end = (uint32_t)((uint64_t)m->num_faces * (t + 1) / threads)};
+                               .end = (uint32_t)((uint64_t)m->num_faces * (t + 1) / threads),
+                               .unflat = {.elem_size = sizeof(uint32_t)}};
     for (uint32_t t = 1; t < threads; t++)
         started[t] = pthread_create(&parts[t].thread, NULL, collect_range, &parts[t]) == 0;
     collect_range(&parts[0]);
@@ -277,6 +289,12 @@ static mt_status collect(const mt_mesh *m, uint32_t threads, collector *parts, m
             pthread_join(parts[t].thread, NULL);
         else
             collect_range(&parts[t]); /* a thread that did not start: its range here */
+    }
+    memset(flat, 1, m->num_verts);
+    for (uint32_t t = 0; t < threads; t++) {
+        for (size_t i = 0; i < parts[t].unflat.len; i++)
+            flat[((const uint32_t *)parts[t].unflat.data)[i]] = 0;
+        mt__vec_free(&parts[t].unflat);
     }
     for (uint32_t t = 0; t < threads; t++)
         if (parts[t].status != MT_OK)
@@ -324,7 +342,7 @@ static mt_status radix_sort(sorted_tri *items, uint32_t n)
 }
 
 /* Sorts the triangles of the parts along the Morton curve of their
- * boxes' centres into c's arrays, with their corners. */
+ * boxes' centres into c's arrays. */
 static mt_status order_triangles(check *c, const collector *parts, uint32_t num_parts)
 {
     const uint32_t n = c->num_tris;
@@ -353,12 +371,9 @@ static mt_status order_triangles(check *c, const collector *parts, uint32_t num_
     for (uint32_t i = 0; s == MT_OK && i < n; i++) {
         uint32_t from = order[i].index, p = 0;
         while (from >= parts[p].out.len) from -= (uint32_t)parts[p++].out.len;
-        const tri *t = &parts[p].out.tris[from];
+        const mt__tri *t = &parts[p].out.tris[from];
         c->tris[i] = *t;
         c->boxes[i] = parts[p].out.boxes[from];
-        for (int k = 0; k < 3; k++)
-            memcpy(c->corners + 9 * (size_t)i + 3 * k, c->m->positions + 3 * (size_t)t->v[k],
-                   3 * sizeof(double));
     }
     mt__free(order);
     return s;
@@ -383,9 +398,12 @@ static void build_tree(check *c)
 /* Narrow phase of triangles i and j (different faces). */
 static mt_status test_pair(const check *c, uint32_t i, uint32_t j, mt__vec *pairs)
 {
-    const tri *a = &c->tris[i], *b = &c->tris[j];
-    const double *ca = c->corners + 9 * (size_t)i, *cb = c->corners + 9 * (size_t)j;
-    const double *const pa[3] = {ca, ca + 3, ca + 6}, *const pb[3] = {cb, cb + 3, cb + 6};
+    const mt__tri *a = &c->tris[i], *b = &c->tris[j];
+    const double *pos = c->m->positions;
+    const double *const pa[3] = {pos + 3 * (size_t)a->v[0], pos + 3 * (size_t)a->v[1],
+                                 pos + 3 * (size_t)a->v[2]};
+    const double *const pb[3] = {pos + 3 * (size_t)b->v[0], pos + 3 * (size_t)b->v[1],
+                                 pos + 3 * (size_t)b->v[2]};
     if (!mt__triangles_cross(a->v, pa, b->v, pb)) return MT_OK;
     const mt_face_pair p = {a->face < b->face ? a->face : b->face,
                             a->face < b->face ? b->face : a->face};
@@ -400,6 +418,26 @@ static void leaf_range(const check *c, uint32_t k, uint32_t *first, uint32_t *en
     *end = hi < c->num_tris ? (uint32_t)hi : c->num_tris;
 }
 
+/* Whether triangles i and j share a corner with a flat fan: then they
+ * meet only at their shared corners and sides. */
+static bool share_flat_corner(const check *c, uint32_t i, uint32_t j)
+{
+    const uint32_t *a = c->tris[i].v, *b = c->tris[j].v;
+    for (int k = 0; k < 3; k++)
+        if ((c->flat_corners[i] >> k & 1u) && (a[k] == b[0] || a[k] == b[1] || a[k] == b[2]))
+            return true;
+    return false;
+}
+
+/* Triangles i and j if their boxes overlap and they may cross. */
+static mt_status maybe_test_pair(const check *c, uint32_t i, uint32_t j, mt__vec *pairs)
+{
+    if (c->tris[i].face == c->tris[j].face || !overlap(&c->boxes[i], &c->boxes[j]) ||
+        share_flat_corner(c, i, j))
+        return MT_OK;
+    return test_pair(c, i, j, pairs);
+}
+
 /* Every triangle of leaf a against every one of leaf b (each pair once
  * when a == b) whose boxes overlap. */
 static mt_status leaf_pairs(const check *c, uint32_t a, uint32_t b, mt__vec *pairs)
@@ -410,9 +448,7 @@ static mt_status leaf_pairs(const check *c, uint32_t a, uint32_t b, mt__vec *pai
     for (uint32_t i = a0; i < a1; i++) {
         if (a != b && !overlap(&c->boxes[i], &c->nodes[b])) continue; /* misses all of b */
         for (uint32_t j = a == b ? i + 1 : b0; j < b1; j++) {
-            if (c->tris[i].face == c->tris[j].face || !overlap(&c->boxes[i], &c->boxes[j]))
-                continue;
-            mt_status s = test_pair(c, i, j, pairs);
+            mt_status s = maybe_test_pair(c, i, j, pairs);
             if (s != MT_OK) return s;
         }
     }
@@ -424,8 +460,14 @@ static int children(const check *c, node_pair p, node_pair out[4])
 {
     int n = 0;
     const uint32_t a = 2 * p.a, b = 2 * p.b;
+    if (p.a == p.b) { /* a node with itself: each child with itself unless empty, and the two */
+        for (uint32_t k = a; k <= a + 1; k++)
+            if (c->nodes[k].lo[0] <= c->nodes[k].hi[0]) out[n++] = (node_pair){k, k};
+        if (overlap(&c->nodes[a], &c->nodes[a + 1])) out[n++] = (node_pair){a, a + 1};
+        return n;
+    }
     const node_pair all[4] = {{a, b}, {a, b + 1}, {a + 1, b + 1}, {a + 1, b}};
-    for (int i = 0; i < (p.a == p.b ? 3 : 4); i++) /* a node with itself: 3 pairs */
+    for (int i = 0; i < 4; i++)
         if (overlap(&c->nodes[all[i].a], &c->nodes[all[i].b])) out[n++] = all[i];
     return n;
 }
@@ -500,15 +542,15 @@ static int compare_pairs(const void *pa, const void *pb)
     return (a->b > b->b) - (a->b < b->b);
 }
 
-/* Runs the queries on up to MAX_THREADS threads and gathers their pairs,
+/* Runs the queries on up to MT__MAX_THREADS threads and gathers their pairs,
  * sorted and without repeats, into out. */
 static mt_status run_all(check *c, mt__vec *out)
 {
     const uint32_t threads = c->threads;
     mt_status made = make_tasks(c, TASKS_PER_THREAD * threads);
     if (made != MT_OK) return made;
-    worker workers[MAX_THREADS];
-    bool started[MAX_THREADS] = {false};
+    worker workers[MT__MAX_THREADS];
+    bool started[MT__MAX_THREADS] = {false};
     for (uint32_t t = 0; t < threads; t++)
         workers[t] = (worker){.c = c, .pairs = {.elem_size = sizeof(mt_face_pair)}};
     for (uint32_t t = 1; t < threads; t++)
@@ -534,9 +576,13 @@ static mt_status run_all(check *c, mt__vec *out)
 /* Every intersecting pair into pairs (sorted, no repeats). */
 static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, const char *what)
 {
-    collector parts[MAX_THREADS];
+    collector parts[MT__MAX_THREADS];
     const uint32_t threads = threads_for(m->num_faces);
-    mt_status s = collect(m, threads, parts, diag, what);
+    uint8_t *flat = mt__malloc(m->num_verts);
+    if (!flat)
+        return mt__fail(diag, MT_ERR_NOMEM, MT_NONE, "%s: no memory for %u vertices", what,
+                        m->num_verts);
+    mt_status s = collect(m, threads, parts, flat, diag, what);
     size_t total = 0;
     for (uint32_t t = 0; t < threads; t++) total += parts[t].out.len;
     check c = {.m = m, .num_tris = (uint32_t)total, .num_leaves = 1, .threads = threads};
@@ -548,11 +594,16 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
         c.tris = mt__malloc((size_t)c.num_tris * sizeof *c.tris);
         c.boxes = mt__malloc((size_t)c.num_tris * sizeof *c.boxes);
         c.nodes = mt__malloc(2 * (size_t)c.num_leaves * sizeof *c.nodes);
-        c.corners = mt__malloc(9 * (size_t)c.num_tris * sizeof *c.corners);
-        s = c.tris && c.boxes && c.nodes && c.corners ? order_triangles(&c, parts, threads)
-                                                      : MT_ERR_NOMEM;
+        c.flat_corners = mt__malloc(c.num_tris);
+        s = c.tris && c.boxes && c.nodes && c.flat_corners ? order_triangles(&c, parts, threads)
+                                                           : MT_ERR_NOMEM;
         for (uint32_t t = 0; t < threads; t++) tri_set_free(&parts[t].out);
+        if (s == MT_OK) s = mt__flat_fans(m, c.tris, c.num_tris, threads, flat);
         if (s == MT_OK) {
+            for (uint32_t i = 0; i < c.num_tris; i++) {
+                const uint32_t *v = c.tris[i].v;
+                c.flat_corners[i] = (uint8_t)(flat[v[0]] | flat[v[1]] << 1 | flat[v[2]] << 2);
+            }
             build_tree(&c);
             s = run_all(&c, pairs);
         }
@@ -564,8 +615,9 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
     mt__free(c.tris);
     mt__free(c.boxes);
     mt__free(c.nodes);
-    mt__free(c.corners);
+    mt__free(c.flat_corners);
     mt__free(c.tasks);
+    mt__free(flat);
     return s;
 }
 
