@@ -1,7 +1,8 @@
 /* A topology report as the CLI prints it: the core's mt_report, how much of
  * its lists is present and, for a report from meshtopod, where it came from.
- * mt_cli_report_from_topology is the one place that reads a topology_t's
- * report fields; every printer of a report reads an mt_cli_report. */
+ * mt_cli_report_from_topology takes a topology_t's report fields from the
+ * client library (mt_client_report_from_topology); every printer of a
+ * report reads an mt_cli_report. */
 #ifndef MESHTOPO_CLI_REPORT_H
 #define MESHTOPO_CLI_REPORT_H
 
@@ -10,9 +11,11 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "json_writer.h"
+#include "meshtopo/client_report.h"
+#include "meshtopo/json_writer.h"
 #include "meshtopo/msgs.h"
 #include "meshtopo/report.h"
+#include "meshtopo/report_json.h"
 #include "meshtopo/status.h"
 
 typedef struct mt_cli_report {
@@ -65,23 +68,9 @@ void mt_cli_report_print_text(const mt_cli_report *r, FILE *out);
 /* The same on one line, after the channel it came on (watch). */
 void mt_cli_report_print_line(const mt_cli_report *r, const char *channel, FILE *out);
 
-/* Which keys the JSON summary carries besides the ones both forms share. */
-typedef enum mt_cli_report_keys {
-    /* The corpus reference answers' (inspect --json, DEFINITIONS.md):
-     * nonmanifold_vertices_list_head and component_genera. */
-    MT_CLI_REPORT_KEYS_CORPUS,
-    /* Every count meshtopod sends: duplicate_faces and nonfinite_vertices. */
-    MT_CLI_REPORT_KEYS_DAEMON
-} mt_cli_report_keys;
-
-/* Writes the report's members (V, F, ... components) into the JSON object
- * being written, in the corpus answers' order; undefined genera are null.
- * false when out of memory (the document is then incomplete). */
-bool mt_cli_report_write_summary(mt_json *j, const mt_cli_report *r, mt_cli_report_keys keys);
-
-/* The report from meshtopod as one JSON object: provenance, the summary with
- * MT_CLI_REPORT_KEYS_DAEMON, num_defects and the listed defects {kind, a, b,
- * c}. false when out of memory. */
+/* The report from meshtopod as one JSON object: provenance, the summary
+ * (mt_report_json_write_summary) with MT_REPORT_JSON_KEYS_DAEMON, num_defects and the listed
+ * defects {kind, a, b, c}. false when out of memory. */
 bool mt_cli_report_write_json(mt_json *j, const mt_cli_report *r);
 
 #endif

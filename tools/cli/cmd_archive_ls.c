@@ -6,7 +6,7 @@
 #include <time.h>
 
 #include "cmd_archive.h"
-#include "json_writer.h"
+#include "meshtopo/json_writer.h"
 #include "remote.h"
 
 /* utime (microseconds since the epoch) as "2026-11-22T07:44:03.123456Z". */

@@ -9,7 +9,7 @@
 
 #include "cmd_archive.h"
 #include "inspect.h"
-#include "json_writer.h"
+#include "meshtopo/json_writer.h"
 #include "remote.h"
 
 static void json_report(mt_json *j, const mt_report *r)

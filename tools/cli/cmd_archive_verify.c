@@ -8,7 +8,7 @@
 #include <stdio.h>
 
 #include "cmd_archive.h"
-#include "json_writer.h"
+#include "meshtopo/json_writer.h"
 
 int mt_cli_archive_verify(const mt_cli_args *args)
 {

@@ -10,8 +10,8 @@
 #include <stdio.h>
 
 #include "cli.h"
-#include "json_writer.h"
 #include "meshtopo/geometry.h"
+#include "meshtopo/json_writer.h"
 #include "meshtopo/mesh.h"
 #include "meshtopo/query.h"
 #include "meshtopo/report.h"
@@ -90,7 +90,8 @@ mt_status mt_inspect_side_use(const mt_mesh *mesh, const mt_face_corners *corner
                               const mt_face_adjacency *adj, size_t side, mt_face_corners *scratch,
                               mt_side_use *out);
 
-/* Fills the default vertex and/or face queries (DEFINITIONS.md "Queries"). */
+/* Fills the default vertex and/or face queries (DEFINITIONS.md "Queries",
+ * chosen by mt_report_json_default_queries). */
 mt_status mt_inspect_default_queries(const mt_mesh *mesh, bool want_vertices,
                                      mt_id_list *out_vertices, bool want_faces,
                                      mt_id_list *out_faces);

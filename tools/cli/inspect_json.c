@@ -1,15 +1,17 @@
 /* `meshtopo inspect --json`: one JSON object with exactly the keys of the
  * corpus answers (shared/corpus/DEFINITIONS.md) in their order, so it diffs
- * cleanly against NAME.expected.json (which adds only "oracle_version");
- * undefined genera are null (the summary is cli_report_json.c's, shared with
- * the daemon's reports); --weld appends "weld", --json-defects "defects". Built in memory and
- * written only when every query succeeded: never half a document. */
+ * cleanly against NAME.expected.json (which adds only "oracle_version"):
+ * meshtopo::json writes them (the same document the Python binding reads);
+ * --weld appends "weld", --self-intersections the geometry, --json-defects
+ * "defects". Built in memory and written only when every query succeeded:
+ * never half a document. */
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli_report.h"
+#include "cli.h"
 #include "inspect.h"
-#include "json_writer.h"
+#include "meshtopo/json_writer.h"
+#include "meshtopo/report_json.h"
 
 static void write_ids(mt_json *j, const uint32_t *ids, size_t count)
 {
@@ -18,69 +20,31 @@ static void write_ids(mt_json *j, const uint32_t *ids, size_t count)
     mt_json_array_end(j);
 }
 
-static mt_status write_vertex_queries(mt_json *j, const mt_mesh *mesh, const mt_id_list *verts,
-                                      uint32_t *failed)
+/* One list of default queries as an mt_id_list (malloc'ed). */
+static mt_status store_ids(const uint32_t *ids, size_t count, mt_id_list *out)
 {
-    mt_ring ring;
-    memset(&ring, 0, sizeof ring);
-    mt_status st = MT_OK;
-    mt_json_array_begin(j);
-    for (size_t i = 0; i < verts->count && st == MT_OK; i++) {
-        uint32_t v = verts->ids[i];
-        st = mt_inspect_ring(mesh, v, &ring);
-        if (st != MT_OK) {
-            *failed = v;
-            break;
-        }
-        size_t nn = mt_inspect_sort_unique(ring.neighbors, ring.num_neighbors);
-        size_t nf = mt_inspect_sort_unique(ring.faces, ring.num_faces);
-        mt_json_object_begin(j);
-        mt_json_key(j, "vertex");
-        mt_json_uint(j, v);
-        mt_json_key(j, "neighbors");
-        write_ids(j, ring.neighbors, nn);
-        mt_json_key(j, "faces");
-        write_ids(j, ring.faces, nf);
-        mt_json_object_end(j);
-    }
-    mt_json_array_end(j);
-    mt_inspect_ring_free(&ring);
-    return st;
+    memset(out, 0, sizeof *out);
+    if (count == 0) return MT_OK;
+    out->ids = malloc(count * sizeof *out->ids);
+    if (!out->ids) return MT_ERR_NOMEM;
+    memcpy(out->ids, ids, count * sizeof *out->ids);
+    out->count = count;
+    return MT_OK;
 }
 
-static mt_status write_face_queries(mt_json *j, const mt_mesh *mesh, const mt_id_list *faces,
-                                    uint32_t *failed)
+mt_status mt_inspect_default_queries(const mt_mesh *mesh, bool want_vertices,
+                                     mt_id_list *out_vertices, bool want_faces,
+                                     mt_id_list *out_faces)
 {
-    mt_face_adjacency adj;
-    memset(&adj, 0, sizeof adj);
-    mt_status st = MT_OK;
-    mt_json_array_begin(j);
-    for (size_t i = 0; i < faces->count; i++) {
-        uint32_t f = faces->ids[i];
-        st = mt_inspect_face_adjacency(mesh, f, &adj);
-        mt_json_object_begin(j);
-        mt_json_key(j, "face");
-        mt_json_uint(j, f);
-        mt_json_key(j, "adjacent_faces");
-        if (st == MT_ERR_NOT_FOUND) {
-            mt_json_null(j); /* a rejected record has no adjacency */
-            st = MT_OK;
-        } else if (st == MT_OK) {
-            size_t n = mt_inspect_sort_unique(adj.faces, adj.num_faces);
-            size_t kept = 0;
-            for (size_t k = 0; k < n; k++)
-                if (adj.faces[k] != f) adj.faces[kept++] = adj.faces[k];
-            write_ids(j, adj.faces, kept);
-        } else {
-            *failed = f;
-            mt_json_null(j);
-            mt_json_object_end(j);
-            break;
-        }
-        mt_json_object_end(j);
+    uint32_t verts[MT_REPORT_JSON_MAX_QUERIES], faces[MT_REPORT_JSON_MAX_QUERIES];
+    size_t num_verts = 0, num_faces = 0;
+    mt_status st = mt_report_json_default_queries(mesh, want_vertices ? verts : NULL, &num_verts,
+                                                  want_faces ? faces : NULL, &num_faces);
+    if (st == MT_OK && want_vertices) st = store_ids(verts, num_verts, out_vertices);
+    if (st == MT_OK && want_faces) {
+        st = store_ids(faces, num_faces, out_faces);
+        if (st != MT_OK && want_vertices) mt_id_list_free(out_vertices);
     }
-    mt_json_array_end(j);
-    mt_inspect_face_adjacency_free(&adj);
     return st;
 }
 
@@ -197,23 +161,11 @@ int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
     mt_json j;
     mt_json_init(&j, mem);
     mt_json_object_begin(&j);
-    mt_cli_report summary = mt_cli_report_local(r);
-    bool ok = mt_cli_report_write_summary(&j, &summary, MT_CLI_REPORT_KEYS_CORPUS);
-    uint32_t failed = MT_NONE;
-    mt_status st = MT_OK;
-    const char *what = "vertex";
-    if (ok) {
-        mt_json_key(&j, "vertex_queries");
-        st = write_vertex_queries(&j, mesh, &req->vertices, &failed);
-    }
-    if (ok && st == MT_OK) {
-        what = "face";
-        mt_json_key(&j, "face_queries");
-        st = write_face_queries(&j, mesh, &req->faces, &failed);
-    }
-    if (ok && st == MT_OK) {
-        mt_json_key(&j, "file");
-        mt_json_string(&j, mt_cli_basename(req->path));
+    mt_diag diag;
+    mt_status st = mt_report_json_write_inspect(&j, mesh, req->vertices.ids, req->vertices.count,
+                                                req->faces.ids, req->faces.count,
+                                                mt_cli_basename(req->path), &diag);
+    if (st == MT_OK) {
         if (req->mesh->weld.enabled) {
             mt_json_key(&j, "weld");
             write_weld(&j, &req->mesh->weld);
@@ -227,15 +179,14 @@ int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
         }
         mt_json_object_end(&j);
     }
-    bool complete = ok && st == MT_OK && mt_json_finish(&j);
+    bool complete = st == MT_OK && mt_json_finish(&j);
     bool flushed = fclose(mem) == 0;
     int code = MT_CLI_EXIT_OK;
-    if (!ok || !flushed) {
-        mt_cli_error("inspect", "out of memory while writing JSON");
+    if (st != MT_OK) {
+        mt_cli_error("inspect", "%s", diag.message);
         code = MT_CLI_EXIT_BUILD;
-    } else if (st != MT_OK) {
-        mt_cli_error("inspect", "query of %s %u failed: %s", what, (unsigned)failed,
-                     mt_strerror(st));
+    } else if (!flushed) {
+        mt_cli_error("inspect", "out of memory while writing JSON");
         code = MT_CLI_EXIT_BUILD;
     } else if (!complete) {
         mt_cli_error("inspect", "internal error: malformed JSON document");

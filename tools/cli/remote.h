@@ -10,8 +10,8 @@
 
 #include "cli.h"
 #include "cli_report.h"
-#include "json_writer.h"
 #include "meshtopo/client.h"
+#include "meshtopo/json_writer.h"
 #include "meshtopo/msgs.h"
 
 /* Environment variables giving the defaults of --lcm-url and --prefix. */

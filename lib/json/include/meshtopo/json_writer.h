@@ -1,14 +1,19 @@
-/* A small streaming JSON writer for the CLI's machine-readable output. We
- * take no dependency for writing JSON: strings are escaped per RFC 8259
+/* A small streaming JSON writer for meshtopo's machine-readable output (the
+ * CLI's, and the reports the Python binding reads). We take no dependency
+ * for writing JSON: strings are escaped per RFC 8259
  * (invalid UTF-8 becomes U+FFFD) and the layout is Python's
  * json.dumps(indent=1), so outputs diff cleanly against the corpus answers.
  * Misuse (a value where a key is due, too deep nesting) sets `error`. */
-#ifndef MESHTOPO_CLI_JSON_WRITER_H
-#define MESHTOPO_CLI_JSON_WRITER_H
+#ifndef MESHTOPO_JSON_WRITER_H
+#define MESHTOPO_JSON_WRITER_H
 
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 #define MT_JSON_MAX_DEPTH 32
 
@@ -46,5 +51,9 @@ void mt_json_write_escaped(FILE *out, const char *text);
 
 /* Ends the document with a newline; false if anything was misused. */
 bool mt_json_finish(mt_json *j);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -1,7 +1,7 @@
 /* Streaming JSON writer (see json_writer.h): separators, Python-style
  * indentation (one space per level, "[]"/"{}" for empty containers) and
  * RFC 8259 string escaping with UTF-8 validation. */
-#include "json_writer.h"
+#include "meshtopo/json_writer.h"
 
 #include <inttypes.h>
 #include <math.h>

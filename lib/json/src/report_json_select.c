@@ -1,14 +1,15 @@
-/* The default choice of queried elements for `meshtopo inspect`, exactly as
- * DEFINITIONS.md "Queries" states it, so that `inspect FILE --json` without
- * --vertices/--faces reproduces a corpus reference answer: first the
- * interesting spots (non-manifold, isolated, boundary, flipped), then evenly
- * spread ids, up to 5 of each, no repeats. */
+/* The default choice of queried elements for `meshtopo inspect --json` and
+ * the Python binding's report, exactly as DEFINITIONS.md "Queries" states
+ * it, so that a report without named elements reproduces a corpus reference
+ * answer: first the interesting spots (non-manifold, isolated, boundary,
+ * flipped), then evenly spread ids, up to 5 of each, no repeats. */
 #include <stdlib.h>
 #include <string.h>
 
-#include "inspect.h"
+#include "meshtopo/query.h"
+#include "meshtopo/report_json.h"
 
-enum { NUM_QUERIES = 5 };
+enum { NUM_QUERIES = MT_REPORT_JSON_MAX_QUERIES };
 
 typedef struct choice {
     uint32_t ids[NUM_QUERIES];
@@ -24,15 +25,10 @@ static void choice_add(choice *c, uint64_t id, uint64_t limit)
     c->ids[c->count++] = (uint32_t)id;
 }
 
-static mt_status choice_store(const choice *c, mt_id_list *out)
+static void choice_store(const choice *c, uint32_t *out_ids, size_t *out_count)
 {
-    memset(out, 0, sizeof *out);
-    if (c->count == 0) return MT_OK;
-    out->ids = malloc(c->count * sizeof *out->ids);
-    if (!out->ids) return MT_ERR_NOMEM;
-    memcpy(out->ids, c->ids, c->count * sizeof *out->ids);
-    out->count = c->count;
-    return MT_OK;
+    memcpy(out_ids, c->ids, c->count * sizeof *out_ids);
+    *out_count = c->count;
 }
 
 /* Smallest `a` among the report's defects of one kind, MT_NONE if none. */
@@ -137,10 +133,15 @@ static mt_status sweep_sides(const mt_mesh *mesh, side_sweep *s)
     return st;
 }
 
-mt_status mt_inspect_default_queries(const mt_mesh *mesh, bool want_vertices,
-                                     mt_id_list *out_vertices, bool want_faces,
-                                     mt_id_list *out_faces)
+mt_status mt_report_json_default_queries(const mt_mesh *mesh,
+                                         uint32_t out_verts[MT_REPORT_JSON_MAX_QUERIES],
+                                         size_t *out_num_verts,
+                                         uint32_t out_faces[MT_REPORT_JSON_MAX_QUERIES],
+                                         size_t *out_num_faces)
 {
+    const bool want_vertices = out_verts && out_num_verts;
+    const bool want_faces = out_faces && out_num_faces;
+    if (!mesh) return MT_ERR_INVALID_ARG;
     if (!want_vertices && !want_faces) return MT_OK;
     const mt_report *report = mt_mesh_report(mesh);
     side_sweep sweep;
@@ -159,9 +160,9 @@ mt_status mt_inspect_default_queries(const mt_mesh *mesh, bool want_vertices,
                 choice_add(&c, spread[i], n);
         }
         for (uint64_t v = 1; c.count < NUM_QUERIES && v < n; v++) choice_add(&c, v, n);
-        st = choice_store(&c, out_vertices);
+        choice_store(&c, out_verts, out_num_verts);
     }
-    if (st == MT_OK && want_faces) {
+    if (want_faces) {
         uint64_t faces = mt_mesh_num_faces(mesh);
         size_t n = sweep.num_valid_faces;
         choice c = {{0}, 0};
@@ -176,9 +177,8 @@ mt_status mt_inspect_default_queries(const mt_mesh *mesh, bool want_vertices,
         }
         for (size_t p = 1; c.count < NUM_QUERIES && p < n; p++)
             choice_add(&c, sweep.valid_faces[p], faces);
-        st = choice_store(&c, out_faces);
-        if (st != MT_OK && want_vertices) mt_id_list_free(out_vertices);
+        choice_store(&c, out_faces, out_num_faces);
     }
     free(sweep.valid_faces);
-    return st;
+    return MT_OK;
 }
