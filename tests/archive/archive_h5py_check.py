@@ -3,7 +3,12 @@
 meshtopo's code: /VTKHDF (Version [1, 0], Type "UnstructuredGrid", counts,
 Points, Connectivity, Offsets, Types as uint8, CellData/original_face_id)
 and /meshtopo (provenance attributes, the face list exactly as in the OFF
-file, the report). Run with Debian's /usr/bin/python3; exit 77 without h5py.
+file, the report). Then the topology arrays of /VTKHDF (format 6) of
+corpus meshes against answers worked out here from the OFF file alone
+(boundary, orientation, components, non-manifold edges) and against the
+corpus's reference answers (non-manifold and isolated vertices), with their
+types and attributes. Run with Debian's /usr/bin/python3; exit 77 without
+h5py.
 
 usage: archive_h5py_check.py --fixture PATH --corpus DIR
 """
@@ -44,6 +49,111 @@ def read_off(path):
         faces.append([int(w) for w in words[pos + 1:pos + 1 + n]])
         pos += 1 + n
     return verts, faces
+
+
+def text(value):
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def oracle(nv, faces):
+    """What the topology arrays must hold, from the face list alone: per
+    kept face whether it touches a boundary edge, whether its orientation
+    agrees with every neighbour across a two-face edge, its component
+    (numbered by smallest face) and whether it is on a non-manifold edge;
+    per vertex whether it ends a boundary edge or a non-manifold edge."""
+    kept = [i for i, fc in enumerate(faces)
+            if len(fc) >= 3 and len(set(fc)) == len(fc) and all(0 <= v < nv for v in fc)]
+    uses = {}
+    for f in kept:
+        fc = faces[f]
+        for i in range(len(fc)):
+            a, b = fc[i], fc[(i + 1) % len(fc)]
+            uses.setdefault((min(a, b), max(a, b)), []).append((f, a, b))
+    parent = {f: f for f in kept}
+
+    def find(f):
+        while parent[f] != f:
+            parent[f] = parent[parent[f]]
+            f = parent[f]
+        return f
+
+    for edge_uses in uses.values():
+        for f, _, _ in edge_uses[1:]:
+            ra, rb = find(edge_uses[0][0]), find(f)
+            if ra != rb:
+                parent[max(ra, rb)] = min(ra, rb)
+    roots = sorted({find(f) for f in kept})  # a root is its class's smallest face
+    number = {r: i for i, r in enumerate(roots)}
+    touches, consistent, component, on_nm_edge = [], [], [], []
+    boundary, nm_end = [0] * nv, [0] * nv
+    for key, edge_uses in uses.items():
+        if len(edge_uses) == 1:
+            boundary[key[0]] = boundary[key[1]] = 1
+        if len(edge_uses) > 2:
+            nm_end[key[0]] = nm_end[key[1]] = 1
+    for f in kept:
+        fc = faces[f]
+        t, c, n = 0, 1, 0
+        for i in range(len(fc)):
+            a, b = fc[i], fc[(i + 1) % len(fc)]
+            edge_uses = uses[(min(a, b), max(a, b))]
+            t |= len(edge_uses) == 1
+            n |= len(edge_uses) > 2
+            if len(edge_uses) == 2 and all(u[1:] == (a, b) for u in edge_uses):
+                c = 0
+        touches.append(int(t))
+        consistent.append(c)
+        component.append(number[find(f)])
+        on_nm_edge.append(int(n))
+    return kept, touches, consistent, component, on_nm_edge, boundary, nm_end
+
+
+def check_topology(fixture, corpus, tmp, name):
+    """One corpus mesh archived; its topology arrays against the oracle and
+    the reference answers."""
+    import json
+    mesh = os.path.join(corpus, name + ".off")
+    verts, faces = read_off(mesh)
+    nv = len(verts)
+    with open(os.path.join(corpus, name + ".expected.json"), encoding="utf-8") as f:
+        ref = json.load(f)
+    subprocess.run([fixture, tmp, name, "1", mesh], check=True)
+    kept, touches, consistent, component, on_nm_edge, boundary, nm_end = oracle(nv, faces)
+    nme = 1 << 3  # nonmanifold_edge in the bits attribute, checked below
+    with h5py.File(os.path.join(tmp, name + ".v1.vtkhdf"), "r") as f:
+        cd, pd = f["VTKHDF/CellData"], f["VTKHDF/PointData"]
+        kinds = {"component": np.int32, "defects": np.uint32, "touches_boundary": np.uint8,
+                 "orientation_consistent": np.uint8}
+        for key, kind in kinds.items():
+            expect(key in cd and cd[key].dtype == kind and cd[key].shape == (len(kept),),
+                   f"{name}: CellData/{key} is {np.dtype(kind).name}, one per cell")
+            expect(len(text(cd[key].attrs.get("description", ""))) > 20,
+                   f"{name}: CellData/{key} has a description")
+        for key, kind in {"boundary": np.uint8, "non_manifold": np.uint8,
+                          "defects": np.uint32}.items():
+            expect(key in pd and pd[key].dtype == kind and pd[key].shape == (nv,),
+                   f"{name}: PointData/{key} is {np.dtype(kind).name}, one per point")
+        bits = [text(b) for b in cd["defects"].attrs["bits"]]
+        expect(bits[3] == "nonmanifold_edge" and bits == [text(b) for b in pd["defects"].attrs["bits"]],
+               f"{name}: defects bits named, bit 3 nonmanifold_edge")
+        expect("self_intersecting" not in cd and
+               text(cd.attrs["self_intersecting"]).startswith("not computed"),
+               f"{name}: self_intersecting not computed, and said so")
+        expect(list(cd["touches_boundary"][()]) == touches, f"{name}: touches_boundary")
+        expect(list(cd["orientation_consistent"][()]) == consistent,
+               f"{name}: orientation_consistent")
+        expect(list(cd["component"][()]) == component, f"{name}: component")
+        expect(list((cd["defects"][()] & nme) != 0) == [bool(x) for x in on_nm_edge],
+               f"{name}: cells on non-manifold edges")
+        expect(list(pd["boundary"][()]) == boundary, f"{name}: point boundary")
+        expect(list((pd["defects"][()] & nme) != 0) == [bool(x) for x in nm_end],
+               f"{name}: points ending non-manifold edges")
+        nm = [v for v in range(nv) if pd["non_manifold"][v]]
+        head = ref["nonmanifold_vertices_list_head"]
+        expect(len(nm) == ref["nonmanifold_vertices"] and nm[:len(head)] == head,
+               f"{name}: non_manifold points are the reference's {ref['nonmanifold_vertices']}")
+        isolated = int(np.count_nonzero(pd["defects"][()] & (1 << 6)))
+        expect(isolated == ref["isolated_vertices"], f"{name}: {isolated} isolated vertices")
 
 
 def main():
@@ -96,7 +206,7 @@ def main():
             # The half-edge arrays (format 2) read without meshtopo: the ring of
             # each kept face, from face_halfedge along next, passes through the
             # face's vertices in order (tail of h = head of its twin h ^ 1).
-            expect(int(m.attrs["format_version"]) == 5, "format_version 5")
+            expect(int(m.attrs["format_version"]) == 6, "format_version 6")
             h = m["halfedge"]
             for key in ("head", "next", "face", "face_halfedge", "vertex_halfedge",
                         "copy_original", "copies_sorted", "bundle_offsets", "bundle_edges",
@@ -128,6 +238,13 @@ def main():
             expect(set(d.dtype.names) == {"kind", "a", "b", "c"}, "defects columns")
             expect(int(r.attrs["num_defects"]) == d.shape[0] and d.shape[0] > 0,
                    "defects listed")
+    with tempfile.TemporaryDirectory(prefix="meshtopo-h5py-") as tmp:
+        for name in ["trimesh_notenoughindices", "vcg_nonmanifold", "cgal_many_umbrellas",
+                     "assimp_malformed", "vcg_quad5", "trimesh_joined_tetrahedra",
+                     "trimesh_multibody_stl_welded", "cgal_blobby_3cc", "cgal_elephant_with_holes",
+                     "vcg_moebius", "cgal_prim"]:
+            if os.path.exists(os.path.join(args.corpus, name + ".off")):
+                check_topology(args.fixture, args.corpus, tmp, name)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1

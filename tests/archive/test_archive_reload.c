@@ -386,7 +386,7 @@ static void test_compression_option(void)
     mt_archive_meta meta = {"plain", 1, 7, "test-node", 0};
     mt_archive_write_stats plain, packed;
     CHECK_OK(mt_archive_write_with(archive, &meta, &list, built, NULL, &plain, &diag));
-    mt_archive_write_options options = {MT_ARCHIVE_COMPRESSION_DEFLATE, 0};
+    mt_archive_write_options options = {.compression = MT_ARCHIVE_COMPRESSION_DEFLATE};
     meta.mesh_id = "packed";
     CHECK_OK(mt_archive_write_with(archive, &meta, &list, built, &options, &packed, &diag));
     CHECK(packed.file_bytes < plain.file_bytes);

@@ -3,7 +3,8 @@
  * reason, found on HDF5's error stack, when the system failed it: a full
  * disk, a permission), never a print or an abort. Reads check rank, shape,
  * type class, element size and the storage actually present before
- * allocating: a file may claim any size. */
+ * allocating: a file may claim any size (mt__h5_read_known_rows, whose
+ * caller knows the length and allocates for it, skips the last check). */
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -93,6 +94,32 @@ mt_status mt__h5_write_attr_string(hid_t obj, const char *name, const char *valu
     mt_status st =
         write_attr(obj, name, type, H5Screate(H5S_SCALAR), len > 0 ? value : empty, file, diag);
     H5Tclose(type);
+    return st;
+}
+
+mt_status mt__h5_write_attr_strings(hid_t obj, const char *name, const char *const *values,
+                                    size_t count, const char *file, mt_diag *diag)
+{
+    size_t width = 1;
+    for (size_t i = 0; i < count; i++)
+        if (strlen(values[i]) > width) width = strlen(values[i]);
+    char *packed = count > 0 ? calloc(count, width) : NULL;
+    if (count > 0 && !packed) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
+    for (size_t i = 0; i < count; i++) memcpy(packed + i * width, values[i], strlen(values[i]));
+    hid_t type = H5Tcopy(H5T_C_S1);
+    mt_status st = MT_OK;
+    if (type < 0 || H5Tset_size(type, width) < 0 || H5Tset_strpad(type, H5T_STR_NULLPAD) < 0 ||
+        H5Tset_cset(type, H5T_CSET_ASCII) < 0) {
+        st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot make the type of attribute %s", file,
+                              name);
+    } else {
+        hsize_t n = count;
+        char none[1] = {0};
+        st = write_attr(obj, name, type, H5Screate_simple(1, &n, NULL), packed ? packed : none,
+                        file, diag);
+    }
+    if (type >= 0) H5Tclose(type);
+    free(packed);
     return st;
 }
 
@@ -315,11 +342,12 @@ static const char *kind_name(mt__h5_kind kind, size_t elem_size)
 }
 
 /* Opens dataset `name` and checks rank, shape, type, the row limit and
- * that the stored bytes can back the claimed size. On MT_OK *out_dset is
- * open (close with H5Dclose) and *out_rows its first dimension. */
-static mt_status open_checked(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
-                              mt__h5_kind kind, size_t elem_size, hid_t *out_dset,
-                              uint64_t *out_rows, mt_diag *diag)
+ * (check_storage) that the stored bytes can back the claimed size. On
+ * MT_OK *out_dset is open (close with H5Dclose) and *out_rows its first
+ * dimension. */
+static mt_status open_dataset(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
+                              mt__h5_kind kind, size_t elem_size, bool check_storage,
+                              hid_t *out_dset, uint64_t *out_rows, mt_diag *diag)
 {
     *out_dset = -1;
     *out_rows = 0;
@@ -357,7 +385,7 @@ static mt_status open_checked(hid_t loc, const char *name, const char *file, int
                               (unsigned long long)dims[0], MT__ARCHIVE_MAX_ELEMENTS);
     }
     uint64_t elements = (uint64_t)dims[0] * (rank == 2 ? cols : 1);
-    if (st == MT_OK && elements > 0) {
+    if (st == MT_OK && check_storage && elements > 0) {
         /* The bytes present must back the claimed size: without filters the
          * stored size is the data's; deflate compresses at most ~1032:1. */
         uint64_t needed = elements * H5Tget_size(type);
@@ -380,6 +408,14 @@ static mt_status open_checked(hid_t loc, const char *name, const char *file, int
     *out_dset = dset;
     *out_rows = dims[0];
     return MT_OK;
+}
+
+static mt_status open_checked(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
+                              mt__h5_kind kind, size_t elem_size, hid_t *out_dset,
+                              uint64_t *out_rows, mt_diag *diag)
+{
+    return open_dataset(loc, name, file, rank, cols, kind, elem_size, true, out_dset, out_rows,
+                        diag);
 }
 
 mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
@@ -452,14 +488,12 @@ mt_status mt__h5_dataset_rows(hid_t loc, const char *name, const char *file, int
     return st;
 }
 
-mt_status mt__h5_read_dataset_into(hid_t loc, const char *name, const char *file, int rank,
-                                   hsize_t cols, mt__h5_kind kind, size_t elem_size, hid_t mtype,
-                                   void *buf, uint64_t rows, mt_diag *diag)
+/* Reads the whole of an open dataset of `found` rows into buf, which holds
+ * `rows`; closes it. */
+static mt_status read_rows_into(hid_t dset, uint64_t found, const char *name, const char *file,
+                                hid_t mtype, void *buf, uint64_t rows, mt_diag *diag)
 {
-    hid_t dset;
-    uint64_t found;
-    mt_status st = open_checked(loc, name, file, rank, cols, kind, elem_size, &dset, &found, diag);
-    if (st != MT_OK) return st;
+    mt_status st = MT_OK;
     if (found != rows)
         st = mt__archive_fail(diag, MT_ERR_PARSE,
                               "%s: dataset %s has %llu rows, the counts say %llu", file, name,
@@ -468,4 +502,26 @@ mt_status mt__h5_read_dataset_into(hid_t loc, const char *name, const char *file
         st = mt__h5_fail(diag, MT_ERR_IO, file, "%s: dataset %s cannot be read", file, name);
     H5Dclose(dset);
     return st;
+}
+
+mt_status mt__h5_read_dataset_into(hid_t loc, const char *name, const char *file, int rank,
+                                   hsize_t cols, mt__h5_kind kind, size_t elem_size, hid_t mtype,
+                                   void *buf, uint64_t rows, mt_diag *diag)
+{
+    hid_t dset;
+    uint64_t found;
+    mt_status st = open_checked(loc, name, file, rank, cols, kind, elem_size, &dset, &found, diag);
+    if (st != MT_OK) return st;
+    return read_rows_into(dset, found, name, file, mtype, buf, rows, diag);
+}
+
+mt_status mt__h5_read_known_rows(hid_t loc, const char *name, const char *file, mt__h5_kind kind,
+                                 size_t elem_size, hid_t mtype, void *buf, uint64_t rows,
+                                 mt_diag *diag)
+{
+    hid_t dset;
+    uint64_t found;
+    mt_status st = open_dataset(loc, name, file, 1, 0, kind, elem_size, false, &dset, &found, diag);
+    if (st != MT_OK) return st;
+    return read_rows_into(dset, found, name, file, mtype, buf, rows, diag);
 }

@@ -355,9 +355,103 @@ mt_status mt__archive_resolve(const mt_archive *archive, const char *mesh_id, ui
 mt_status mt__archive_read_entry(const mt_archive *archive, const char *file_name,
                                  mt_archive_entry *e, mt_diag *diag);
 
-/* ---- What a load and a verification check (archive_check.c) ---- */
+/* ---- The topology arrays of /VTKHDF (format 6) ----
+ * archive_topology.c works them out from a mesh (no HDF5),
+ * archive_topology_write.c writes them, archive_topology_check.c compares a
+ * file's with a mesh's. The list of arrays and their meaning is in
+ * archive.h ("Topology as VTK arrays"). */
 
-/* One file checked: its record, the mesh to serve and what was wrong. */
+typedef enum mt__topo_id {
+    MT__TOPO_CELL_COMPONENT,
+    MT__TOPO_CELL_DEFECTS,
+    MT__TOPO_CELL_TOUCHES_BOUNDARY,
+    MT__TOPO_CELL_ORIENTATION_CONSISTENT,
+    MT__TOPO_CELL_SELF_INTERSECTING,
+    MT__TOPO_POINT_BOUNDARY,
+    MT__TOPO_POINT_NON_MANIFOLD,
+    MT__TOPO_POINT_DEFECTS,
+    MT__TOPO_COUNT
+} mt__topo_id;
+
+/* Element type of a topology array. */
+typedef enum mt__topo_type { MT__TOPO_INT32, MT__TOPO_UINT32, MT__TOPO_UINT8 } mt__topo_type;
+
+/* What the file says of one array: its name in CellData or PointData, its
+ * type, the value of a mesh without anything to show, and its description
+ * attribute; bitmask arrays also get the "bits" attribute. */
+typedef struct mt__topo_info {
+    const char *name;
+    bool cell; /* CellData (one row per kept face), else PointData (per vertex) */
+    mt__topo_type type;
+    uint32_t fill;
+    bool bitmask;
+    const char *description;
+} mt__topo_info;
+
+extern const mt__topo_info mt__topo_arrays[MT__TOPO_COUNT];
+
+/* Bytes of one element of a topology array. */
+size_t mt__topo_type_size(mt__topo_type type);
+
+/* A mesh's topology arrays. values[id] holds rows[id] elements of the
+ * array's type, or is NULL when every element is the array's fill value;
+ * present[id] is false only for self_intersecting when it was not worked
+ * out (absent_reason says why). */
+typedef struct mt__topology {
+    uint64_t cells, points; /* kept faces, vertices */
+    void *values[MT__TOPO_COUNT];
+    bool present[MT__TOPO_COUNT];
+    uint64_t self_intersection_pairs; /* when present */
+    const char *absent_reason;        /* static text, when self_intersecting is absent */
+} mt__topology;
+
+/* Works out the topology arrays of mesh, built from list (the writer's
+ * checks have passed). self_intersections: SKIP, or COMPUTE
+ * (mt_mesh_self_intersections; a mesh without positions gets it absent),
+ * or GIVEN with the pairs (refused with MT_ERR_INVALID_ARG when a pair
+ * names a face out of range or rejected). On MT_OK free *out with
+ * mt__topology_free; on failure nothing is left to free. */
+mt_status mt__topology_compute(const mt_face_list *list, const mt_mesh *mesh,
+                               mt_archive_self_intersections self_intersections,
+                               const mt_face_pair *pairs, size_t num_pairs, mt__topology *out,
+                               mt_diag *diag);
+
+/* Frees what mt__topology_compute made and zeroes it. NULL-safe. */
+void mt__topology_free(mt__topology *topology);
+
+/* The value of element i of array id (its fill value when values[id] is
+ * NULL), as 64 bits. */
+int64_t mt__topology_value(const mt__topology *topology, mt__topo_id id, uint64_t i);
+
+/* Writes the arrays into /VTKHDF's CellData (group cell_data) and
+ * PointData (point_data) with their attributes; a constant array is a
+ * dataset never written, whose fill value is that constant. */
+mt_status mt__topology_write(hid_t cell_data, hid_t point_data, const mt__topology *topology,
+                             const mt__h5_layout *layout, const char *file, mt_diag *diag);
+
+/* Compares the topology arrays of /VTKHDF in file with the ones mesh
+ * gives (mesh built from or restored with faces): every array but
+ * self_intersecting must be there with the same values;
+ * self_intersecting, when there, must have a row per cell and values 0 or
+ * 1. MT_ERR_PARSE naming the dataset and the first difference,
+ * MT_ERR_NOMEM, MT_ERR_IO when HDF5 fails a read. */
+mt_status mt__topology_check(hid_t file, const mt_face_list *faces, const mt_mesh *mesh,
+                             const char *file_name, mt_diag *diag);
+
+/* Writes a 1-D attribute of `count` fixed-length strings (as long as the
+ * longest; NUL-padded ASCII). */
+mt_status mt__h5_write_attr_strings(hid_t obj, const char *name, const char *const *values,
+                                    size_t count, const char *file, mt_diag *diag);
+
+/* Reads a whole 1-D dataset of exactly `rows` rows into buf (rows elements
+ * of mtype) without the check of the stored bytes mt__h5_read_dataset
+ * makes: for a dataset whose length the caller knows from elsewhere and
+ * which may never have been written (it reads as its fill value). Any
+ * other row count is MT_ERR_PARSE. */
+mt_status mt__h5_read_known_rows(hid_t loc, const char *name, const char *file, mt__h5_kind kind,
+                                 size_t elem_size, hid_t mtype, void *buf, uint64_t rows,
+                                 mt_diag *diag);
+
 /* ---- Attributes (archive_attributes.c) ---- */
 
 /* Writes the mesh's attributes into /meshtopo (g) when it has any. */
@@ -369,6 +463,9 @@ mt_status mt__attributes_write(hid_t g, const mt_mesh *mesh, const mt__h5_layout
 mt_status mt__attributes_read(hid_t g, const char *file, mt_mesh *mesh, bool restored,
                               mt_diag *diag);
 
+/* ---- What a load and a verification check (archive_check.c) ---- */
+
+/* One file checked: its record, the mesh to serve and what was wrong. */
 typedef struct mt__check {
     /* In. */
     mt_archive_hash_fn hash; /* NULL: the content hash is not checked */

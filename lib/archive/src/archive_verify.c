@@ -3,7 +3,8 @@
  * (mt_archive_record_build), and the whole-file verification behind
  * `meshtopo archive verify`: the checks a load makes (archive_check.c, so a
  * load and a verification agree on every file), then the VTKHDF datasets
- * against the face list. */
+ * against the face list and (format 6) the topology arrays against the
+ * mesh (archive_topology_check.c). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -168,6 +169,8 @@ mt_status mt_archive_verify_file_with(const mt_archive *archive, const char *fil
                 kept[f] = view.face_he[f] != MT_NONE;
             st = mt_archive_check_vtk(&v.arrays, &c.record.faces, kept, file_name, diag);
         }
+        if (st == MT_OK && c.record.format_version >= MT_ARCHIVE_FORMAT_VERSION_TOPOLOGY)
+            st = mt__topology_check(file, &c.record.faces, c.mesh, file_name, diag);
         free(kept);
         vtk_read_free(&v);
         if (st != MT_OK)

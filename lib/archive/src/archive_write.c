@@ -1,11 +1,12 @@
 /* Writing one mesh version: the VTKHDF 1.0 UnstructuredGrid a viewer reads
- * (/VTKHDF), the face list exactly as submitted with provenance and the
- * topology report (/meshtopo), all into a temporary file that is flushed,
- * closed, fsynced and then linked into place (see write_durably for why
- * each step is needed, and for why nothing planted in the directory can
- * redirect the write), and (format 2) the half-edge arrays with (format 4)
- * their digest (archive_halfedge.c). Layout: contiguous datasets by
- * default, or chunked with shuffle + deflate (mt_archive_write_options). */
+ * (/VTKHDF, with the topology arrays of archive_topology.c), the face list
+ * exactly as submitted with provenance and the topology report
+ * (/meshtopo), all into a temporary file that is flushed, closed, fsynced
+ * and then linked into place (see write_durably for why each step is
+ * needed, and for why nothing planted in the directory can redirect the
+ * write), and (format 2) the half-edge arrays with (format 4) their digest
+ * (archive_halfedge.c). Layout: contiguous datasets by default, or chunked
+ * with shuffle + deflate (mt_archive_write_options). */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -165,7 +166,8 @@ static hid_t group_create(hid_t loc, const char *name, const char *file, mt_diag
 }
 
 static mt_status write_vtkhdf(hid_t file, const vtk_cells *v, uint32_t num_verts,
-                              const mt__h5_layout *layout, const char *name, mt_diag *diag)
+                              const mt__topology *topology, const mt__h5_layout *layout,
+                              const char *name, mt_diag *diag)
 {
     hid_t g = group_create(file, "VTKHDF", name, diag);
     if (g < 0) return MT_ERR_IO;
@@ -197,6 +199,7 @@ static mt_status write_vtkhdf(hid_t file, const vtk_cells *v, uint32_t num_verts
         st = write_cells_column(cd, "original_face_id", COLUMN_FACE_IDS, v, layout, name, diag);
     hid_t pd = st == MT_OK ? group_create(g, "PointData", name, diag) : -1;
     if (st == MT_OK && pd < 0) st = MT_ERR_IO;
+    if (st == MT_OK) st = mt__topology_write(cd, pd, topology, layout, name, diag);
     if (pd >= 0) H5Gclose(pd);
     if (cd >= 0) H5Gclose(cd);
     H5Gclose(g);
@@ -219,7 +222,9 @@ static mt_status write_meshtopo(hid_t file, const mt_archive_meta *meta, const m
         "provenance attributes, the build's topology report (group report) and the "
         "half-edge arrays (group halfedge) that a reload restores without a rebuild, and the "
         "elements' user attributes (group attributes) when there are any. /VTKHDF "
-        "holds the faces the build kept; its CellData/original_face_id maps cells back.",
+        "holds the faces the build kept; its CellData/original_face_id maps cells back, and "
+        "its CellData and PointData hold the topology (components, defects, boundary, "
+        "orientation), each dataset described by its attribute description.",
         name, diag);
     if (st == MT_OK)
         st = mt__h5_write_attr_int(g, "format_version", H5T_NATIVE_UINT32, &format_version, name,
@@ -383,15 +388,28 @@ static mt_status link_final(const mt_archive *archive, int fd, const char *tmp,
 static mt_status write_durably(const mt_archive *archive, const char *final_name,
                                const mt_archive_meta *meta, const mt_face_list *list,
                                const mt_mesh *mesh, const mt__h5_layout *layout,
+                               const mt_archive_write_options *options,
                                mt_archive_write_stats *stats, mt_diag *diag)
 {
     char *final_path = mt__archive_path(archive, final_name);
     if (!final_path) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
     vtk_cells cells;
     double t0 = mt__archive_now_ms();
+    /* The topology arrays first: what fails there (out of memory, bad
+     * self-intersection pairs) fails before any file is made. */
+    mt__topology topology;
+    mt_status st = mt__topology_compute(
+        list, mesh, options ? options->self_intersections : MT_ARCHIVE_SELF_INTERSECTIONS_SKIP,
+        options ? options->self_intersection_pairs : NULL,
+        options ? options->num_self_intersection_pairs : 0, &topology, diag);
+    double topology_ms = mt__archive_now_ms() - t0;
+    if (st != MT_OK) {
+        free(final_path);
+        return st;
+    }
     vtk_cells_count(list, mesh, &cells);
     cells.buffer = malloc((size_t)BLOCK_ROWS * 8);
-    mt_status st = cells.buffer ? MT_OK : mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
+    if (!cells.buffer) st = mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
     int fd = -1;
     char *tmp = NULL;
     if (st == MT_OK) st = tmp_create(archive, &fd, &tmp, diag);
@@ -418,7 +436,7 @@ static mt_status write_durably(const mt_archive *archive, const char *final_name
              (fd = fcntl(*(int *)handle, F_DUPFD_CLOEXEC, 0)) < 0))
             st = mt__archive_fail(diag, MT_ERR_IO, "%s: cannot get the file's descriptor", tmp);
     }
-    if (st == MT_OK) st = write_vtkhdf(file, &cells, list->num_verts, layout, tmp, diag);
+    if (st == MT_OK) st = write_vtkhdf(file, &cells, list->num_verts, &topology, layout, tmp, diag);
     if (st == MT_OK) st = write_meshtopo(file, meta, list, mesh, layout, tmp, diag);
     if (st == MT_OK && H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
         st = mt__h5_fail(diag, MT_ERR_IO, tmp, "%s: cannot flush the file", tmp);
@@ -426,6 +444,7 @@ static mt_status write_durably(const mt_archive *archive, const char *final_name
         st = mt__h5_fail(diag, MT_ERR_IO, tmp, "%s: cannot close the file", tmp);
     if (fapl >= 0) H5Pclose(fapl);
     free(cells.buffer);
+    mt__topology_free(&topology);
     double t1 = mt__archive_now_ms();
     if (st == MT_OK && fsync(fd) != 0)
         st = mt__archive_fail_os(diag, MT_ERR_IO, errno, tmp, "%s: fsync failed", tmp);
@@ -440,6 +459,7 @@ static mt_status write_durably(const mt_archive *archive, const char *final_name
         stats->write_ms = t1 - t0;
         stats->fsync_ms = t2 - t1;
         stats->file_bytes = fstat(fd, &sb) == 0 ? (uint64_t)sb.st_size : 0;
+        stats->topology_ms = topology_ms;
     }
     if (fd >= 0) close(fd);
     free(tmp);
@@ -471,6 +491,10 @@ mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta
             return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
                                     "mt_archive_write: unknown compression %d or deflate level %u",
                                     (int)options->compression, options->deflate_level);
+        if ((unsigned)options->self_intersections > (unsigned)MT_ARCHIVE_SELF_INTERSECTIONS_GIVEN)
+            return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
+                                    "mt_archive_write: unknown self_intersections %d",
+                                    (int)options->self_intersections);
         layout.deflate = options->compression == MT_ARCHIVE_COMPRESSION_DEFLATE;
         layout.level = options->deflate_level ? options->deflate_level : 1;
     }
@@ -507,5 +531,5 @@ mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
                                 "%s/%s: version %u of mesh '%s' is already archived", archive->dir,
                                 name, meta->version, meta->mesh_id);
-    return write_durably(archive, name, meta, list, mesh, &layout, out_stats, diag);
+    return write_durably(archive, name, meta, list, mesh, &layout, options, out_stats, diag);
 }

@@ -26,6 +26,7 @@
 #include <stdint.h>
 
 #include "meshtopo/face_list.h"
+#include "meshtopo/geometry.h"
 #include "meshtopo/mesh.h"
 #include "meshtopo/report.h"
 #include "meshtopo/status.h"
@@ -44,14 +45,21 @@ extern "C" {
  * and report without a rebuild; files of versions 2 and 3 have none, and a
  * load checks their arrays against a rebuild (as slow as version 1's). 5
  * adds the group /meshtopo/attributes (meshtopo/attributes.h), present when
- * the archived mesh has attributes: a load gives them back. */
-#define MT_ARCHIVE_FORMAT_VERSION 5
+ * the archived mesh has attributes: a load gives them back. 6 adds the
+ * topology arrays of /VTKHDF/CellData and /VTKHDF/PointData (see "Topology
+ * as VTK arrays" below): loads never read them (they are derived from the
+ * mesh), verification checks them; files of earlier versions lack them and
+ * load and verify as before. */
+#define MT_ARCHIVE_FORMAT_VERSION 6
 
 /* Oldest format version whose content_hash verification checks. */
 #define MT_ARCHIVE_FORMAT_VERSION_HASHED 3
 
 /* Oldest format version whose half-edge arrays carry a digest. */
 #define MT_ARCHIVE_FORMAT_VERSION_DIGEST 4
+
+/* Oldest format version whose VTKHDF groups carry the topology arrays. */
+#define MT_ARCHIVE_FORMAT_VERSION_TOPOLOGY 6
 
 /* Oldest format version read. */
 #define MT_ARCHIVE_FORMAT_VERSION_MIN 1
@@ -144,7 +152,79 @@ typedef struct mt_archive_write_stats {
     double write_ms;     /* HDF5 create, datasets, flush, close */
     double fsync_ms;     /* fsync of the file, link into place, fsync of the directory */
     uint64_t file_bytes; /* size of the archived file */
+    double topology_ms;  /* part of write_ms: the topology arrays worked out (the
+                            self-intersections included when asked for) */
 } mt_archive_write_stats;
+
+/* Topology as VTK arrays (format 6). Besides the cells, /VTKHDF carries
+ * what a viewer colours a mesh by. Cells are the faces the build kept, in
+ * face order (CellData/original_face_id gives each one's face id); points
+ * are all the vertices, in vertex order.
+ *
+ *   CellData/component               int32  edge-connected component of the
+ *                                           face, numbered as the report's
+ *                                           components (0 .. n-1)
+ *   CellData/defects                 uint32 defect kinds involving the face:
+ *                                           bit k (value 1 << k) for kind k of
+ *                                           MT_DEFECT_TABLE (meshtopo/report.h)
+ *   CellData/touches_boundary        uint8  1: a side of the face is a
+ *                                           boundary edge (used by one face)
+ *   CellData/orientation_consistent  uint8  1: every face that is the only
+ *                                           other face on one of this face's
+ *                                           edges runs that edge the
+ *                                           opposite way; 0: one runs it the
+ *                                           same way (both faces get 0);
+ *                                           edges of three or more faces do
+ *                                           not count
+ *   CellData/self_intersecting       uint8  1: the face meets another face
+ *                                           other than along what they share
+ *                                           (mt_mesh_self_intersections);
+ *                                           present only when the write was
+ *                                           asked for it (otherwise CellData's
+ *                                           attribute self_intersecting says
+ *                                           why it is missing)
+ *   PointData/boundary               uint8  1: the vertex ends a boundary edge
+ *   PointData/non_manifold           uint8  1: the vertex is listed as a
+ *                                           nonmanifold_vertex of the report
+ *                                           (for example a bowtie, or the end
+ *                                           of a non-manifold edge)
+ *   PointData/defects                uint32 defect kinds involving the vertex,
+ *                                           the bits of CellData/defects
+ *
+ * A defect involves the faces and vertices it names: a face defect
+ * (out_of_range_index, degenerate_face, duplicate_face: its face a) involves
+ * that face and its corners (in range), so the corners of a rejected face,
+ * which is no cell, show where it was; an edge defect (nonmanifold_edge: the
+ * faces on edge a-b; same_direction_edge: the faces running a -> b) involves
+ * those faces and both ends; a vertex defect (nonmanifold_vertex,
+ * isolated_vertex, nonfinite_coordinate) the vertex and every face with it
+ * as a corner. The defect kinds' numbers are stored in the file (the
+ * report's defects dataset) and never change meaning; new kinds take new
+ * numbers.
+ *
+ * Every dataset has a string attribute "description"; the bitmasks have
+ * "bits", one string per bit (bit k's key at index k). An array whose
+ * values are all the same (a mesh with one component, no defect, no
+ * boundary) is stored as an HDF5 dataset that was never written: readers
+ * get its fill value (0, or 1 for orientation_consistent), and it costs no
+ * space or time. On a 1M-triangle grid (meshtopo-bench archive) the arrays
+ * add about 1.5 MB to the 111 MB file. */
+
+/* Whether mt_archive_write_with stores CellData/self_intersecting. */
+typedef enum mt_archive_self_intersections {
+    /* The default: left out. Finding them costs about ten times a build on a
+     * large mesh, and the daemon's write sits before the acknowledgement of
+     * a submission. CellData's string attribute self_intersecting says
+     * "not computed". */
+    MT_ARCHIVE_SELF_INTERSECTIONS_SKIP = 0,
+    /* Found during the write with mt_mesh_self_intersections (a mesh
+     * without positions has none to find: left out, and the attribute says
+     * so). */
+    MT_ARCHIVE_SELF_INTERSECTIONS_COMPUTE,
+    /* Taken from the options' pairs, as mt_mesh_self_intersections gave
+     * them for this mesh (for a caller that has them already). */
+    MT_ARCHIVE_SELF_INTERSECTIONS_GIVEN,
+} mt_archive_self_intersections;
 
 /* Archives one built mesh version: `list` is the face list exactly as
  * submitted and `mesh` what mt_mesh_build made of it (its report is stored;
@@ -185,11 +265,22 @@ typedef struct mt_archive_write_options {
     mt_archive_compression compression;
     /* Deflate level 1..9 with MT_ARCHIVE_COMPRESSION_DEFLATE; 0 means 1. */
     uint32_t deflate_level;
+    /* CellData/self_intersecting: left out (the default), computed, or
+     * from the pairs below. */
+    mt_archive_self_intersections self_intersections;
+    /* MT_ARCHIVE_SELF_INTERSECTIONS_GIVEN: num_self_intersection_pairs face
+     * pairs (not copied; read during the call). */
+    const mt_face_pair *self_intersection_pairs;
+    size_t num_self_intersection_pairs;
 } mt_archive_write_options;
 
 /* mt_archive_write with options (NULL = defaults). Datasets under 4 KiB
  * are stored contiguously whatever the compression. MT_ERR_INVALID_ARG for
- * an unknown compression or a level above 9. */
+ * an unknown compression or a level above 9, an unknown self_intersections
+ * value, or given pairs naming a face that is out of range or that the
+ * build rejected (or NULL pairs with a non-zero count). With
+ * MT_ARCHIVE_SELF_INTERSECTIONS_COMPUTE, mt_mesh_self_intersections' errors
+ * (MT_ERR_NOMEM) fail the write before anything is written. */
 mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta,
                                 const mt_face_list *list, const mt_mesh *mesh,
                                 const mt_archive_write_options *options,
@@ -229,7 +320,8 @@ typedef enum mt_archive_fault {
      * mesh loads with those that could be read. */
     MT_ARCHIVE_FAULT_DERIVED,
     /* The VTKHDF datasets (what ParaView reads) disagree with the face
-     * list. Only verification reads them (MT_ERR_PARSE); loads succeed. */
+     * list, or (format 6) the topology arrays with the mesh. Only
+     * verification reads them (MT_ERR_PARSE); loads succeed. */
     MT_ARCHIVE_FAULT_VTK,
     /* Nothing in the file can be served: not HDF5 or truncated, the face
      * list unreadable or not matching its content hash (MT_ERR_CORRUPT,
@@ -445,7 +537,10 @@ void mt_archive_report_free(mt_report *report);
  * and the file's format is MT_ARCHIVE_FORMAT_VERSION_HASHED or later, the
  * stored half-edge arrays against their digest or, formats 2 and 3, against
  * a rebuild; format 1 and a fallback rebuild against the stored report),
- * then the VTKHDF datasets against the face list. hash NULL: the archive's
+ * then the VTKHDF datasets against the face list and (format 6) the
+ * topology arrays against the ones the mesh gives (self_intersecting, when
+ * present, only for its length and values 0 or 1: finding the
+ * intersections again would cost ten builds). hash NULL: the archive's
  * content hash function (mt_archive_set_content_hash), if any. MT_OK or
  * the first problem's status with diag naming the file and the problem. */
 mt_status mt_archive_verify_file(const mt_archive *archive, const char *file_name,
