@@ -46,6 +46,7 @@ struct mtd_archiver {
     mtd_error_log *error_log; /* not owned */
     mt_archive *archive;      /* NULL without --archive */
     mtd_archive_mode mode;
+    mt_archive_compression compression; /* --archive-compression, auto resolved */
     uint64_t budget;
     bool shared; /* --cluster: other members write the same directory */
 
@@ -232,7 +233,8 @@ static mt_status write_version(mtd_archiver *a, const mtd_mesh_info *info, const
                             .content_hash = info->content_hash};
     mt_archive_write_stats stats;
     memset(&stats, 0, sizeof stats);
-    mt_status s = mt_archive_write(a->archive, &meta, list, mesh, &stats, diag);
+    const mt_archive_write_options options = {.compression = a->compression};
+    mt_status s = mt_archive_write_with(a->archive, &meta, list, mesh, &options, &stats, diag);
     if (s != MT_OK) return s;
     atomic_fetch_add(&a->writes, 1);
     mtd_log(MTD_LOG_DEBUG, "archived",
@@ -830,6 +832,23 @@ static mt_status open_archive(mtd_archiver *a, const mtd_config *c, mt_diag *dia
     return MT_OK;
 }
 
+/* The archive files' compression (--archive-compression). LZ4 without
+ * the Blosc filter plugin is an error: the daemon does not start rather
+ * than write something other than asked. */
+static mt_status choose_compression(mtd_archiver *a, mtd_archive_compression asked, mt_diag *diag)
+{
+    static const mt_archive_compression stored[] = {
+        MT_ARCHIVE_COMPRESSION_NONE, MT_ARCHIVE_COMPRESSION_DEFLATE, MT_ARCHIVE_COMPRESSION_LZ4};
+    if ((unsigned)asked > MTD_COMPRESSION_LZ4)
+        return mt_diag_set(diag, MT_ERR_INVALID_ARG, "unknown archive compression %d", (int)asked);
+    if (asked == MTD_COMPRESSION_LZ4 && !mt_archive_lz4_available())
+        return mt_diag_set(diag, MT_ERR_UNSUPPORTED,
+                           "--archive-compression lz4: HDF5 finds no Blosc filter plugin "
+                           "(Debian: hdf5-filter-plugin-blosc-serial; or HDF5_PLUGIN_PATH)");
+    a->compression = stored[asked];
+    return MT_OK;
+}
+
 mt_status mtd_archiver_open(const mtd_config *config, mtd_store *store, mtd_error_log *errors,
                             mtd_archiver **out_archiver, mt_diag *diag)
 {
@@ -851,7 +870,8 @@ mt_status mtd_archiver_open(const mtd_config *config, mtd_store *store, mtd_erro
             mtd_log(MTD_LOG_WARN, "archive",
                     "--memory-budget without --archive: nothing can be evicted");
     } else {
-        mt_status s = open_archive(a, config, diag);
+        mt_status s = choose_compression(a, config->archive_compression, diag);
+        if (s == MT_OK) s = open_archive(a, config, diag);
         if (s != MT_OK) {
             mtd_archiver_destroy(a);
             return s;

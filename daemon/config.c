@@ -23,6 +23,7 @@ typedef enum setting_kind {
     KIND_BYTES,
     KIND_LEVEL,
     KIND_ARCHIVE_MODE,
+    KIND_ARCHIVE_COMPRESSION,
     KIND_SWITCH /* a flag without a value (--preload); its variable takes 1/0, yes/no */
 } setting_kind;
 
@@ -81,6 +82,10 @@ static const setting settings[] = {
      "directory archiving every built mesh (HDF5), served again after a restart"},
     {"archive-mode", "MESHTOPOD_ARCHIVE_MODE", KIND_ARCHIVE_MODE, FIELD(archive_mode), 0, 0,
      "sync (archived before the ack), async (after it) or off (write nothing)"},
+    {"archive-compression", "MESHTOPOD_ARCHIVE_COMPRESSION", KIND_ARCHIVE_COMPRESSION,
+     FIELD(archive_compression), 0, 0,
+     "none, lz4 (about half the size; HDF5 and every reader of the files need the Blosc "
+     "filter plugin) or deflate (slow)"},
     {"archive-queue", "MESHTOPOD_ARCHIVE_QUEUE", KIND_U32, FIELD(archive_queue), 1, 1u << 20,
      "meshes waiting for the async writer; builds wait for room beyond it"},
     {"preload", "MESHTOPOD_PRELOAD", KIND_SWITCH, FIELD(preload), 0, 1,
@@ -169,6 +174,13 @@ const char *mtd_archive_mode_name(mtd_archive_mode mode)
     return (unsigned)mode < 3 ? archive_mode_names[mode] : "?";
 }
 
+static const char *const compression_names[] = {"none", "deflate", "lz4"};
+
+const char *mtd_archive_compression_name(mtd_archive_compression compression)
+{
+    return (unsigned)compression < 3 ? compression_names[compression] : "?";
+}
+
 /* Fills diag with "ORIGIN 'VALUE': problem" and returns MT_ERR_INVALID_ARG. */
 static mt_status fail(mt_diag *diag, const char *origin, const char *value, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -251,6 +263,13 @@ static mt_status apply(const setting *s, const char *value, const char *origin, 
                     return MT_OK;
                 }
             return fail(diag, origin, value, "expected sync, async or off");
+        case KIND_ARCHIVE_COMPRESSION:
+            for (int m = 0; m < 3; m++)
+                if (strcmp(value, compression_names[m]) == 0) {
+                    *(mtd_archive_compression *)(void *)field = (mtd_archive_compression)m;
+                    return MT_OK;
+                }
+            return fail(diag, origin, value, "expected none, lz4 or deflate");
         case KIND_SWITCH:
             if (strcmp(value, "1") == 0 || strcmp(value, "yes") == 0 || strcmp(value, "true") == 0)
                 *(uint32_t *)(void *)field = 1;
@@ -363,6 +382,11 @@ void mtd_config_usage(FILE *to)
                 snprintf(shown, sizeof shown, "%s",
                          mtd_archive_mode_name(*(const mtd_archive_mode *)(const void *)field));
                 break;
+            case KIND_ARCHIVE_COMPRESSION:
+                snprintf(shown, sizeof shown, "%s",
+                         mtd_archive_compression_name(
+                             *(const mtd_archive_compression *)(const void *)field));
+                break;
             case KIND_SWITCH:
                 snprintf(shown, sizeof shown, "%s",
                          *(const uint32_t *)(const void *)field ? "on" : "off");
@@ -391,14 +415,15 @@ void mtd_config_log(const mtd_config *c)
             "max_indices=%llu max_store_bytes=%llu max_archive_bytes=%llu max_claim_ratio=%u "
             "max_versions=%u heartbeat_ms=%u "
             "max_transfer_bytes=%llu "
-            "transfer_timeout_ms=%u log_level=%s archive=%s archive_mode=%s archive_queue=%u "
-            "preload=%u memory_budget=%llu cluster=%s",
+            "transfer_timeout_ms=%u log_level=%s archive=%s archive_mode=%s "
+            "archive_compression=%s archive_queue=%u preload=%u memory_budget=%llu cluster=%s",
             c->lcm_url[0] ? c->lcm_url : "(lcm default)", c->channel_prefix, c->name, c->workers,
             c->max_verts, c->max_faces, (unsigned long long)c->max_indices,
             (unsigned long long)c->max_store_bytes, (unsigned long long)c->max_archive_bytes,
             c->max_claim_ratio, c->max_versions, c->heartbeat_ms,
             (unsigned long long)c->max_transfer_bytes, c->transfer_timeout_ms,
             mtd_log_level_name(c->log_level), c->archive_dir[0] ? c->archive_dir : "(none)",
-            mtd_archive_mode_name(c->archive_mode), c->archive_queue, c->preload,
+            mtd_archive_mode_name(c->archive_mode),
+            mtd_archive_compression_name(c->archive_compression), c->archive_queue, c->preload,
             (unsigned long long)c->memory_budget, c->cluster[0] ? c->cluster : "(none)");
 }

@@ -21,6 +21,13 @@ typedef enum mtd_archive_mode {
     MTD_ARCHIVE_OFF = 2,   /* nothing written; what DIR holds is still served */
 } mtd_archive_mode;
 
+/* What --archive-compression asks for. */
+typedef enum mtd_archive_compression {
+    MTD_COMPRESSION_NONE = 0, /* contiguous: every HDF5 reader opens the files as they are */
+    MTD_COMPRESSION_DEFLATE = 1,
+    MTD_COMPRESSION_LZ4 = 2, /* Blosc LZ4: about half the size; readers need its plugin */
+} mtd_archive_compression;
+
 typedef struct mtd_config {
     char lcm_url[MTD_CONFIG_TEXT_MAX]; /* "" = LCM's own default (LCM_DEFAULT_URL) */
     char channel_prefix[64];           /* channels are PREFIX + SUBMIT, QUERY, ... */
@@ -39,6 +46,7 @@ typedef struct mtd_config {
     mtd_log_level log_level;
     char archive_dir[MTD_CONFIG_TEXT_MAX]; /* "" = no archive */
     mtd_archive_mode archive_mode;
+    mtd_archive_compression archive_compression;
     uint32_t archive_queue;      /* versions the async writer may have waiting */
     uint32_t preload;            /* 1: load every archived version at start */
     uint64_t memory_budget;      /* evict archived meshes beyond this, 0 = no budget */
@@ -70,6 +78,9 @@ void mtd_config_usage(FILE *to);
 
 /* "sync", "async" or "off". */
 const char *mtd_archive_mode_name(mtd_archive_mode mode);
+
+/* "none", "deflate" or "lz4". */
+const char *mtd_archive_compression_name(mtd_archive_compression compression);
 
 /* Logs every setting at info level, one line (the "config" event). */
 void mtd_config_log(const mtd_config *config);

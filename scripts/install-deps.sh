@@ -19,6 +19,7 @@ packages=(
     libglib2.0-dev
     libxxhash-dev                                  # content hash of submitted meshes (XXH3)
     libhdf5-dev hdf5-tools                         # meshtopo::archive (HDF5 1.10), h5dump/h5ls
+    hdf5-filter-plugin-blosc-serial                # LZ4 archives (--archive-compression lz4)
     python3-h5py python3-vtk9                      # tests/archive: h5py and VTK's vtkHDFReader read archives
     python3-numpy python3-pytest                   # the Python package (lib/python) and its tests
     nftables iproute2                              # tests/netns: private network, packet loss

@@ -38,6 +38,7 @@ static void config_defaults(void)
           c.max_transfer_bytes <= 1ull << 30);
     CHECK_EQ(c.max_archive_bytes, 0);
     CHECK_EQ(c.max_claim_ratio, 16);
+    CHECK_EQ(c.archive_compression, MTD_COMPRESSION_NONE); /* every reader opens the files */
     /* With an archive: half the free space of its file system (the
      * directory need not exist yet). */
     const char *with_archive[] = {"meshtopod", "--archive", "/tmp/meshtopo-no-such-dir/a"};
@@ -46,6 +47,10 @@ static void config_defaults(void)
     const char *explicit_limit[] = {"meshtopod", "--archive", "/tmp", "--max-archive-bytes", "5M"};
     CHECK_OK(parse(&c, &action, &diag, 5, explicit_limit));
     CHECK_EQ(c.max_archive_bytes, 5u << 20);
+    const char *lz4[] = {"meshtopod", "--archive", "/tmp", "--archive-compression", "lz4"};
+    CHECK_OK(parse(&c, &action, &diag, 5, lz4));
+    CHECK_EQ(c.archive_compression, MTD_COMPRESSION_LZ4);
+    CHECK(strcmp(mtd_archive_compression_name(c.archive_compression), "lz4") == 0);
 }
 
 static void config_flags_override_environment(void)
@@ -81,6 +86,9 @@ static void config_bad_values_named(void)
         {{"--max-store-bytes", "5T"}, 2, "option --max-store-bytes '5T'"},
         {{"--max-store-bytes", "99999999999999999G"}, 2, "option --max-store-bytes"},
         {{"--log-level", "loud"}, 2, "expected error, warn, info or debug"},
+        {{"--archive-compression", "zip"},
+         2,
+         "option --archive-compression 'zip': expected none, lz4 or deflate"},
         {{"--prefix", "A B"}, 2, "option --prefix 'A B': only printable"},
         {{"--name", ""}, 2, "option --name '': must not be empty"},
         {{"--bogus", "1"}, 2, "option '--bogus': unknown"},

@@ -153,24 +153,34 @@ uint64_t mt__bare_set_reload_bytes(const mt__bare_set *s)
     return total;
 }
 
-/* The archive's rule: contiguous under 4 KiB or without deflate, else
- * 1 MiB chunks with shuffle + deflate level 1. */
-static hid_t make_dcpl(const bare_dataset *d, bool deflate)
+/* Blosc's parameters as the archive sets them (archive_h5.c): level 5,
+ * bit shuffle, LZ4. */
+static const unsigned blosc_lz4_params[7] = {0, 0, 0, 0, 5, 2, 1};
+
+/* The archive's rule: contiguous under 4 KiB or uncompressed, else 1 MiB
+ * chunks with shuffle + deflate level 1 or with Blosc LZ4. */
+static hid_t make_dcpl(const bare_dataset *d, mt_archive_compression compression)
 {
-    if (!deflate || dataset_bytes(d) < 4096) return H5P_DEFAULT;
+    const bool deflate = compression == MT_ARCHIVE_COMPRESSION_DEFLATE;
+    const bool lz4 = compression == MT_ARCHIVE_COMPRESSION_LZ4;
+    if ((!deflate && !lz4) || dataset_bytes(d) < 4096) return H5P_DEFAULT;
     hsize_t row_bytes = H5Tget_size(d->ftype) * (d->rank == 2 ? d->dims[1] : 1);
     hsize_t chunk[2] = {CHUNK_BYTES / row_bytes, d->rank == 2 ? d->dims[1] : 1};
     if (chunk[0] < 1) chunk[0] = 1;
     if (chunk[0] > d->dims[0]) chunk[0] = d->dims[0];
     hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(dcpl, d->rank, chunk);
-    H5Pset_shuffle(dcpl);
-    H5Pset_deflate(dcpl, 1);
+    if (lz4) {
+        H5Pset_filter(dcpl, 32001, H5Z_FLAG_OPTIONAL, 7, blosc_lz4_params);
+    } else {
+        H5Pset_shuffle(dcpl);
+        H5Pset_deflate(dcpl, 1);
+    }
     return dcpl;
 }
 
-bool mt__bare_write(const mt__bare_set *s, const char *path, bool deflate, double *out_write_ms,
-                    double *out_fsync_ms, char *err, size_t err_size)
+bool mt__bare_write(const mt__bare_set *s, const char *path, mt_archive_compression compression,
+                    double *out_write_ms, double *out_fsync_ms, char *err, size_t err_size)
 {
     double t0 = mt__bench_now_ms();
     hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
@@ -191,7 +201,7 @@ bool mt__bare_write(const mt__bare_set *s, const char *path, bool deflate, doubl
     }
     for (int i = 0; ok && i < s->count; i++) {
         const bare_dataset *d = &s->ds[i];
-        hid_t dcpl = make_dcpl(d, deflate);
+        hid_t dcpl = make_dcpl(d, compression);
         hid_t space = H5Screate_simple(d->rank, d->dims, NULL);
         hid_t dset = H5Dcreate2(file, d->path, d->ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
         ok = dset >= 0 && (dataset_bytes(d) == 0 ||

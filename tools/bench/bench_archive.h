@@ -9,6 +9,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "meshtopo/archive.h"
 #include "meshtopo/face_list.h"
 #include "meshtopo/mesh.h"
 
@@ -34,8 +35,8 @@ uint64_t mt__bare_set_reload_bytes(const mt__bare_set *set);
  * mt_archive_write_with), then H5Fflush and H5Fclose. *out_write_ms is the
  * time up to the close, *out_fsync_ms the fsync of the file after it.
  * Returns false (message in err) on failure. */
-bool mt__bare_write(const mt__bare_set *set, const char *path, bool deflate, double *out_write_ms,
-                    double *out_fsync_ms, char *err, size_t err_size);
+bool mt__bare_write(const mt__bare_set *set, const char *path, mt_archive_compression compression,
+                    double *out_write_ms, double *out_fsync_ms, char *err, size_t err_size);
 
 /* Reads back with H5Dread, into fresh buffers, the datasets a reload reads
  * (the half-edge arrays and positions) and checks them against the set. */

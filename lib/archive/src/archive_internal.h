@@ -126,15 +126,17 @@ mt_status mt__h5_write_dataset(hid_t loc, const char *name, hid_t ftype, hid_t m
                                const hsize_t *dims, const void *data, const char *file,
                                mt_diag *diag);
 
-/* How large datasets are stored: contiguous, or chunked with shuffle and
- * deflate (mt_archive_write_options). */
+/* How large datasets are stored (mt_archive_write_options). */
 typedef struct mt__h5_layout {
-    bool deflate;
-    unsigned level; /* deflate level 1..9; 0 means 1 */
+    mt_archive_compression compression; /* DEFAULT and NONE: contiguous */
+    unsigned level;                     /* deflate level 1..9; 0 means 1 */
 } mt__h5_layout;
 
-/* Bytes per chunk of a deflated dataset (HDF5's default chunk cache holds
- * one such chunk per dataset). */
+/* HDF5's registered id of the Blosc filter (a plugin). */
+#define MT__H5_FILTER_BLOSC 32001
+
+/* Bytes per chunk of a compressed dataset (HDF5's default chunk cache
+ * holds one such chunk per dataset). */
 #define MT__H5_CHUNK_BYTES (1u << 20)
 
 /* mt__h5_write_dataset with a layout (NULL = contiguous). Datasets under

@@ -6,7 +6,7 @@
  * needed, and for why nothing planted in the directory can redirect the
  * write), and (format 2) the half-edge arrays with (format 4) their digest
  * (archive_halfedge.c). Layout: contiguous datasets by default, or chunked
- * with shuffle + deflate (mt_archive_write_options). */
+ * with shuffle + deflate or Blosc LZ4 (mt_archive_write_options). */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -484,9 +484,9 @@ mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta
     if (out_stats) memset(out_stats, 0, sizeof *out_stats);
     if (!archive || !meta || !list || !mesh)
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_write: NULL argument");
-    mt__h5_layout layout = {false, 1};
+    mt__h5_layout layout = {MT_ARCHIVE_COMPRESSION_NONE, 1};
     if (options) {
-        if ((unsigned)options->compression > (unsigned)MT_ARCHIVE_COMPRESSION_DEFLATE ||
+        if ((unsigned)options->compression > (unsigned)MT_ARCHIVE_COMPRESSION_LZ4 ||
             options->deflate_level > 9)
             return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
                                     "mt_archive_write: unknown compression %d or deflate level %u",
@@ -495,8 +495,14 @@ mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta
             return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
                                     "mt_archive_write: unknown self_intersections %d",
                                     (int)options->self_intersections);
-        layout.deflate = options->compression == MT_ARCHIVE_COMPRESSION_DEFLATE;
+        layout.compression = options->compression;
         layout.level = options->deflate_level ? options->deflate_level : 1;
+        if (layout.compression == MT_ARCHIVE_COMPRESSION_LZ4 && !mt_archive_lz4_available())
+            return mt__archive_fail(diag, MT_ERR_UNSUPPORTED,
+                                    "mt_archive_write: LZ4 compression needs HDF5's Blosc filter "
+                                    "plugin (filter %d; Debian: hdf5-filter-plugin-blosc-serial), "
+                                    "not found in HDF5's plugin path (HDF5_PLUGIN_PATH)",
+                                    MT__H5_FILTER_BLOSC);
     }
     if (archive->read_only)
         return mt__archive_fail(diag, MT_ERR_UNSUPPORTED, "%s: archive opened read-only",
