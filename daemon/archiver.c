@@ -446,7 +446,7 @@ static void set_aside(mtd_archiver *a, const char *id, uint32_t version, mt_diag
 {
     char file[MT_ARCHIVE_FILE_NAME_MAX + 1], aside[MT_ARCHIVE_FILE_NAME_MAX + 64];
     mt_diag aside_diag;
-    if (mt_archive_file_name(id, version, file, sizeof file) == 0) return;
+    if (mt_archive_file_find(a->archive, id, version, file, sizeof file, NULL) != MT_OK) return;
     if (mt_archive_set_aside(a->archive, file, aside, sizeof aside, &aside_diag) != MT_OK) {
         note_error(a, "archive_set_aside", aside_diag.message);
         return;
@@ -671,7 +671,9 @@ void mtd_archiver_stats(mtd_archiver *a, meshtopo_status_t *st)
 
 /* ---- what other members wrote --------------------------------------------- */
 
-/* The file names of the catalog, sorted, for the rescan's filter. */
+/* The file names of the catalog without their suffix ("<stem>.v<N>"),
+ * sorted, for the rescan's filter: a file is known whichever suffix it has
+ * (".hdf", or ".vtkhdf" as earlier versions wrote). */
 typedef struct known_names {
     char (*names)[MT_ARCHIVE_FILE_NAME_MAX + 1];
     size_t count;
@@ -682,10 +684,22 @@ static int name_cmp(const void *x, const void *y)
     return strcmp(x, y);
 }
 
+/* name without its last ".suffix", into out (MT_ARCHIVE_FILE_NAME_MAX + 1 bytes). */
+static void name_stem(const char *name, char *out)
+{
+    const char *dot = strrchr(name, '.');
+    size_t len = dot ? (size_t)(dot - name) : strlen(name);
+    if (len > MT_ARCHIVE_FILE_NAME_MAX) len = MT_ARCHIVE_FILE_NAME_MAX;
+    memcpy(out, name, len);
+    out[len] = '\0';
+}
+
 static bool not_known(void *ctx, const char *file_name)
 {
     const known_names *k = ctx;
-    return !k->count || !bsearch(file_name, k->names, k->count, sizeof *k->names, name_cmp);
+    char stem[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    name_stem(file_name, stem);
+    return !k->count || !bsearch(stem, k->names, k->count, sizeof *k->names, name_cmp);
 }
 
 /* Adds a readable listed file to the catalog and reserves its number in
@@ -739,7 +753,8 @@ bool mtd_archiver_learn(mtd_archiver *a, const char *id, uint32_t version)
     bool known = cat_find(a, id, version) != NULL;
     pthread_mutex_unlock(&a->lock);
     char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
-    if (known || mt_archive_file_name(id, version, name, sizeof name) == 0) return false;
+    if (known || mt_archive_file_find(a->archive, id, version, name, sizeof name, NULL) != MT_OK)
+        return false;
     mt_archive_entry e;
     mt_diag diag;
     bool added = mt_archive_list_file(a->archive, name, &e, &diag) == MT_OK &&
@@ -757,9 +772,11 @@ size_t mtd_archiver_rescan(mtd_archiver *a)
     pthread_mutex_lock(&a->lock);
     const size_t catalogued = a->count;
     known.names = catalogued ? malloc(catalogued * sizeof *known.names) : NULL;
-    for (size_t i = 0; known.names && i < catalogued; i++)
-        mt_archive_file_name(a->entries[i].id, a->entries[i].version, known.names[known.count++],
-                             sizeof *known.names);
+    for (size_t i = 0; known.names && i < catalogued; i++) {
+        char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+        mt_archive_file_name(a->entries[i].id, a->entries[i].version, name, sizeof name);
+        name_stem(name, known.names[known.count++]);
+    }
     pthread_mutex_unlock(&a->lock);
     if (catalogued && !known.names) return 0;
     if (known.count) qsort(known.names, known.count, sizeof *known.names, name_cmp);

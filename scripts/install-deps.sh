@@ -20,10 +20,15 @@ packages=(
     libxxhash-dev                                  # content hash of submitted meshes (XXH3)
     libhdf5-dev hdf5-tools                         # meshtopo::archive (HDF5 1.10), h5dump/h5ls
     hdf5-filter-plugin-blosc-serial                # LZ4 archives (--archive-compression lz4)
-    python3-h5py python3-vtk9                      # tests/archive: h5py and VTK's vtkHDFReader read archives
+    python3-vtk9                                   # meshtopo render, archive export to .vtu; tests/archive:
+    python3-h5py                                   # VTK's vtkHDFReader and h5py read archives
     python3-numpy python3-pytest                   # the Python package (lib/python) and its tests
     nftables iproute2                              # tests/netns: private network, packet loss
-    xvfb xauth                                     # tests/cli: meshtopo spy under a virtual X display
+    xvfb xauth                                     # meshtopo render (VTK 9.1 draws through X: its own
+                                                   # Xvfb without a display); tests/cli: meshtopo spy
+    # Tests only: archive.paraview opens every archived corpus mesh in
+    # ParaView's pvbatch (large; meshtopo itself never needs ParaView)
+    paraview python3-paraview
 )
 
 if [ "$(id -u)" -ne 0 ]; then

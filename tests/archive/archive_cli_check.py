@@ -76,7 +76,7 @@ def main():
         byid = {(m["mesh_id"], m["version"]): m for m in meshes}
         t2 = byid.get(("torus", 2), {})
         expect(t2.get("num_faces") == 5 and t2.get("num_defects", 0) > 0 and
-               t2.get("file") == "torus.v2.vtkhdf" and t2.get("file_bytes", 0) > 0,
+               t2.get("file") == "torus.v2.hdf" and t2.get("file_bytes", 0) > 0,
                "ls --json: counts, defects, file and size of torus v2", code, out, err)
         t1 = byid.get(("torus", 1), {})
         expect(t1.get("genus") == 1 and t1.get("closed") is True, "ls --json: torus v1 genus 1")
@@ -130,13 +130,13 @@ def main():
         expect(code == 0 and out.count("ok   ") == 4, "verify: every file ok", code, out, err)
         bad = os.path.join(tmp, "bad")
         shutil.copytree(d, bad)
-        with open(os.path.join(bad, "torus.v1.vtkhdf"), "r+b") as f:
+        with open(os.path.join(bad, "torus.v1.hdf"), "r+b") as f:
             f.truncate(2000)
-        with open(os.path.join(bad, "junk.v1.vtkhdf"), "w") as f:
+        with open(os.path.join(bad, "junk.v1.hdf"), "w") as f:
             f.write("not hdf5\n")
         code, out, err = run("archive", "verify", bad)
-        expect(code == 3 and "BAD  " in out and "torus.v1.vtkhdf" in out and
-               "junk.v1.vtkhdf" in out and out.count("ok   ") == 3 and "2 bad" in out,
+        expect(code == 3 and "BAD  " in out and "torus.v1.hdf" in out and
+               "junk.v1.hdf" in out and out.count("ok   ") == 3 and "2 bad" in out,
                "verify: exit 3, each bad file named, the others ok", code, out, err)
         code, out, err = run("archive", "verify", bad, "--json")
         doc = json.loads(out) if out else {}
@@ -178,8 +178,8 @@ def main():
         code, out, err = run("archive", "rm", d, "torus", "--all", "--version", "1")
         expect(code == 2, "rm --all --version: usage error", code, out, err)
         code, out, err = run("archive", "rm", d, "torus")
-        expect(code == 0 and not os.path.exists(os.path.join(d, "torus.v2.vtkhdf")) and
-               os.path.exists(os.path.join(d, "torus.v1.vtkhdf")),
+        expect(code == 0 and not os.path.exists(os.path.join(d, "torus.v2.hdf")) and
+               os.path.exists(os.path.join(d, "torus.v1.hdf")),
                "rm removes the highest version", code, out, err)
         fixture(d, "torus", 3, corpus("cgal_torus_quad"))
         code, out, err = run("archive", "rm", d, "torus", "--all")

@@ -80,8 +80,8 @@ def main():
         subprocess.run([args.fixture, tmp, "plain", "1", mesh], check=True)
         subprocess.run([args.fixture, tmp, "packed", "1", mesh, "--compression", "lz4"],
                        check=True)
-        plain = os.path.join(tmp, "plain.v1.vtkhdf")
-        packed = os.path.join(tmp, "packed.v1.vtkhdf")
+        plain = os.path.join(tmp, "plain.v1.hdf")
+        packed = os.path.join(tmp, "packed.v1.hdf")
         expect(os.path.getsize(packed) < os.path.getsize(plain) / 2,
                "lz4: %d bytes against %d uncompressed" %
                (os.path.getsize(packed), os.path.getsize(plain)))

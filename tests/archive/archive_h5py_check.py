@@ -120,7 +120,7 @@ def check_topology(fixture, corpus, tmp, name):
     subprocess.run([fixture, tmp, name, "1", mesh], check=True)
     kept, touches, consistent, component, on_nm_edge, boundary, nm_end = oracle(nv, faces)
     nme = 1 << 3  # nonmanifold_edge in the bits attribute, checked below
-    with h5py.File(os.path.join(tmp, name + ".v1.vtkhdf"), "r") as f:
+    with h5py.File(os.path.join(tmp, name + ".v1.hdf"), "r") as f:
         cd, pd = f["VTKHDF/CellData"], f["VTKHDF/PointData"]
         kinds = {"component": np.int32, "defects": np.uint32, "touches_boundary": np.uint8,
                  "orientation_consistent": np.uint8}
@@ -167,7 +167,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="meshtopo-h5py-") as tmp:
         subprocess.run([args.fixture, tmp, "arm 1. x", "3", mesh], check=True)
         names = os.listdir(tmp)
-        expect(len(names) == 1 and names[0].endswith(".vtkhdf"), f"one .vtkhdf file: {names}")
+        expect(len(names) == 1 and names[0].endswith(".hdf"), f"one .hdf file: {names}")
         with h5py.File(os.path.join(tmp, names[0]), "r") as f:
             g = f["VTKHDF"]
             expect(list(g.attrs["Version"]) == [1, 0] and g.attrs["Version"].dtype == np.int64,

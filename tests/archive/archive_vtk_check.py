@@ -97,7 +97,7 @@ def check_self_intersections(fixture, tmp):
             f.write("3 %d %d %d\n" % face)
     subprocess.run([fixture, tmp, "octahedron", "1", path, "--self-intersections"], check=True)
     reader = vtk.vtkHDFReader()
-    reader.SetFileName(os.path.join(tmp, "octahedron.v1.vtkhdf"))
+    reader.SetFileName(os.path.join(tmp, "octahedron.v1.hdf"))
     reader.Update()
     a = reader.GetOutput().GetCellData().GetArray("self_intersecting")
     expect(a is not None and a.GetDataType() == vtk.VTK_UNSIGNED_CHAR and
@@ -122,7 +122,7 @@ def main():
             nv, faces = read_off(mesh)
             kept = [i for i, fc in enumerate(faces)
                     if len(fc) >= 3 and len(set(fc)) == len(fc) and all(0 <= v < nv for v in fc)]
-            path = os.path.join(tmp, name + ".v1.vtkhdf")
+            path = os.path.join(tmp, name + ".v1.hdf")
             reader = vtk.vtkHDFReader()
             expect(reader.CanReadFile(path) == 1, f"{name}: vtkHDFReader can read it")
             reader.SetFileName(path)

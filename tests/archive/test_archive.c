@@ -170,11 +170,11 @@ static void test_id_escaping(void)
     /* "../x" itself is not a valid id ('/' and ".."); escaping is checked on valid ones. */
     CHECK_EQ(mt_archive_file_name("../x", 3, name, sizeof name), 0);
     mt_archive_file_name(".", 1, name, sizeof name);
-    CHECK(strcmp(name, "%2E.v1.vtkhdf") == 0);
+    CHECK(strcmp(name, "%2E.v1.hdf") == 0);
     mt_archive_file_name("a b", 2, name, sizeof name);
-    CHECK(strcmp(name, "a%20b.v2.vtkhdf") == 0);
+    CHECK(strcmp(name, "a%20b.v2.hdf") == 0);
     mt_archive_file_name("%", 1, name, sizeof name);
-    CHECK(strcmp(name, "%25.v1.vtkhdf") == 0);
+    CHECK(strcmp(name, "%25.v1.hdf") == 0);
     CHECK_EQ(mt_archive_file_name("a/b", 1, name, sizeof name), 0);
     CHECK_EQ(mt_archive_file_name("a", 0, name, sizeof name), 0);
     CHECK_EQ(mt_archive_file_name("..", 1, name, sizeof name), 0);
@@ -198,7 +198,7 @@ static void test_id_escaping(void)
         CHECK(len > 0 && len <= MT_ARCHIVE_FILE_NAME_MAX);
         CHECK(strchr(name, '/') == NULL);
         CHECK(name[0] != '.');
-        CHECK(strchr(name, '.') == strstr(name, ".v1.vtkhdf")); /* the only dots are the suffix's */
+        CHECK(strchr(name, '.') == strstr(name, ".v1.hdf")); /* the only dots are the suffix's */
         round_trip(archive, ids[i], &list);
     }
     mt_face_list_free(&list);
@@ -338,6 +338,75 @@ static void test_highest_version_and_filtered_listing(void)
     CHECK_STATUS(mt_archive_highest_version(archive, "scan", &highest, &diag), MT_ERR_IO);
     CHECK(strstr(diag.message, "No such file or directory") != NULL);
     mt_archive_close(archive);
+}
+
+/* Files earlier versions named "*.vtkhdf": listed, found, loaded, counted
+ * in the numbering, verified, kept from being written again and removed,
+ * next to "*.hdf" files of the same mesh. */
+static void test_legacy_suffix(void)
+{
+    char dir[512];
+    mt_archive *archive = open_fresh(dir, sizeof dir);
+    if (!archive) return;
+    mt_face_list a;
+    CHECK_OK(mt_gen_platonic(MT_CUBE, &a));
+    CHECK_OK(at_archive_list(archive, "old", 1, &a, 1, NULL));
+    CHECK_OK(at_archive_list(archive, "old", 2, &a, 1, NULL));
+    char from[1024], to[1024];
+    snprintf(from, sizeof from, "%s/old.v1.hdf", dir);
+    snprintf(to, sizeof to, "%s/old.v1.vtkhdf", dir);
+    CHECK(rename(from, to) == 0);
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    CHECK_EQ(mt_archive_file_name("old", 1, name, sizeof name), strlen("old.v1.hdf"));
+    CHECK(strcmp(name, "old.v1.hdf") == 0);
+    CHECK_OK(mt_archive_file_find(archive, "old", 1, name, sizeof name, NULL));
+    CHECK(strcmp(name, "old.v1.vtkhdf") == 0);
+    CHECK_OK(mt_archive_file_find(archive, "old", 2, name, sizeof name, NULL));
+    CHECK(strcmp(name, "old.v2.hdf") == 0);
+    CHECK_STATUS(mt_archive_file_find(archive, "old", 3, name, sizeof name, NULL),
+                 MT_ERR_NOT_FOUND);
+    CHECK(strcmp(name, "old.v3.hdf") == 0);
+    CHECK(mt_archive_contains(archive, "old", 1));
+
+    mt_archive_listing l;
+    CHECK_OK(mt_archive_list(archive, &l, NULL));
+    CHECK_EQ(l.count, 2);
+    if (l.count == 2) {
+        CHECK(l.entries[0].status == MT_OK && l.entries[0].version == 1);
+        CHECK(strcmp(l.entries[0].file_name, "old.v1.vtkhdf") == 0);
+        CHECK(l.entries[1].status == MT_OK && l.entries[1].version == 2);
+    }
+    mt_archive_listing_free(&l);
+    mt_archive_record rec;
+    CHECK_OK(mt_archive_load(archive, "old", 1, &rec, NULL));
+    CHECK(at_face_lists_equal(&rec.faces, &a));
+    mt_archive_record_free(&rec);
+    mt_mesh *loaded = NULL;
+    CHECK_OK(mt_archive_load_mesh(archive, "old", 1, false, NULL, &loaded, NULL, NULL));
+    mt_mesh_destroy(loaded);
+    CHECK_OK(mt_archive_verify_file(archive, "old.v1.vtkhdf", NULL, NULL, NULL));
+
+    /* The highest version counts both kinds of names. */
+    CHECK_OK(mt_archive_remove(archive, "old", 2, NULL));
+    uint32_t highest = 0;
+    CHECK_OK(mt_archive_highest_version(archive, "old", &highest, NULL));
+    CHECK_EQ(highest, 1);
+    /* Version 1 is taken by its .vtkhdf file: no .hdf file is written. */
+    mt_mesh *mesh = NULL;
+    mt_diag diag;
+    CHECK_OK(mt_mesh_build(&a, NULL, &mesh, NULL));
+    mt_archive_meta meta = {"old", 1, 5, "other", 2};
+    CHECK_STATUS(mt_archive_write(archive, &meta, &a, mesh, NULL, &diag), MT_ERR_INVALID_ARG);
+    CHECK(strstr(diag.message, "old.v1.vtkhdf: version 1 of mesh 'old' is already archived") !=
+          NULL);
+    mt_mesh_destroy(mesh);
+    CHECK(access(from, F_OK) != 0);
+    CHECK_OK(mt_archive_remove(archive, "old", 1, NULL));
+    CHECK(access(to, F_OK) != 0);
+    CHECK(!mt_archive_contains(archive, "old", 1));
+    mt_face_list_free(&a);
+    mt_archive_close(archive);
+    at_rmdir(dir);
 }
 
 static void test_never_overwritten(void)
@@ -544,6 +613,7 @@ static const mt_test_case cases[] = {
     {"id_escaping", test_id_escaping},
     {"versions_and_listing", test_versions_and_listing},
     {"highest_version_and_filtered_listing", test_highest_version_and_filtered_listing},
+    {"legacy_suffix", test_legacy_suffix},
     {"never_overwritten", test_never_overwritten},
     {"leftovers_cleaned", test_leftovers_cleaned},
     {"killed_while_writing", test_killed_while_writing},

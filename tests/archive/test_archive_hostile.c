@@ -66,7 +66,7 @@ static void expect_reported(hostile *h, const char *id, mt_status status, const 
     CHECK_OK(mt_archive_load(h->archive, "good", 1, &rec, NULL));
     CHECK_EQ(rec.faces.num_faces, 6);
     mt_archive_record_free(&rec);
-    CHECK_OK(mt_archive_verify_file(h->archive, "good.v1.vtkhdf", at_hash, NULL, NULL));
+    CHECK_OK(mt_archive_verify_file(h->archive, "good.v1.hdf", at_hash, NULL, NULL));
 }
 
 static void hostile_done(hostile *h)
@@ -251,7 +251,7 @@ static void test_index_out_of_range(void)
         mt_diag diag;
         mt_archive_fault fault = MT_ARCHIVE_FAULT_NONE;
         CHECK_STATUS(
-            mt_archive_verify_file_with(h.archive, "idx.v1.vtkhdf", NULL, NULL, &fault, &diag),
+            mt_archive_verify_file_with(h.archive, "idx.v1.hdf", NULL, NULL, &fault, &diag),
             MT_ERR_PARSE);
         CHECK(strstr(diag.message, "Connectivity") != NULL);
         CHECK_EQ(fault, MT_ARCHIVE_FAULT_VTK);
@@ -318,7 +318,7 @@ static void test_mesh_id_attribute(void)
     /* A valid id that is not the file's: the name would not match. */
     if (!hostile_setup(&h, "evil", path, sizeof path)) return;
     set_attr_string(path, "/meshtopo", "mesh_id", "good");
-    expect_reported(&h, "evil", MT_ERR_PARSE, "good.v1.vtkhdf");
+    expect_reported(&h, "evil", MT_ERR_PARSE, "good.v1.hdf");
     hostile_done(&h);
     if (!hostile_setup(&h, "evil", path, sizeof path)) return;
     set_attr_i64(path, "/meshtopo", "version", 0);

@@ -195,7 +195,7 @@ static void test_symlink_at_tmp_names(void)
     CHECK(lstat(link_path, &sb) == 0 && S_ISLNK(sb.st_mode));
     for (uint32_t v = 1; v <= 8; v++) {
         char name[64];
-        snprintf(name, sizeof name, "t.v%u.vtkhdf", v);
+        snprintf(name, sizeof name, "t.v%u.hdf", v);
         CHECK_OK(mt_archive_verify_file(s.archive, name, at_hash, NULL, NULL));
     }
     scene_close(&s);
@@ -228,7 +228,7 @@ static void test_symlink_at_final_name(void)
         mt_archive_meta meta = {"m", 2, 1, "node", 0};
         CHECK_STATUS(mt_archive_write(s.archive, &meta, &list, mesh, NULL, &diag),
                      MT_ERR_INVALID_ARG);
-        CHECK(strstr(diag.message, "m.v2.vtkhdf") != NULL);
+        CHECK(strstr(diag.message, "m.v2.hdf") != NULL);
         CHECK(strstr(diag.message, k < 3 ? "a symbolic link" : "a directory") != NULL);
         CHECK(strstr(diag.message, "nothing was written through it") != NULL);
         if (getenv("MT_TEST_VERBOSE")) printf("final name taken: %s\n", diag.message);
@@ -260,16 +260,16 @@ static void test_non_regular_version_files(void)
     CHECK_OK(write_torus(s.archive, "linked", 1, NULL));
     char path[1024], moved[1024], fifo[1024], sub[1024];
     path_of(&s, "linked", 1, path, sizeof path);
-    snprintf(moved, sizeof moved, "%s/linked.v1.vtkhdf", s.outside);
+    snprintf(moved, sizeof moved, "%s/linked.v1.hdf", s.outside);
     CHECK(rename(path, moved) == 0);
     CHECK(symlink(moved, path) == 0);
-    expect_refused(&s, "linked.v1.vtkhdf", "a symbolic link");
+    expect_refused(&s, "linked.v1.hdf", "a symbolic link");
     path_of(&s, "fifo", 1, fifo, sizeof fifo);
     CHECK(mkfifo(fifo, 0600) == 0);
-    expect_refused(&s, "fifo.v1.vtkhdf", "a FIFO");
+    expect_refused(&s, "fifo.v1.hdf", "a FIFO");
     path_of(&s, "sub", 1, sub, sizeof sub);
     CHECK(mkdir(sub, 0700) == 0);
-    expect_refused(&s, "sub.v1.vtkhdf", "a directory");
+    expect_refused(&s, "sub.v1.hdf", "a directory");
     mt_mesh *mesh = NULL;
     CHECK_OK(mt_archive_load_mesh(s.archive, "good", 1, false, NULL, &mesh, NULL, NULL));
     mt_mesh_destroy(mesh);
@@ -277,8 +277,8 @@ static void test_non_regular_version_files(void)
     CHECK_STATUS(mt_archive_load_mesh(s.archive, "linked", 0, false, NULL, &mesh, NULL, NULL),
                  MT_ERR_IO);
     char aside[300];
-    CHECK_OK(mt_archive_set_aside(s.archive, "linked.v1.vtkhdf", aside, sizeof aside, NULL));
-    CHECK(strncmp(aside, ".mt-aside-linked.v1.vtkhdf.", 27) == 0);
+    CHECK_OK(mt_archive_set_aside(s.archive, "linked.v1.hdf", aside, sizeof aside, NULL));
+    CHECK(strncmp(aside, ".mt-aside-linked.v1.hdf.", 24) == 0);
     char aside_path[1000];
     snprintf(aside_path, sizeof aside_path, "%s/%s", s.dir, aside);
     struct stat sb;
@@ -304,7 +304,7 @@ static void test_foreign_owner(void)
     char path[1024];
     path_of(&s, "theirs", 1, path, sizeof path);
     CHECK(chown(path, NOBODY, NOBODY) == 0);
-    expect_refused(&s, "theirs.v1.vtkhdf", "owned by uid 65534");
+    expect_refused(&s, "theirs.v1.hdf", "owned by uid 65534");
     /* Leftover-like files of another user are not removed either. */
     char other[1024];
     snprintf(other, sizeof other, "%s/.mt-tmp-2147483000-1.part", s.dir);
@@ -385,17 +385,17 @@ static void test_face_list_altered(void)
     mt_diag diag;
     CHECK_STATUS(mt_archive_load_mesh(s.archive, "fake", 1, false, NULL, &mesh, &info, &diag),
                  MT_ERR_CORRUPT);
-    CHECK(strstr(diag.message, "fake.v1.vtkhdf: content hash mismatch") != NULL);
+    CHECK(strstr(diag.message, "fake.v1.hdf: content hash mismatch") != NULL);
     CHECK(strstr(diag.message, both) != NULL);
     CHECK(strstr(diag.message, "the face list hashes to ") != NULL);
-    mt_mesh_destroy(expect_fault(s.archive, "fake.v1.vtkhdf", MT_ARCHIVE_FAULT_CONTENT,
-                                 "content hash mismatch"));
+    mt_mesh_destroy(
+        expect_fault(s.archive, "fake.v1.hdf", MT_ARCHIVE_FAULT_CONTENT, "content hash mismatch"));
     /* The daemon's hash. */
     mt_archive_set_content_hash(s.archive, mt_archive_content_hash, NULL);
     CHECK_OK(mt_archive_load_mesh(s.archive, "real", 1, false, NULL, &mesh, &info, NULL));
     CHECK(info.restored && info.hash_checked);
     mt_mesh_destroy(mesh);
-    CHECK_OK(mt_archive_verify_file(s.archive, "real.v1.vtkhdf", NULL, NULL, NULL));
+    CHECK_OK(mt_archive_verify_file(s.archive, "real.v1.hdf", NULL, NULL, NULL));
     path_of(&s, "real", 1, path, sizeof path);
     /* One face a vertex shorter, the next one longer: still a face list. */
     uint32_t c2 = at_peek_u32(path, "/meshtopo/face_vertex_counts", 2);
@@ -403,11 +403,11 @@ static void test_face_list_altered(void)
     CHECK(at_poke_u32(path, "/meshtopo/face_vertex_counts", 2, c2 - 1));
     CHECK(at_poke_u32(path, "/meshtopo/face_vertex_counts", 3, c3 + 1));
     snprintf(both, sizeof both, "the file says %016llx", (unsigned long long)real);
-    mesh = expect_fault(s.archive, "real.v1.vtkhdf", MT_ARCHIVE_FAULT_CONTENT, both);
+    mesh = expect_fault(s.archive, "real.v1.hdf", MT_ARCHIVE_FAULT_CONTENT, both);
     CHECK(mesh == NULL);
     /* Set aside: out of the listing and of the way. */
     char aside[300];
-    CHECK_OK(mt_archive_set_aside(s.archive, "real.v1.vtkhdf", aside, sizeof aside, NULL));
+    CHECK_OK(mt_archive_set_aside(s.archive, "real.v1.hdf", aside, sizeof aside, NULL));
     CHECK(!mt_archive_contains(s.archive, "real", 1));
     mt_archive_listing l;
     CHECK_OK(mt_archive_list(s.archive, &l, NULL));
@@ -415,12 +415,12 @@ static void test_face_list_altered(void)
     mt_archive_listing_free(&l);
     mt_archive *again = NULL, *ro = NULL;
     CHECK_OK(mt_archive_open(s.dir, NULL, &again, NULL));
-    CHECK_EQ(count_named(s.dir, ".mt-aside-real.v1.vtkhdf."), 1);
+    CHECK_EQ(count_named(s.dir, ".mt-aside-real.v1.hdf."), 1);
     mt_archive_options read_only = {.read_only = true};
     CHECK_OK(mt_archive_open(s.dir, &read_only, &ro, NULL));
-    CHECK_STATUS(mt_archive_set_aside(ro, "fake.v1.vtkhdf", NULL, 0, NULL), MT_ERR_UNSUPPORTED);
-    CHECK_STATUS(mt_archive_set_aside(again, "real.v1.vtkhdf", NULL, 0, NULL), MT_ERR_NOT_FOUND);
-    CHECK_STATUS(mt_archive_set_aside(again, "../x.v1.vtkhdf", NULL, 0, NULL), MT_ERR_INVALID_ARG);
+    CHECK_STATUS(mt_archive_set_aside(ro, "fake.v1.hdf", NULL, 0, NULL), MT_ERR_UNSUPPORTED);
+    CHECK_STATUS(mt_archive_set_aside(again, "real.v1.hdf", NULL, 0, NULL), MT_ERR_NOT_FOUND);
+    CHECK_STATUS(mt_archive_set_aside(again, "../x.v1.hdf", NULL, 0, NULL), MT_ERR_INVALID_ARG);
     mt_archive_close(ro);
     mt_archive_close(again);
     char aside_path[1000];
@@ -449,7 +449,7 @@ static void test_derived_data_altered(void)
     path_of(&s, "t", 1, path, sizeof path);
     snprintf(copy, sizeof copy, "%s/t.copy", s.outside);
     CHECK(at_copy_file(path, copy, -1));
-    mt_mesh *mesh = expect_fault(s.archive, "t.v1.vtkhdf", MT_ARCHIVE_FAULT_NONE, NULL);
+    mt_mesh *mesh = expect_fault(s.archive, "t.v1.hdf", MT_ARCHIVE_FAULT_NONE, NULL);
     CHECK(mesh != NULL);
     mt_mesh_destroy(mesh);
 
@@ -457,36 +457,34 @@ static void test_derived_data_altered(void)
      * digest tells it is not the one archived. */
     uint32_t h = parts.vert_he[0];
     CHECK(at_poke_u32(path, "/meshtopo/halfedge/vertex_halfedge", 0, parts.he_next[h ^ 1]));
-    mesh =
-        expect_fault(s.archive, "t.v1.vtkhdf", MT_ARCHIVE_FAULT_DERIVED, "not what was archived");
+    mesh = expect_fault(s.archive, "t.v1.hdf", MT_ARCHIVE_FAULT_DERIVED, "not what was archived");
     if (mesh) CHECK(rc_same_answers(built, mesh, "vertex_halfedge altered"));
     mt_mesh_destroy(mesh);
     /* Arrays that fail validation. */
     CHECK(at_copy_file(copy, path, -1));
     CHECK(at_poke_u32(path, "/meshtopo/halfedge/next", 0, parts.he_next[2]));
     mt_mesh_destroy(
-        expect_fault(s.archive, "t.v1.vtkhdf", MT_ARCHIVE_FAULT_DERIVED, "fail validation"));
+        expect_fault(s.archive, "t.v1.hdf", MT_ARCHIVE_FAULT_DERIVED, "fail validation"));
     /* The report: with the content hash vouching for the face list, the
      * rebuild's report is served. */
     CHECK(at_copy_file(copy, path, -1));
     CHECK(at_set_attr_i64(path, "/meshtopo/report", "genus", 2));
-    mesh =
-        expect_fault(s.archive, "t.v1.vtkhdf", MT_ARCHIVE_FAULT_DERIVED, "not what was archived");
+    mesh = expect_fault(s.archive, "t.v1.hdf", MT_ARCHIVE_FAULT_DERIVED, "not what was archived");
     if (mesh) CHECK_EQ(mt_mesh_report(mesh)->genus, 1);
     mt_mesh_destroy(mesh);
     /* ... and without a hash nothing tells which of the two is damaged. */
     mt_archive_set_content_hash(s.archive, NULL, NULL);
-    mt_mesh_destroy(expect_fault(s.archive, "t.v1.vtkhdf", MT_ARCHIVE_FAULT_CONTENT,
+    mt_mesh_destroy(expect_fault(s.archive, "t.v1.hdf", MT_ARCHIVE_FAULT_CONTENT,
                                  "differs from the stored one"));
     mt_archive_set_content_hash(s.archive, at_hash, NULL);
     /* The digest itself changed, or missing. */
     CHECK(at_copy_file(copy, path, -1));
     CHECK(at_set_attr_u64(path, "/meshtopo/halfedge", "digest", 12345));
     mt_mesh_destroy(
-        expect_fault(s.archive, "t.v1.vtkhdf", MT_ARCHIVE_FAULT_DERIVED, "not what was archived"));
+        expect_fault(s.archive, "t.v1.hdf", MT_ARCHIVE_FAULT_DERIVED, "not what was archived"));
     CHECK(at_copy_file(copy, path, -1));
     CHECK(at_delete_attr(path, "/meshtopo/halfedge", "digest"));
-    mt_mesh_destroy(expect_fault(s.archive, "t.v1.vtkhdf", MT_ARCHIVE_FAULT_DERIVED, "digest"));
+    mt_mesh_destroy(expect_fault(s.archive, "t.v1.hdf", MT_ARCHIVE_FAULT_DERIVED, "digest"));
     /* Positions are served too: covered by the digest. */
     CHECK(at_copy_file(copy, path, -1));
     {
@@ -504,10 +502,10 @@ static void test_derived_data_altered(void)
     }
     mt_archive_set_content_hash(s.archive, NULL, NULL); /* the digest alone catches it */
     mt_mesh_destroy(
-        expect_fault(s.archive, "t.v1.vtkhdf", MT_ARCHIVE_FAULT_DERIVED, "not what was archived"));
+        expect_fault(s.archive, "t.v1.hdf", MT_ARCHIVE_FAULT_DERIVED, "not what was archived"));
     mt_archive_set_content_hash(s.archive, at_hash, NULL); /* the face list is damaged */
     mt_mesh_destroy(
-        expect_fault(s.archive, "t.v1.vtkhdf", MT_ARCHIVE_FAULT_CONTENT, "content hash mismatch"));
+        expect_fault(s.archive, "t.v1.hdf", MT_ARCHIVE_FAULT_CONTENT, "content hash mismatch"));
     unlink(copy);
     mt_mesh_destroy(built);
     scene_close(&s);
@@ -593,11 +591,11 @@ static void test_load_and_verify_agree(void)
         mt_archive_load_info info;
         mt_diag diag;
         mt_status st =
-            mt_archive_load_mesh_file(s.archive, "a.v1.vtkhdf", false, NULL, &mesh, &info, &diag);
+            mt_archive_load_mesh_file(s.archive, "a.v1.hdf", false, NULL, &mesh, &info, &diag);
         mt_archive_fault vfault = MT_ARCHIVE_FAULT_NONE;
         mt_diag vdiag;
         mt_status vst =
-            mt_archive_verify_file_with(s.archive, "a.v1.vtkhdf", NULL, NULL, &vfault, &vdiag);
+            mt_archive_verify_file_with(s.archive, "a.v1.hdf", NULL, NULL, &vfault, &vdiag);
         CHECK_EQ(info.fault, fault);
         CHECK_EQ(vfault, row == 11 ? MT_ARCHIVE_FAULT_VTK : fault);
         CHECK_EQ(st == MT_OK, fault == MT_ARCHIVE_FAULT_NONE || fault == MT_ARCHIVE_FAULT_DERIVED);
@@ -681,7 +679,7 @@ static void permission_body(void *ctx)
     if (!archive) return;
     mt_archive_record rec;
     CHECK_STATUS(mt_archive_load(archive, "closed", 1, &rec, &diag), MT_ERR_IO);
-    CHECK(strstr(diag.message, "closed.v1.vtkhdf") != NULL);
+    CHECK(strstr(diag.message, "closed.v1.hdf") != NULL);
     CHECK(strstr(diag.message, "Permission denied") != NULL);
     CHECK(strstr(diag.message, "not a readable HDF5") == NULL);
     if (getenv("MT_TEST_VERBOSE")) printf("unreadable: %s\n", diag.message);
@@ -692,9 +690,8 @@ static void permission_body(void *ctx)
     CHECK_EQ(info.fault, MT_ARCHIVE_FAULT_SYSTEM);
     CHECK(strstr(diag.message, "Permission denied") != NULL);
     mt_archive_fault fault = MT_ARCHIVE_FAULT_NONE;
-    CHECK_STATUS(
-        mt_archive_verify_file_with(archive, "closed.v1.vtkhdf", NULL, NULL, &fault, &diag),
-        MT_ERR_IO);
+    CHECK_STATUS(mt_archive_verify_file_with(archive, "closed.v1.hdf", NULL, NULL, &fault, &diag),
+                 MT_ERR_IO);
     CHECK_EQ(fault, MT_ARCHIVE_FAULT_SYSTEM);
     mt_archive_listing l;
     CHECK_OK(mt_archive_list(archive, &l, NULL));
@@ -730,7 +727,7 @@ static void test_permission_denied(void)
     if (!archive) return;
     CHECK_OK(write_torus(archive, "closed", 1, NULL));
     mt_archive_close(archive);
-    snprintf(path, sizeof path, "%s/closed.v1.vtkhdf", dir);
+    snprintf(path, sizeof path, "%s/closed.v1.hdf", dir);
     if (geteuid() == 0) {
         CHECK(chown(dir, NOBODY, NOBODY) == 0);
         CHECK(chown(path, NOBODY, NOBODY) == 0);
@@ -838,12 +835,12 @@ static void no_proc_body(void *ctx)
     CHECK_OK(mt_archive_load_mesh(s->archive, "p", 1, false, NULL, &mesh, &info, NULL));
     CHECK(info.restored && info.hash_checked);
     mt_mesh_destroy(mesh);
-    CHECK_OK(mt_archive_verify_file(s->archive, "p.v1.vtkhdf", NULL, NULL, NULL));
+    CHECK_OK(mt_archive_verify_file(s->archive, "p.v1.hdf", NULL, NULL, NULL));
     char v2[1024];
     path_of(s, "p", 2, v2, sizeof v2);
     CHECK(symlink(s->precious, v2) == 0);
     CHECK_STATUS(write_torus(s->archive, "p", 2, NULL), MT_ERR_INVALID_ARG);
-    expect_refused(s, "p.v2.vtkhdf", "a symbolic link");
+    expect_refused(s, "p.v2.hdf", "a symbolic link");
     CHECK(unlink(v2) == 0);
     CHECK_EQ(count_named(s->dir, ".mt-tmp-"), 0);
 }

@@ -323,15 +323,15 @@ def check_bad_files(cli, fixture, corpus, tmp):
     bad = os.path.join(tmp, "bad-archive")
     if not make_archive(fixture, corpus, bad, ARCHIVED, wrong_hash="prim"):
         return
-    with open(os.path.join(bad, "junk.v1.vtkhdf"), "wb") as f:
+    with open(os.path.join(bad, "junk.v1.hdf"), "wb") as f:
         f.write(b"this is not HDF5\n" * 10)
     p, lines = replay(cli, bad, "--rate", "0")
     if not check(p is not None, "replay of a damaged archive finishes"):
         return
     check(p.returncode == 3, f"an unreadable file and a wrong hash exit 3 (got {p.returncode})")
-    check("junk.v1.vtkhdf" in p.stderr, f"the unreadable file is named on stderr ({p.stderr!r})")
+    check("junk.v1.hdf" in p.stderr, f"the unreadable file is named on stderr ({p.stderr!r})")
     unreadable = [l for l in lines if l.get("status") == "UNREADABLE"]
-    check(len(unreadable) == 1 and unreadable[0]["file"] == "junk.v1.vtkhdf" and
+    check(len(unreadable) == 1 and unreadable[0]["file"] == "junk.v1.hdf" and
           unreadable[0]["error"], "--json lists the unreadable file with its error")
     done = [l for l in lines if l.get("status") == "OK"]
     check(len(done) == len(ARCHIVED), f"the other {len(ARCHIVED)} meshes are still replayed "
@@ -345,7 +345,7 @@ def check_bad_files(cli, fixture, corpus, tmp):
           "the others match their archived hashes")
     p = run([cli, "replay", bad, "--rate", "0", "--ids", "prim"])
     check(p is not None and p.returncode == 3 and "DIFFERS" in p.stdout and
-          "prim.v1.vtkhdf" in p.stderr, f"text output flags the differing hash "
+          "prim.v1.hdf" in p.stderr, f"text output flags the differing hash "
           f"({p and p.stdout.strip()} / {p and p.stderr.strip()})")
     # The same file marked as archive format 2, whose content hash is of the
     # former kind: the ack is checked against the hash of what was sent.
@@ -356,10 +356,10 @@ def check_bad_files(cli, fixture, corpus, tmp):
             "    kind = a['format_version'].dtype\n"
             "    del a['format_version']\n"
             "    a.create('format_version', 2, dtype=kind)\n")
-    os.remove(os.path.join(bad, "junk.v1.vtkhdf"))
-    p = run(["/usr/bin/python3", "-c", mark, os.path.join(bad, "prim.v1.vtkhdf")])
+    os.remove(os.path.join(bad, "junk.v1.hdf"))
+    p = run(["/usr/bin/python3", "-c", mark, os.path.join(bad, "prim.v1.hdf")])
     if not check(p is not None and p.returncode == 0,
-                 f"prim.v1.vtkhdf marked as format 2 ({p and p.stderr.strip()})"):
+                 f"prim.v1.hdf marked as format 2 ({p and p.stderr.strip()})"):
         return
     p, lines = replay(cli, bad, "--rate", "0", "--ids", "prim")
     prim = [l for l in lines if l.get("mesh_id") == "prim"]

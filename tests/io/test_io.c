@@ -379,6 +379,64 @@ static void test_write_replaces_atomically(void)
     mt_face_list_free(&list);
 }
 
+/* Colours in PLY (ascii, both binaries, gzip): the header names them after
+ * the positions and the indices, they are read back by our reader as
+ * properties it skips (the face list is unchanged), the bytes are where a
+ * PLY reader finds them, and other formats refuse them. */
+static void test_write_ply_colors(void)
+{
+    mt_face_list list;
+    make_awkward(&list, 3);
+    uint8_t *vc = malloc(3 * (size_t)list.num_verts + 1),
+            *fc = malloc(3 * (size_t)list.num_faces + 1);
+    for (uint32_t i = 0; i < 3 * list.num_verts; i++) vc[i] = (uint8_t)(i * 7);
+    for (uint32_t i = 0; i < 3 * list.num_faces; i++) fc[i] = (uint8_t)(255 - i);
+    mt_write_options options = {.vertex_colors = vc, .face_colors = fc};
+    static const char *const names[] = {"c.ply", "c.ascii.ply", "c.be.ply", "c.ply.gz"};
+    static const mt_format formats[] = {MT_FORMAT_AUTO, MT_FORMAT_PLY_ASCII,
+                                        MT_FORMAT_PLY_BINARY_BE, MT_FORMAT_AUTO};
+    mt_diag diag;
+    for (int i = 0; i < 4; i++) {
+        const char *path = io_test_path(names[i]);
+        CHECK_OK(mt_write_file_with(path, formats[i], &list, &options, &diag));
+        mt_face_list back;
+        CHECK_OK(mt_read_file(path, MT_FORMAT_AUTO, &back, &diag));
+        io_test_check_same(&list, &back, names[i]);
+        mt_face_list_free(&back);
+    }
+    /* The ascii file: "x y z r g b" and "n i... r g b". */
+    FILE *f = fopen(io_test_path("c.ascii.ply"), "r");
+    char text[65536] = "";
+    size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f) fclose(f);
+    text[n] = '\0';
+    CHECK(strstr(text,
+                 "property double z\nproperty uchar red\nproperty uchar green\n"
+                 "property uchar blue\nelement face") != NULL);
+    CHECK(strstr(text,
+                 "vertex_indices\nproperty uchar red\nproperty uchar green\n"
+                 "property uchar blue\nend_header\n") != NULL);
+    char line[64];
+    snprintf(line, sizeof line, " %u %u %u\n", fc[0], fc[1], fc[2]);
+    CHECK(strstr(text, line) != NULL);
+    snprintf(line, sizeof line, " %u %u %u\n", vc[3], vc[4], vc[5]);
+    CHECK(strstr(text, line) != NULL);
+    /* Vertex colours alone, then other formats. */
+    options.face_colors = NULL;
+    CHECK_OK(mt_write_file_with(io_test_path("v.ply"), MT_FORMAT_AUTO, &list, &options, &diag));
+    mt_face_list back;
+    CHECK_OK(mt_read_file(io_test_path("v.ply"), MT_FORMAT_AUTO, &back, &diag));
+    io_test_check_same(&list, &back, "vertex colours only");
+    mt_face_list_free(&back);
+    CHECK_STATUS(mt_write_file_with(io_test_path("c.off"), MT_FORMAT_AUTO, &list, &options, &diag),
+                 MT_ERR_UNSUPPORTED);
+    CHECK(strstr(diag.message, "PLY") != NULL);
+    CHECK_OK(mt_write_file_with(io_test_path("c.off"), MT_FORMAT_AUTO, &list, NULL, &diag));
+    free(vc);
+    free(fc);
+    mt_face_list_free(&list);
+}
+
 static void test_write_errors(void)
 {
     mt_face_list list;
@@ -487,6 +545,7 @@ static const mt_test_case cases[] = {
     {"round_trip_corpus", test_round_trip_corpus},
     {"round_trip_nonfinite", test_round_trip_nonfinite},
     {"write_replaces_atomically", test_write_replaces_atomically},
+    {"write_ply_colors", test_write_ply_colors},
     {"write_errors", test_write_errors},
     {"read_missing_file", test_read_missing_file},
     {"format_names", test_format_names},

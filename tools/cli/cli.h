@@ -68,6 +68,7 @@ extern const mt_cli_command mt_cli_cmd_spy;
 extern const mt_cli_command mt_cli_cmd_bench;
 extern const mt_cli_command mt_cli_cmd_archive;
 extern const mt_cli_command mt_cli_cmd_replay;
+extern const mt_cli_command mt_cli_cmd_render;
 
 /* Parses argv[0..argc) (the arguments after the command name) against the
  * command's options into *out (arrays malloc'ed; free with mt_cli_args_free).

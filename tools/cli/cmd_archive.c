@@ -11,21 +11,23 @@ static const mt_cli_option options[] = {
     {"json", NULL, "ls, show, verify: print one JSON object"},
     {"version", "N", "show, export, rm: this version (default: the highest archived)"},
     {"all", NULL, "rm: remove every version of the mesh"},
+    {"self-intersections", NULL,
+     "export to .ply, .vtu, .hdf, .vtkhdf: find the faces passing through each other"},
 };
 
 typedef struct subcommand {
     const char *name;
     size_t min_args, max_args; /* after the subcommand's name */
     int (*run)(const mt_cli_args *args);
-    bool json, version, all; /* which options apply */
+    bool json, version, all, self_intersections; /* which options apply */
 } subcommand;
 
 static const subcommand subcommands[] = {
-    {"ls", 1, 1, mt_cli_archive_ls, true, false, false},
-    {"show", 2, 2, mt_cli_archive_show, true, true, false},
-    {"verify", 1, 1, mt_cli_archive_verify, true, false, false},
-    {"export", 3, 3, mt_cli_archive_export, false, true, false},
-    {"rm", 2, 2, mt_cli_archive_rm, false, true, true},
+    {"ls", 1, 1, mt_cli_archive_ls, true, false, false, false},
+    {"show", 2, 2, mt_cli_archive_show, true, true, false, false},
+    {"verify", 1, 1, mt_cli_archive_verify, true, false, false, false},
+    {"export", 3, 3, mt_cli_archive_export, false, true, false, true},
+    {"rm", 2, 2, mt_cli_archive_rm, false, true, true, false},
 };
 
 int mt_cli_archive_open(const char *dir, bool read_only, mt_archive **out)
@@ -76,7 +78,9 @@ static int run_archive(const mt_cli_args *args)
     const char *bad = (!sub->json && mt_cli_flag(args, "json"))        ? "--json"
                       : (!sub->version && mt_cli_arg(args, "version")) ? "--version"
                       : (!sub->all && mt_cli_flag(args, "all"))        ? "--all"
-                                                                       : NULL;
+                      : (!sub->self_intersections && mt_cli_flag(args, "self-intersections"))
+                          ? "--self-intersections"
+                          : NULL;
     if (bad) {
         mt_cli_error("archive", "%s does not apply to '%s'", bad, sub->name);
         return MT_CLI_EXIT_USAGE;
@@ -87,11 +91,14 @@ static int run_archive(const mt_cli_args *args)
 const mt_cli_command mt_cli_cmd_archive = {
     .name = "archive",
     .summary = "list, show, verify, export or remove archived mesh versions (offline)",
-    .synopsis = "ls|show|verify|export|rm DIR [ID] [OUT] [--version N] [--all] [--json]",
+    .synopsis =
+        "ls|show|verify|export|rm DIR [ID] [OUT] [--version N] [--all] [--json] "
+        "[--self-intersections]",
     .description =
         "Works on a meshtopod archive directory without the daemon: one HDF5 file per mesh\n"
-        "version, also a VTKHDF file that ParaView and VTK open (NAME.vN.vtkhdf, the mesh id\n"
-        "percent-encoded in NAME).\n"
+        "version, also a VTKHDF file that ParaView and VTK open (NAME.vN.hdf, the mesh id\n"
+        "percent-encoded in NAME; files named NAME.vN.vtkhdf by earlier versions are read\n"
+        "too).\n"
         "\n"
         "  archive ls DIR [--json]\n"
         "      every archived version: mesh id, version, time, source, file size, vertices,\n"
@@ -106,8 +113,14 @@ const mt_cli_command mt_cli_cmd_archive = {
         "      arrays matching their digest (or a rebuild), VTKHDF cells matching the face\n"
         "      list. One line per file; a bad one names its fault: derived (rebuilt on\n"
         "      load), vtk, content (set aside by the daemon), newer, unsafe, system.\n"
-        "  archive export DIR ID [--version N] OUT.{off,obj,ply}\n"
-        "      writes the face list exactly as submitted (rejected faces too).\n"
+        "  archive export DIR ID [--version N] [--self-intersections] OUT\n"
+        "      OUT.off, OUT.obj: the face list exactly as submitted (rejected faces too);\n"
+        "      OUT.ply: the same with red, green, blue per vertex and per face marking the\n"
+        "      defects in the colours of meshtopo render (help render);\n"
+        "      OUT.hdf, OUT.vtkhdf: a VTKHDF archive file of the version with this\n"
+        "      meshtopo's topology arrays; OUT.vtu: the same as a VTK XML unstructured grid\n"
+        "      (written by VTK: Debian's python3-vtk9). --self-intersections adds\n"
+        "      CellData/self_intersecting (.ply: yellow faces).\n"
         "  archive rm DIR ID [--version N | --all]\n"
         "      removes one version (default the highest) or every version of ID.\n"
         "\n"

@@ -11,9 +11,9 @@
 #endif
 
 static const mt_cli_command *const commands[] = {
-    &mt_cli_cmd_inspect, &mt_cli_cmd_send,    &mt_cli_cmd_query,
-    &mt_cli_cmd_list,    &mt_cli_cmd_watch,   &mt_cli_cmd_spy,
-    &mt_cli_cmd_bench,   &mt_cli_cmd_archive, &mt_cli_cmd_replay,
+    &mt_cli_cmd_inspect, &mt_cli_cmd_send,   &mt_cli_cmd_query, &mt_cli_cmd_list,
+    &mt_cli_cmd_watch,   &mt_cli_cmd_spy,    &mt_cli_cmd_bench, &mt_cli_cmd_archive,
+    &mt_cli_cmd_replay,  &mt_cli_cmd_render,
 };
 static const size_t num_commands = sizeof commands / sizeof commands[0];
 

@@ -1,15 +1,16 @@
 /* The archive directory: opening it (and removing leftovers of interrupted
  * writes whose writer is gone), listing its files, finding a mesh's
  * versions by file name, removing versions durably and setting damaged
- * files aside. Only names this library makes are touched: "*.vtkhdf" files
- * and ".mt-tmp-*" leftovers, and of the latter only regular files of ours:
- * whatever else is planted under such a name is never followed, opened or
- * removed. */
+ * files aside. Only names this library makes are touched: "*.hdf" files
+ * (and "*.vtkhdf", as earlier versions named them) and ".mt-tmp-*" leftovers, and of the latter
+ * only regular files of ours: whatever else is planted under such a name is never followed, opened
+ * or removed. */
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -157,15 +158,54 @@ size_t mt_archive_leftovers_removed(const mt_archive *archive)
     return archive ? archive->leftovers_removed : 0;
 }
 
-bool mt_archive_contains(const mt_archive *archive, const char *mesh_id, uint32_t version)
+/* Whether the directory has an entry named `name` (not followed). */
+static bool entry_exists(const mt_archive *archive, const char *name)
 {
-    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
-    if (!archive || mt_archive_file_name(mesh_id, version, name, sizeof name) == 0) return false;
     char *path = mt__archive_path(archive, name);
     struct stat sb;
     bool found = path && lstat(path, &sb) == 0;
     free(path);
     return found;
+}
+
+/* name (from mt_archive_file_name, room for MT_ARCHIVE_FILE_NAME_MAX + 1
+ * bytes) with its suffix replaced by the legacy one. */
+static void name_to_legacy(char *name)
+{
+    size_t stem = strlen(name) - strlen(MT_ARCHIVE_SUFFIX);
+    snprintf(name + stem, MT_ARCHIVE_FILE_NAME_MAX + 1 - stem, "%s", MT_ARCHIVE_SUFFIX_LEGACY);
+}
+
+mt_status mt_archive_file_find(const mt_archive *archive, const char *mesh_id, uint32_t version,
+                               char *buf, size_t size, mt_diag *diag)
+{
+    mt_diag_clear(diag);
+    if (size > 0) buf[0] = '\0';
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    if (!archive || mt_archive_file_name(mesh_id, version, name, sizeof name) == 0)
+        return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
+                                "no archive file name for mesh '%s' version %u",
+                                mesh_id ? mesh_id : "(null)", version);
+    mt_status st = MT_OK;
+    if (!entry_exists(archive, name)) {
+        char legacy[MT_ARCHIVE_FILE_NAME_MAX + 1];
+        memcpy(legacy, name, sizeof legacy);
+        name_to_legacy(legacy);
+        if (entry_exists(archive, legacy))
+            memcpy(name, legacy, sizeof name);
+        else
+            st = mt__archive_fail(diag, MT_ERR_NOT_FOUND,
+                                  "%s: version %u of mesh '%s' is not archived (no file %s)",
+                                  archive->dir, version, mesh_id, name);
+    }
+    if (size > 0) snprintf(buf, size, "%s", name);
+    return st;
+}
+
+bool mt_archive_contains(const mt_archive *archive, const char *mesh_id, uint32_t version)
+{
+    char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    return mt_archive_file_find(archive, mesh_id, version, name, sizeof name, NULL) == MT_OK;
 }
 
 static int entry_compare(const void *pa, const void *pb)
@@ -181,11 +221,11 @@ static int entry_compare(const void *pa, const void *pb)
     return strcmp(a->file_name, b->file_name);
 }
 
-/* Whether a directory entry is an archive file (not hidden, ".vtkhdf"). */
+/* Whether a directory entry is an archive file (not hidden, ".hdf" or
+ * the legacy ".vtkhdf"). */
 static bool is_archive_name(const char *name)
 {
-    size_t len = strlen(name), suffix = strlen(MT_ARCHIVE_SUFFIX);
-    return name[0] != '.' && len > suffix && strcmp(name + len - suffix, MT_ARCHIVE_SUFFIX) == 0;
+    return name[0] != '.' && mt__archive_suffix_len(name) > 0;
 }
 
 mt_status mt_archive_list(const mt_archive *archive, mt_archive_listing *out, mt_diag *diag)
@@ -329,12 +369,8 @@ mt_status mt__archive_resolve(const mt_archive *archive, const char *mesh_id, ui
     if (version == 0)
         return mt__archive_fail(diag, MT_ERR_NOT_FOUND, "%s: mesh '%s' is not archived",
                                 archive->dir, mesh_id);
-    mt_archive_file_name(mesh_id, version, name, MT_ARCHIVE_FILE_NAME_MAX + 1);
-    if (!mt_archive_contains(archive, mesh_id, version))
-        return mt__archive_fail(diag, MT_ERR_NOT_FOUND,
-                                "%s: version %u of mesh '%s' is not archived (no file %s)",
-                                archive->dir, version, mesh_id, name);
-    return MT_OK;
+    return mt_archive_file_find(archive, mesh_id, version, name, MT_ARCHIVE_FILE_NAME_MAX + 1,
+                                diag);
 }
 
 mt_status mt_archive_load(const mt_archive *archive, const char *mesh_id, uint32_t version,
@@ -381,7 +417,8 @@ mt_status mt_archive_remove(mt_archive *archive, const char *mesh_id, uint32_t v
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh '%s': version 0 is not a version",
                                 mesh_id);
     char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
-    mt_archive_file_name(mesh_id, version, name, sizeof name);
+    st = mt_archive_file_find(archive, mesh_id, version, name, sizeof name, diag);
+    if (st != MT_OK) return st;
     char *path = mt__archive_path(archive, name);
     if (!path) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory");
     if (unlink(path) != 0) {

@@ -83,9 +83,18 @@ char *mt__archive_path(const mt_archive *archive, const char *name);
 /* strdup (not in C11). */
 char *mt__archive_strdup(const char *text);
 
-/* Parses "<stem>.v<version>.vtkhdf": writes the stem's length and the
- * version (>= 1, no leading zeros). False for any other name. */
+/* The length of name's archive suffix (MT_ARCHIVE_SUFFIX or
+ * MT_ARCHIVE_SUFFIX_LEGACY), 0 when it has neither. */
+size_t mt__archive_suffix_len(const char *name);
+
+/* Parses "<stem>.v<version>.hdf" (or the legacy ".vtkhdf"): writes the
+ * stem's length and the version (>= 1, no leading zeros). False for any
+ * other name. */
 bool mt__archive_name_parse(const char *name, size_t *out_stem_len, uint32_t *out_version);
+
+/* Whether file_name is the name of version `version` of mesh_id, with
+ * either suffix. */
+bool mt__archive_name_matches(const char *file_name, const char *mesh_id, uint32_t version);
 
 /* fsync of the archive directory, so that a new, renamed or removed name
  * survives a power loss; MT_ERR_IO with the errno text. */

@@ -154,10 +154,31 @@ size_t mt_archive_file_name(const char *mesh_id, uint32_t version, char *buf, si
     return (size_t)len;
 }
 
+size_t mt__archive_suffix_len(const char *name)
+{
+    static const char *const suffixes[] = {MT_ARCHIVE_SUFFIX, MT_ARCHIVE_SUFFIX_LEGACY};
+    size_t len = strlen(name);
+    for (size_t i = 0; i < sizeof suffixes / sizeof suffixes[0]; i++) {
+        size_t n = strlen(suffixes[i]);
+        if (len > n && strcmp(name + len - n, suffixes[i]) == 0) return n;
+    }
+    return 0;
+}
+
+bool mt__archive_name_matches(const char *file_name, const char *mesh_id, uint32_t version)
+{
+    char expected[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    size_t len = mt_archive_file_name(mesh_id, version, expected, sizeof expected);
+    if (len == 0 || len > MT_ARCHIVE_FILE_NAME_MAX) return false;
+    size_t stem = len - strlen(MT_ARCHIVE_SUFFIX), suffix = mt__archive_suffix_len(file_name);
+    return suffix > 0 && strlen(file_name) == stem + suffix &&
+           memcmp(file_name, expected, stem) == 0;
+}
+
 bool mt__archive_name_parse(const char *name, size_t *out_stem_len, uint32_t *out_version)
 {
-    size_t len = strlen(name), suffix = strlen(MT_ARCHIVE_SUFFIX);
-    if (len <= suffix || strcmp(name + len - suffix, MT_ARCHIVE_SUFFIX) != 0) return false;
+    size_t len = strlen(name), suffix = mt__archive_suffix_len(name);
+    if (suffix == 0) return false;
     size_t end = len - suffix; /* one past the version's last digit */
     size_t start = end;
     while (start > 0 && name[start - 1] >= '0' && name[start - 1] <= '9') start--;

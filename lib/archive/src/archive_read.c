@@ -134,7 +134,7 @@ mt_status mt__archive_read_provenance(hid_t g, const char *file_name, mt_archive
     r->content_hash = hash;
     char expected[MT_ARCHIVE_FILE_NAME_MAX + 1];
     mt_archive_file_name(r->mesh_id, r->version, expected, sizeof expected);
-    if (strcmp(expected, file_name) != 0)
+    if (!mt__archive_name_matches(file_name, r->mesh_id, r->version))
         return mt__archive_fail(diag, MT_ERR_PARSE,
                                 "%s: the file's mesh_id and version attributes belong to a file "
                                 "named %s",

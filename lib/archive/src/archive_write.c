@@ -533,6 +533,13 @@ mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta
                                 "way (nothing was written through it)",
                                 archive->dir, name, meta->version, meta->mesh_id,
                                 in_the_way(there.st_mode));
+    /* A file an earlier meshtopo wrote holds the version too. */
+    char existing[MT_ARCHIVE_FILE_NAME_MAX + 1];
+    if (!taken && mt_archive_file_find(archive, meta->mesh_id, meta->version, existing,
+                                       sizeof existing, NULL) == MT_OK) {
+        taken = true;
+        memcpy(name, existing, sizeof name);
+    }
     if (taken)
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG,
                                 "%s/%s: version %u of mesh '%s' is already archived", archive->dir,

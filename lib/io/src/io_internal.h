@@ -448,7 +448,8 @@ void mt__sink_abort(mt__sink *s);
  * MT__IO_MAX_VERTS vertices. */
 mt_status mt__write_off(mt__sink *s, const mt_face_list *list, mt_diag *diag);
 mt_status mt__write_obj(mt__sink *s, const mt_face_list *list, mt_diag *diag);
-mt_status mt__write_ply(mt__sink *s, const mt_face_list *list, mt_format format, mt_diag *diag);
+mt_status mt__write_ply(mt__sink *s, const mt_face_list *list, mt_format format,
+                        const mt_write_options *options, mt_diag *diag);
 /* OBJ cannot express every negative index; checked before a file is created. */
 mt_status mt__obj_check_writable(const mt_face_list *list, const char *path, mt_diag *diag);
 /* STL needs faces of 3 entries or more with indices in range (and, in

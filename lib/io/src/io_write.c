@@ -2,10 +2,20 @@
  * suffix, ".gz" compresses, the list is checked before any file is created,
  * and the writers run under the C locale so that their numbers (io_number.c)
  * always read back bit for bit. */
+#include <stdbool.h>
+
 #include "io_internal.h"
 
 mt_status mt_write_file(const char *path, mt_format format, const mt_face_list *list, mt_diag *diag)
 {
+    return mt_write_file_with(path, format, list, NULL, diag);
+}
+
+mt_status mt_write_file_with(const char *path, mt_format format, const mt_face_list *list,
+                             const mt_write_options *options, mt_diag *diag)
+{
+    static const mt_write_options defaults;
+    if (!options) options = &defaults;
     mt_diag_clear(diag);
     mt__io_src none = {.name = path ? path : "<null>"};
     if (!path || !*path || !list)
@@ -25,6 +35,11 @@ mt_status mt_write_file(const char *path, mt_format format, const mt_face_list *
         return mt__io_fail(diag, MT_ERR_INVALID_ARG, &none, MT__POS_NONE, 0, MT_NONE,
                            "cannot tell the format from the name (use .off, .obj, .ply or "
                            ".stl, optionally with .gz)");
+    bool colors = options->vertex_colors || options->face_colors;
+    if (colors && format != MT_FORMAT_PLY_ASCII && format != MT_FORMAT_PLY_BINARY_LE &&
+        format != MT_FORMAT_PLY_BINARY_BE)
+        return mt__io_fail(diag, MT_ERR_UNSUPPORTED, &none, MT__POS_NONE, 0, MT_NONE,
+                           "colours are written to PLY files only");
     if (format == MT_FORMAT_OBJ) {
         status = mt__obj_check_writable(list, path, diag);
         if (status != MT_OK) return status;
@@ -51,7 +66,7 @@ mt_status mt_write_file(const char *path, mt_format format, const mt_face_list *
             status = mt__write_stl(sink, list, format, diag);
             break;
         default:
-            status = mt__write_ply(sink, list, format, diag);
+            status = mt__write_ply(sink, list, format, options, diag);
             break;
     }
     mt__c_locale_leave(&locale);

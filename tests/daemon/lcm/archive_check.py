@@ -373,7 +373,7 @@ def mode_modes(args, tmp):
         first[comp] = answers(args.meshtopo, "big", 1, 61 * 61, 7200)
         check(d.stop() == 0, f"{comp} daemon exits 0")
         sizes[comp] = sum(os.path.getsize(os.path.join(arc, n)) for n in os.listdir(arc)
-                          if n.endswith(".vtkhdf"))
+                          if n.endswith(".hdf"))
     check(0 < sizes["lz4"] < sizes["none"] / 2,
           f"lz4: {sizes['lz4']} bytes against {sizes['none']} uncompressed")
     arc = os.path.join(tmp, "c-lz4")
@@ -422,21 +422,21 @@ def mode_hostile(args, tmp):
     keep = send(args.meshtopo, grid, "keep")
     check(keep is not None and keep["version"] == 1, "keep v1 acknowledged")
     # A link at the name version 2 would get, and at temporary names.
-    os.symlink(target, os.path.join(archive, "m.v2.vtkhdf"))
+    os.symlink(target, os.path.join(archive, "m.v2.hdf"))
     for k in range(4):
         os.symlink(target, os.path.join(archive, f".mt-tmp-{d.proc.pid}-{k:016x}.part"))
     a3 = send(args.meshtopo, grid, "m")
     check(a3 is not None and a3["version"] == 3,
           f"m with version 2's name taken: acknowledged as {a3 and a3['version']} (3 expected)")
-    check(file_sha(target) == before and os.path.islink(os.path.join(archive, "m.v2.vtkhdf")),
+    check(file_sha(target) == before and os.path.islink(os.path.join(archive, "m.v2.hdf")),
           "the file the planted links point to is untouched, the link still there")
     # A version file replaced by a link to a copy of itself.
-    v1 = os.path.join(archive, "m.v1.vtkhdf")
+    v1 = os.path.join(archive, "m.v1.hdf")
     copy = os.path.join(outside, "m.v1.copy")
     os.rename(v1, copy)
     os.symlink(copy, v1)
     # The face list of m v3 altered in place.
-    v3 = os.path.join(archive, "m.v3.vtkhdf")
+    v3 = os.path.join(archive, "m.v3.hdf")
     with h5py.File(v3, "r+") as h:
         idx = h["/meshtopo/face_vertex_indices"]
         first = idx[0]
@@ -446,10 +446,10 @@ def mode_hostile(args, tmp):
     verdict = json.loads(p.stdout) if p is not None and p.stdout.strip() else None
     files = {r["file"]: r for r in (verdict or {}).get("files", [])} if verdict else {}
     check(p is not None and p.returncode != 0, "archive verify fails on the planted and altered files")
-    want = {"keep.v1.vtkhdf": (True, "", "none"),
-            "m.v1.vtkhdf": (False, "symbolic link", "unsafe"),
-            "m.v2.vtkhdf": (False, "symbolic link", "unsafe"),
-            "m.v3.vtkhdf": (False, "content hash", "content")}
+    want = {"keep.v1.hdf": (True, "", "none"),
+            "m.v1.hdf": (False, "symbolic link", "unsafe"),
+            "m.v2.hdf": (False, "symbolic link", "unsafe"),
+            "m.v3.hdf": (False, "content hash", "content")}
     for name, (ok, needle, fault) in want.items():
         r = files.get(name)
         check(r is not None and r["ok"] == ok and needle in (r["error"] or "") and
@@ -467,7 +467,7 @@ def mode_hostile(args, tmp):
     check(q is not None and q.returncode == 5, f"m v1 (a link) is not served: {q and q.stderr.strip()}")
     q = run([args.meshtopo, "query", "keep", "report", "--json", "--timeout-ms", 3000])
     check(q is not None and q.returncode == 0, "keep v1, untouched, is still served")
-    aside = glob.glob(os.path.join(archive, ".mt-aside-m.v3.vtkhdf.*"))
+    aside = glob.glob(os.path.join(archive, ".mt-aside-m.v3.hdf.*"))
     check(len(aside) == 1 and not os.path.exists(v3), f"m v3 set aside as {aside}")
     check(file_sha(target) == before and file_sha(copy) != "", "files outside the archive untouched")
     a4 = send(args.meshtopo, grid, "m")
@@ -475,8 +475,8 @@ def mode_hostile(args, tmp):
     check(d.stop() == 0, "restarted daemon exits 0 on SIGTERM")
     log.close()
     text = open(log_path).read()
-    check("set aside as .mt-aside-m.v3.vtkhdf." in text, "the daemon logged the set-aside file")
-    check("m.v1.vtkhdf: refused: a symbolic link" in text,
+    check("set aside as .mt-aside-m.v3.hdf." in text, "the daemon logged the set-aside file")
+    check("m.v1.hdf: refused: a symbolic link" in text,
           "the daemon logged the link in place of m v1 as refused, not followed")
 
 

@@ -62,7 +62,7 @@ for m in 1 2 3; do
     [ "$n" -ge 75 ] && [ "$n" -le 125 ] || fail "member m$m built $n of 300 ids (75..125 expected)"
 done
 echo "three members, 300 ids, each built once and acknowledged once; builds per member:$shares"
-files=$(find "$dir/spread" -name 'spread-*.vtkhdf' | wc -l)
+files=$(find "$dir/spread" -name 'spread-*.hdf' | wc -l)
 [ "$files" -eq 300 ] || fail "the shared archive holds $files versions, 300 expected"
 "$meshtopo" archive verify "$dir/spread" >"$dir/verify.txt" 2>&1 ||
     fail "archive verify failed: $(tail -5 "$dir/verify.txt")"
@@ -110,14 +110,14 @@ cat "$dir/client.log"
 sleep 0.5
 [ "$(wc -l <"$dir/split_acks.txt")" -eq 40 ] || fail "not every submission was acknowledged"
 while read -r id version hash; do
-    [ -f "$dir/split/$id.v$version.vtkhdf" ] || fail "acknowledged $id version $version not archived"
+    [ -f "$dir/split/$id.v$version.hdf" ] || fail "acknowledged $id version $version not archived"
 done <"$dir/split_acks.txt"
-twice=$(find "$dir/split" -name 'split-*.v2.vtkhdf' | wc -l)
-once=$(find "$dir/split" -name 'split-*.v1.vtkhdf' | wc -l)
+twice=$(find "$dir/split" -name 'split-*.v2.hdf' | wc -l)
+once=$(find "$dir/split" -name 'split-*.v1.hdf' | wc -l)
 [ "$once" -eq 40 ] || fail "$once ids have a version 1, 40 expected"
 [ "$twice" -gt 5 ] && [ "$twice" -lt 35 ] ||
     fail "$twice ids built by both members (about half expected)"
-[ -z "$(find "$dir/split" -name 'split-*.v3.vtkhdf')" ] || fail "a third version appeared"
+[ -z "$(find "$dir/split" -name 'split-*.v3.hdf')" ] || fail "a third version appeared"
 "$meshtopo" archive verify "$dir/split" >"$dir/verify.txt" 2>&1 ||
     fail "archive verify failed: $(tail -5 "$dir/verify.txt")"
 echo "disagreeing views: $twice of 40 ids built by both members, archived as versions 1 and 2;" \

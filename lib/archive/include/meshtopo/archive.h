@@ -64,11 +64,18 @@ extern "C" {
 /* Oldest format version read. */
 #define MT_ARCHIVE_FORMAT_VERSION_MIN 1
 
-/* Suffix of every archive file: ParaView picks its VTKHDF reader by it. */
-#define MT_ARCHIVE_SUFFIX ".vtkhdf"
+/* Suffix of the archive files written: ParaView picks its reader by the
+ * name alone, and ".hdf" is the one name every ParaView with a VTKHDF
+ * reader maps to it (Debian 12's ParaView 5.11 maps no other). */
+#define MT_ARCHIVE_SUFFIX ".hdf"
 
-/* The file name (no directory) of version `version` of mesh_id:
- * "<escaped id>.v<version>.vtkhdf". Every id byte outside [A-Za-z0-9_-] is
+/* Suffix of the archive files earlier meshtopo versions wrote: such files
+ * are still listed, loaded, verified, set aside and removed, never
+ * written. */
+#define MT_ARCHIVE_SUFFIX_LEGACY ".vtkhdf"
+
+/* The file name (no directory) of version `version` of mesh_id, as it is
+ * written: "<escaped id>.v<version>.hdf". Every id byte outside [A-Za-z0-9_-] is
  * written as %XX (so '.', '/', '%' and ' ' never appear raw); an escaped id
  * longer than 160 bytes keeps its first 140 bytes (whole escapes only)
  * followed by '~' and the 16 hex digits of its 64-bit FNV-1a hash ('~' is
@@ -300,8 +307,19 @@ mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta
                                 const mt_archive_write_options *options,
                                 mt_archive_write_stats *out_stats, mt_diag *diag);
 
-/* Whether version `version` of mesh_id has a file in the archive. */
+/* Whether version `version` of mesh_id has a file in the archive (named
+ * with either suffix). */
 bool mt_archive_contains(const mt_archive *archive, const char *mesh_id, uint32_t version);
+
+/* The name of the file holding version `version` (>= 1) of mesh_id: the
+ * name mt_archive_file_name gives, or the same with MT_ARCHIVE_SUFFIX_LEGACY
+ * when only a file written by an earlier meshtopo is there. Written to buf
+ * as mt_archive_file_name writes it. MT_ERR_NOT_FOUND when neither entry
+ * exists (buf then holds the name a new file gets), MT_ERR_INVALID_ARG for
+ * a bad id or version 0. Looks entries up with lstat: nothing is opened or
+ * followed. */
+mt_status mt_archive_file_find(const mt_archive *archive, const char *mesh_id, uint32_t version,
+                               char *buf, size_t size, mt_diag *diag);
 
 /* Topology figures of an archived version, read from its attributes. */
 typedef struct mt_archive_summary {
@@ -387,7 +405,7 @@ typedef struct mt_archive_listing {
     size_t count;
 } mt_archive_listing;
 
-/* Lists every "*.vtkhdf" entry of the archive, reading only its
+/* Lists every "*.hdf" and "*.vtkhdf" entry of the archive, reading only its
  * attributes. An entry that cannot be read (a symbolic link or another
  * non-regular entry included) is listed with its status and fault; the call
  * fails only when the directory cannot be read (MT_ERR_IO) or memory runs

@@ -153,6 +153,23 @@ mt_status mt_read_memory_with(const void *data, size_t size, mt_format format, c
 mt_status mt_write_file(const char *path, mt_format format, const mt_face_list *list,
                         mt_diag *diag);
 
+/* Options for mt_write_file_with; a zeroed struct (or NULL) gives
+ * mt_write_file. */
+typedef struct mt_write_options {
+    /* Colours as red, green, blue bytes: 3 x num_verts for the vertices,
+     * 3 x num_faces for the face records (NULL: none). PLY only: written as
+     * "property uchar red / green / blue" of the vertex and face elements,
+     * after x, y, z and after vertex_indices, as MeshLab and Open3D read
+     * them. Read during the call, not kept. */
+    const uint8_t *vertex_colors;
+    const uint8_t *face_colors;
+} mt_write_options;
+
+/* mt_write_file with options (NULL: the defaults). MT_ERR_UNSUPPORTED,
+ * before a file is created, for colours with a format other than PLY. */
+mt_status mt_write_file_with(const char *path, mt_format format, const mt_face_list *list,
+                             const mt_write_options *options, mt_diag *diag);
+
 /* ---- Welding ------------------------------------------------------------ */
 
 /* What mt_face_list_weld did. */
