@@ -1,9 +1,16 @@
 # Install rules: the libraries (static by default, shared with
 # -DBUILD_SHARED_LIBS=ON), their headers under include/meshtopo/ (and the
 # message types' under include/lcmtypes/), a CMake package
-# (find_package(meshtopo) gives meshtopo::core, meshtopo::io and
-# meshtopo::client, with meshtopo::msgs beneath it) and pkg-config files. Included once from the top-level CMakeLists.txt after
+# (find_package(meshtopo) gives meshtopo::core, meshtopo::io,
+# meshtopo::client, with meshtopo::msgs beneath it, and meshtopo::archive)
+# and pkg-config files. Included once from the top-level CMakeLists.txt after
 # every library target exists; the installed tree is relocatable.
+#
+# Every rule names its install component, which cmake/MeshtopoPackage.cmake
+# turns into a Debian package: runtime (the programs, their data and
+# documentation: meshtopo), libs (the shared libraries of a shared build),
+# dev (headers, static libraries and link names, CMake and pkg-config
+# files: libmeshtopo-dev) and python (lib/python: python3-meshtopo).
 include(CMakePackageConfigHelpers)
 
 set(MESHTOPO_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/meshtopo)
@@ -17,35 +24,39 @@ set_target_properties(meshtopo_core PROPERTIES EXPORT_NAME core)
 set_target_properties(meshtopo_io PROPERTIES EXPORT_NAME io)
 set_target_properties(meshtopo_msgs PROPERTIES EXPORT_NAME msgs)
 set_target_properties(meshtopo_client PROPERTIES EXPORT_NAME client)
-foreach(lib meshtopo_core meshtopo_io meshtopo_client)
+set_target_properties(meshtopo_archive PROPERTIES EXPORT_NAME archive)
+foreach(lib meshtopo_core meshtopo_io meshtopo_client meshtopo_archive meshtopo_json)
   set_target_properties(${lib} PROPERTIES VERSION ${PROJECT_VERSION}
                         SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
 endforeach()
 
-install(TARGETS meshtopo_core meshtopo_io meshtopo_msgs meshtopo_client
+install(TARGETS meshtopo_core meshtopo_io meshtopo_msgs meshtopo_client meshtopo_archive
   EXPORT meshtopoTargets
-  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT libs NAMELINK_COMPONENT dev
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT libs)
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/core/include/meshtopo
                   ${PROJECT_SOURCE_DIR}/lib/io/include/meshtopo
                   ${PROJECT_SOURCE_DIR}/lib/client/include/meshtopo
+                  ${PROJECT_SOURCE_DIR}/lib/archive/include/meshtopo
                   ${PROJECT_SOURCE_DIR}/msgs/include/meshtopo
                   ${MESHTOPO_MSGS_GENERATED_INCLUDE}/meshtopo
                   ${MESHTOPO_MSGS_GENERATED_INCLUDE}/lcmtypes
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev
   FILES_MATCHING PATTERN "*.h")
 
 # The LCM message definitions, for lcm-gen in other languages, and the README.
 file(GLOB MESHTOPO_LCM_DEFINITIONS ${PROJECT_SOURCE_DIR}/msgs/*.lcm)
-install(FILES ${MESHTOPO_LCM_DEFINITIONS} DESTINATION ${CMAKE_INSTALL_DATADIR}/meshtopo/lcm)
-install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(FILES ${MESHTOPO_LCM_DEFINITIONS} DESTINATION ${CMAKE_INSTALL_DATADIR}/meshtopo/lcm
+        COMPONENT runtime)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR}
+        COMPONENT runtime)
 
 # --- CMake package ----------------------------------------------------------
 # A static install carries its private dependencies in the exported link
-# interface ($<LINK_ONLY:ZLIB::ZLIB>, Threads::Threads, m), so the config file
-# must find them; a shared install hides them and needs nothing.
+# interface ($<LINK_ONLY:ZLIB::ZLIB>, Threads::Threads, hdf5::hdf5, m), so the
+# config file must find them; a shared install hides them and needs nothing.
 if(BUILD_SHARED_LIBS)
   set(MESHTOPO_CONFIG_STATIC OFF)
 else()
@@ -55,7 +66,7 @@ endif()
 install(EXPORT meshtopoTargets
   NAMESPACE meshtopo::
   FILE meshtopoTargets.cmake
-  DESTINATION ${MESHTOPO_INSTALL_CMAKEDIR})
+  DESTINATION ${MESHTOPO_INSTALL_CMAKEDIR} COMPONENT dev)
 
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/meshtopoConfig.cmake.in
   ${PROJECT_BINARY_DIR}/meshtopoConfig.cmake
@@ -68,12 +79,13 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/meshtopoConfigVersion.cma
 
 install(FILES ${PROJECT_BINARY_DIR}/meshtopoConfig.cmake
               ${PROJECT_BINARY_DIR}/meshtopoConfigVersion.cmake
-  DESTINATION ${MESHTOPO_INSTALL_CMAKEDIR})
+  DESTINATION ${MESHTOPO_INSTALL_CMAKEDIR} COMPONENT dev)
 
 # --- pkg-config -------------------------------------------------------------
 # One .pc per library, named like the CMake targets (meshtopo-core,
-# meshtopo-io), so a program that only builds meshes does not drag in zlib,
-# plus meshtopo.pc for "all of meshtopo". Paths are relative to the .pc
+# meshtopo-io, meshtopo-client, meshtopo-archive), so a program that only
+# builds meshes does not drag in zlib or HDF5, plus meshtopo.pc for "core and
+# io". Paths are relative to the .pc
 # file's own directory (${pcfiledir}), so `cmake --install --prefix` anywhere
 # works. For a static install the private dependencies go into Libs/Requires:
 # there is no shared library to carry them, and plain `pkg-config --libs`
@@ -103,6 +115,9 @@ if(BUILD_SHARED_LIBS)
   set(MESHTOPO_PC_IO_REQUIRES_PRIVATE "zlib")
   set(MESHTOPO_PC_CLIENT_LIBS " -llcm")
   set(MESHTOPO_PC_CLIENT_LIBS_PRIVATE "-lmeshtopo-msgs -lxxhash -pthread")
+  set(MESHTOPO_PC_ARCHIVE_REQUIRES_PRIVATE "hdf5")
+  set(MESHTOPO_PC_ARCHIVE_LIBS "")
+  set(MESHTOPO_PC_ARCHIVE_LIBS_PRIVATE "-lmeshtopo-msgs -llcm -lxxhash")
 else()
   set(MESHTOPO_PC_CORE_LIBS " -lm -pthread")
   set(MESHTOPO_PC_CORE_LIBS_PRIVATE "")
@@ -110,11 +125,21 @@ else()
   set(MESHTOPO_PC_IO_REQUIRES_PRIVATE "")
   set(MESHTOPO_PC_CLIENT_LIBS " -lmeshtopo-msgs -llcm -lxxhash -pthread")
   set(MESHTOPO_PC_CLIENT_LIBS_PRIVATE "")
+  set(MESHTOPO_PC_ARCHIVE_REQUIRES_PRIVATE "")
+  set(MESHTOPO_PC_ARCHIVE_LIBS " -lmeshtopo-msgs -llcm -lxxhash")
+  set(MESHTOPO_PC_ARCHIVE_LIBS_PRIVATE "")
+endif()
+# HDF5 through its own hdf5.pc (Debian's libhdf5-dev): public for a static
+# install, whose consumers link it.
+if(BUILD_SHARED_LIBS)
+  set(MESHTOPO_PC_ARCHIVE_REQUIRES "meshtopo-core = ${PROJECT_VERSION}")
+else()
+  set(MESHTOPO_PC_ARCHIVE_REQUIRES "meshtopo-core = ${PROJECT_VERSION}, hdf5")
 endif()
 
-foreach(pc meshtopo-core meshtopo-io meshtopo-client meshtopo)
+foreach(pc meshtopo-core meshtopo-io meshtopo-client meshtopo-archive meshtopo)
   configure_file(${CMAKE_CURRENT_LIST_DIR}/${pc}.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/${pc}.pc
                  @ONLY)
   install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/${pc}.pc
-          DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+          DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT dev)
 endforeach()

@@ -156,6 +156,51 @@ def check_topology(fixture, corpus, tmp, name):
         expect(isolated == ref["isolated_vertices"], f"{name}: {isolated} isolated vertices")
 
 
+# The members of a defect record, in order (README.md "Defect records").
+RECORD_FIELDS = ["kind", "vertices", "faces", "edge", "face_count", "index", "position",
+                 "face_size", "distinct_vertices", "fans", "on_nonmanifold_edge", "axis"]
+NONE = 0xFFFFFFFF
+
+
+def check_defect_records(d, num_defects, verts, faces):
+    """/meshtopo/report/defects of a mesh whose defects are bad faces
+    (degenerate, out-of-range indices): defect records, described, naming
+    the right faces."""
+    expect(list(d.dtype.names) == RECORD_FIELDS, f"defects members {d.dtype.names}")
+    expect(num_defects == d.shape[0] and d.shape[0] > 0, "defects listed")
+    description = text(d.attrs["description"])
+    expect(all(f"{name}: " in description for name in RECORD_FIELDS) and
+           "4294967295" in description, "defects description names every member")
+    keys = {v: k for k, v in h5py.check_enum_dtype(d.dtype["kind"]).items()}
+    rows = d[()]
+    seen = set()
+    for row in rows:
+        kind = keys[int(row["kind"])]
+        seen.add(kind)
+        face = faces[int(row["faces"][0])]
+        applies = {"out_of_range_index": {"faces", "index", "position"},
+                   "degenerate_face": {"faces", "face_size", "distinct_vertices"}}.get(kind)
+        expect(applies is not None, f"only face defects here, not {kind}")
+        if applies is None:
+            continue
+        for name in RECORD_FIELDS[1:]:
+            value = row[name]
+            if name in ("vertices", "faces", "edge"):
+                empty = list(value) == [NONE, NONE] if name != "faces" else value[1] == NONE
+                expect(empty, f"{kind}: {name} holds no ids but the face")
+            elif name not in applies:
+                expect(int(value) == NONE, f"{kind}: {name} does not apply and is NONE")
+        if kind == "out_of_range_index":
+            pos = int(row["position"])
+            expect(face[pos] == int(row["index"]) and not 0 <= face[pos] < len(verts),
+                   "out_of_range_index: index is the bad entry at position")
+        else:
+            expect(int(row["face_size"]) == len(face) and
+                   int(row["distinct_vertices"]) == len(set(face)),
+                   "degenerate_face: face_size and distinct_vertices")
+    expect("degenerate_face" in seen, f"defect kinds {seen}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--fixture", required=True)
@@ -206,7 +251,7 @@ def main():
             # The half-edge arrays (format 2) read without meshtopo: the ring of
             # each kept face, from face_halfedge along next, passes through the
             # face's vertices in order (tail of h = head of its twin h ^ 1).
-            expect(int(m.attrs["format_version"]) == 6, "format_version 6")
+            expect(int(m.attrs["format_version"]) == 7, "format_version 7")
             h = m["halfedge"]
             for key in ("head", "next", "face", "face_halfedge", "vertex_halfedge",
                         "copy_original", "copies_sorted", "bundle_offsets", "bundle_edges",
@@ -234,10 +279,7 @@ def main():
             r = m["report"]
             expect(int(r.attrs["num_faces"]) == len(faces), "report num_faces")
             expect(int(r.attrs["num_faces_valid"]) == len(kept), "report num_faces_valid")
-            d = r["defects"]
-            expect(set(d.dtype.names) == {"kind", "a", "b", "c"}, "defects columns")
-            expect(int(r.attrs["num_defects"]) == d.shape[0] and d.shape[0] > 0,
-                   "defects listed")
+            check_defect_records(r["defects"], int(r.attrs["num_defects"]), verts, faces)
     with tempfile.TemporaryDirectory(prefix="meshtopo-h5py-") as tmp:
         for name in ["trimesh_notenoughindices", "vcg_nonmanifold", "cgal_many_umbrellas",
                      "assimp_malformed", "vcg_quad5", "trimesh_joined_tetrahedra",

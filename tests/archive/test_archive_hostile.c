@@ -258,7 +258,8 @@ static void test_index_out_of_range(void)
         if (getenv("MT_TEST_VERBOSE")) printf("without a hash: %s\n", diag.message);
     }
     hostile_done(&h);
-    /* A defect of a kind that does not exist. */
+    /* Defects stored as plain integers, not records (test_archive_defects.c
+     * has records no defect gives). */
     if (!hostile_setup(&h, "kind", path, sizeof path)) return;
     hsize_t one[1] = {1};
     uint32_t row[4] = {77, 0, 0, 0};

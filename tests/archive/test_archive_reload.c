@@ -10,6 +10,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "archive_legacy.h"
 #include "archive_test_util.h"
 #include "harness.h"
 #include "meshtopo/core.h"
@@ -147,7 +148,7 @@ static bool make_version1(const char *path)
     if (f < 0) return false;
     bool ok = H5Ldelete(f, "/meshtopo/halfedge", H5P_DEFAULT) >= 0;
     ok = H5Fclose(f) >= 0 && ok;
-    return ok && set_meshtopo_u32(path, "format_version", 1);
+    return ok && al_set_format(path, 1);
 }
 
 /* Overwrites one uint32 entry of a dataset in place. */
@@ -256,7 +257,7 @@ static void test_verify_hash_by_format(void)
     mt_diag diag;
     CHECK_STATUS(mt_archive_verify_file(archive, name, at_hash, NULL, &diag), MT_ERR_CORRUPT);
     CHECK(strstr(diag.message, "content hash mismatch") != NULL);
-    CHECK(set_meshtopo_u32(path, "format_version", MT_ARCHIVE_FORMAT_VERSION_HASHED - 1));
+    CHECK(al_set_format(path, MT_ARCHIVE_FORMAT_VERSION_HASHED - 1));
     CHECK_OK(mt_archive_verify_file(archive, name, at_hash, NULL, &diag));
     mt_mesh_destroy(built);
     mt_face_list_free(&list);

@@ -24,6 +24,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "archive_legacy.h"
 #include "archive_test_util.h"
 #include "harness.h"
 #include "meshtopo/core.h"
@@ -538,21 +539,21 @@ static void test_load_and_verify_agree(void)
                 break;
             case 1: /* format 3: no digest; arrays compared with a rebuild */
                 CHECK(at_delete_attr(path, "/meshtopo/halfedge", "digest"));
-                CHECK(at_set_attr_i64(path, "/meshtopo", "format_version", 3));
+                CHECK(al_set_format(path, 3));
                 break;
             case 2: /* format 3 with arrays that are not the build's */
                 CHECK(at_delete_attr(path, "/meshtopo/halfedge", "digest"));
-                CHECK(at_set_attr_i64(path, "/meshtopo", "format_version", 3));
+                CHECK(al_set_format(path, 3));
                 CHECK(at_poke_u32(path, "/meshtopo/halfedge/vertex_halfedge", 0, other));
                 fault = MT_ARCHIVE_FAULT_DERIVED;
                 break;
             case 3: /* format 2: the former hash, not checked */
-                CHECK(at_set_attr_i64(path, "/meshtopo", "format_version", 2));
+                CHECK(al_set_format(path, 2));
                 CHECK(at_set_attr_u64(path, "/meshtopo", "content_hash", 1));
                 break;
             case 4: /* format 1: no arrays, a rebuild */
                 CHECK(at_delete(path, "/meshtopo/halfedge"));
-                CHECK(at_set_attr_i64(path, "/meshtopo", "format_version", 1));
+                CHECK(al_set_format(path, 1));
                 break;
             case 5: /* a newer meshtopo's file */
                 CHECK(at_set_attr_i64(path, "/meshtopo", "format_version", 99));

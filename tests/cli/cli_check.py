@@ -23,6 +23,11 @@ import tempfile
 failures = []
 
 
+# The keys of every defect record in JSON, in order (README.md "Defect records").
+DEFECT_RECORD_KEYS = ["kind", "vertices", "faces", "edge", "face_count", "index", "position",
+                      "face_size", "distinct_vertices", "fans", "on_nonmanifold_edge", "axis",
+                      "description"]
+
 def run(meshtopo, *args):
     proc = subprocess.run([meshtopo, *args], capture_output=True, text=True, timeout=120)
     return proc.returncode, proc.stdout, proc.stderr
@@ -167,8 +172,13 @@ def check_exit_codes(meshtopo, corpus):
     oor = [d for d in defects if d.get("kind") == "out_of_range_index"]
     expect(code == 0 and list(doc)[-1] == "defects" and "out_of_range_index" in kinds
            and "degenerate_face" in kinds and len(oor) == doc.get("faces_with_out_of_range_indices")
-           and all("text" in d for d in defects),
-           "--json-defects: a defects array at the end, one entry per bad face", code, out, err)
+           and all(list(d) == DEFECT_RECORD_KEYS for d in defects),
+           "--json-defects: a defects array at the end, one record per bad face", code, out, err)
+    expect(all(len(d["faces"]) == 1 and d["vertices"] == [] and d["edge"] is None
+               and isinstance(d["index"], int) and isinstance(d["position"], int)
+               and d["fans"] is None for d in oor),
+           "--json-defects: an out-of-range record names its face, index and position",
+           code, out, err)
     code, out, err = run(meshtopo, "inspect", messy, "--json")
     expect(code == 0 and "V" in parse_json(out) and "defects" not in parse_json(out), "--json alone has no defects key",
            code, out, err)

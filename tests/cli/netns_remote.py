@@ -5,7 +5,8 @@ Run inside netns-run (udpm over a private lo). Starts meshtopod, waits for its
 heartbeat with `meshtopo watch --count 1`, sends a clean and a non-manifold
 corpus mesh with `meshtopo send`, checks `meshtopo query ring` and
 `face-neighbors` against NAME.expected.json (vertex_queries / face_queries,
-compared as sets as DEFINITIONS.md defines them), `meshtopo list --json`,
+compared as sets as DEFINITIONS.md defines them), the defect records of
+`query defects --json` and of the ack against `inspect --json-defects`, `meshtopo list --json`,
 `meshtopo watch --json` seeing each build's TOPOLOGY report, the unknown-mesh
 error (exit 5, message naming the mesh), no answer (exit 6) and every
 command's --help; then stops the daemon it started by its PID (SIGTERM) and
@@ -75,6 +76,17 @@ def check_mesh(cli, corpus, name):
                 "manifold", "orientable"):
         check(rep.get(key) == exp[key],
               f"{name}: ack report {key} = {exp[key]} (got {rep.get(key)})")
+
+    # Defects: the same records (README.md "Defect records") from the daemon,
+    # in the ack's report and answering `query defects`, as `inspect` lists.
+    p = run(cli, "inspect", path, "--json-defects")
+    local = json.loads(p.stdout)["defects"] if p is not None and p.returncode == 0 else None
+    got = run_json(cli, "query", name, "defects", "--json")
+    if check(local is not None, f"{name}: inspect --json-defects") and got is not None:
+        remote = [d for item in got.get("items", []) for d in item.get("defects", [])]
+        check(remote == local, f"{name}: query defects --json gives inspect's {len(local)} "
+              f"records (got {remote[:2]}...)")
+        check(rep.get("defects") == local, f"{name}: the ack's report lists inspect's records")
 
     # One-rings: neighbours and faces as sorted sets over every fan.
     verts = [q["vertex"] for q in exp["vertex_queries"]]

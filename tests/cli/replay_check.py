@@ -348,14 +348,30 @@ def check_bad_files(cli, fixture, corpus, tmp):
           "prim.v1.hdf" in p.stderr, f"text output flags the differing hash "
           f"({p and p.stdout.strip()} / {p and p.stderr.strip()})")
     # The same file marked as archive format 2, whose content hash is of the
-    # former kind: the ack is checked against the hash of what was sent.
+    # former kind: the ack is checked against the hash of what was sent. Its
+    # defects become the {kind, a, b, c} rows formats before 7 stored.
     # (h5py is Debian's python3-h5py, for the system python.)
-    mark = ("import sys, h5py\n"
+    mark = ("import sys, h5py, numpy as np\n"
             "with h5py.File(sys.argv[1], 'r+') as f:\n"
             "    a = f['meshtopo'].attrs\n"
             "    kind = a['format_version'].dtype\n"
             "    del a['format_version']\n"
-            "    a.create('format_version', 2, dtype=kind)\n")
+            "    a.create('format_version', 2, dtype=kind)\n"
+            "    d = f['meshtopo/report/defects']\n"
+            "    enum = d.dtype['kind']\n"
+            "    key = {v: k for k, v in h5py.check_enum_dtype(enum).items()}\n"
+            "    abc = {'out_of_range_index': lambda r: (r['faces'][0], r['index'] & 0xFFFFFFFF, r['position']),\n"
+            "           'degenerate_face': lambda r: (r['faces'][0], r['distinct_vertices'], r['face_size']),\n"
+            "           'duplicate_face': lambda r: (r['faces'][0], r['faces'][1], 0),\n"
+            "           'nonmanifold_edge': lambda r: (r['edge'][0], r['edge'][1], r['face_count']),\n"
+            "           'same_direction_edge': lambda r: (r['edge'][0], r['edge'][1], r['face_count']),\n"
+            "           'nonmanifold_vertex': lambda r: (r['vertices'][0], r['fans'], r['on_nonmanifold_edge']),\n"
+            "           'isolated_vertex': lambda r: (r['vertices'][0], 0, 0),\n"
+            "           'nonfinite_coordinate': lambda r: (r['vertices'][0], r['axis'], 0)}\n"
+            "    rows = [(r['kind'],) + tuple(int(x) for x in abc[key[int(r['kind'])]](r)) for r in d[()]]\n"
+            "    del f['meshtopo/report/defects']\n"
+            "    t = np.dtype([('kind', enum), ('a', '<u4'), ('b', '<u4'), ('c', '<u4')])\n"
+            "    f['meshtopo/report'].create_dataset('defects', data=np.array(rows, dtype=t))\n")
     os.remove(os.path.join(bad, "junk.v1.hdf"))
     p = run(["/usr/bin/python3", "-c", mark, os.path.join(bad, "prim.v1.hdf")])
     if not check(p is not None and p.returncode == 0,

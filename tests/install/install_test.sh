@@ -2,7 +2,8 @@
 # Install test: installs a finished meshtopo build into a fresh prefix, then
 # builds this folder's programs against it twice, once through
 # find_package(meshtopo) and once through `pkg-config --cflags --libs`, and
-# runs them. Fails unless every program prints the expected topology.
+# runs them (consumers.sh). Fails unless every program prints the expected
+# topology.
 #
 # usage: install_test.sh BUILD_DIR WORK_DIR LIBDIR C_COMPILER GENERATOR [EXTRA_C_FLAGS]
 #   BUILD_DIR   the meshtopo build tree to install (cmake --install)
@@ -48,6 +49,8 @@ cmake --install "$build_dir" --prefix "$prefix" >"$work/install.log" ||
     { cat "$work/install.log"; fail "cmake --install failed"; }
 for f in include/meshtopo/core.h include/meshtopo/io.h include/meshtopo/status.h \
     include/meshtopo/client.h include/meshtopo/msgs.h include/meshtopo/msgs_types.h \
+    include/meshtopo/archive.h include/meshtopo/defect_record.h \
+    "$libdir/pkgconfig/meshtopo-archive.pc" \
     include/lcmtypes/meshtopo_mesh_t.h "$libdir/pkgconfig/meshtopo-client.pc" \
     "$libdir/cmake/meshtopo/meshtopoConfig.cmake" \
     "$libdir/cmake/meshtopo/meshtopoConfigVersion.cmake" \
@@ -65,63 +68,14 @@ if [ -f "$unit" ]; then
     doc=$(sed -n 's|^Documentation=file://||p' "$unit")
     [ -n "$doc" ] && [ -f "$doc" ] || fail "meshtopod.service: Documentation= names no installed file ($doc)"
 fi
-ls "$prefix/$libdir"/libmeshtopo-core.* "$prefix/$libdir"/libmeshtopo-io.* >/dev/null ||
+ls "$prefix/$libdir"/libmeshtopo-core.* "$prefix/$libdir"/libmeshtopo-io.* \
+    "$prefix/$libdir"/libmeshtopo-archive.* >/dev/null ||
     fail "libraries not installed in $prefix/$libdir"
 # The installed tool runs from the prefix (a shared build finds its libraries
 # through its RUNPATH, so LD_LIBRARY_PATH is not set yet).
 if [ -x "$prefix/bin/meshtopo" ]; then
     run_expect "installed meshtopo --version" "meshtopo" "$prefix/bin/meshtopo" --version
 fi
-# Shared installs: the pkg-config-built programs find the libraries here.
-export LD_LIBRARY_PATH="$prefix/$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-
-step "find_package(meshtopo): configure and build tests/install"
-cmake -S "$here" -B "$work/consumer" -G "$generator" \
-    -DCMAKE_C_COMPILER="$cc" -DCMAKE_C_FLAGS="$extra_flags" \
-    -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo >"$work/consumer-configure.log" ||
-    { cat "$work/consumer-configure.log"; fail "configuring the consumer failed"; }
-found=$(sed -n 's/^meshtopo_DIR:PATH=//p' "$work/consumer/CMakeCache.txt")
-[ "$found" = "$prefix/$libdir/cmake/meshtopo" ] ||
-    fail "find_package found meshtopo in '$found', not in the test prefix"
-cmake --build "$work/consumer" >"$work/consumer-build.log" ||
-    { cat "$work/consumer-build.log"; fail "building the consumer failed"; }
-run_expect "consumer (meshtopo::core)" "Euler characteristic: 2, genus: 0" \
-    "$work/consumer/consumer"
-run_expect "consumer_io (meshtopo::io)" "cube (off): Euler characteristic: 2" \
-    "$work/consumer/consumer_io"
-run_expect "consumer_client (meshtopo::client)" "client ok: cube content hash" \
-    "$work/consumer/consumer_client"
-# The same hash from the pkg-config build below.
-client_line=$("$work/consumer/consumer_client" | grep "client ok")
-
-step "pkg-config: compile main.c and read_main.c"
-export PKG_CONFIG_PATH="$prefix/$libdir/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
-for pc in meshtopo-core meshtopo-io meshtopo-client meshtopo; do
-    printf '%s: %s\n' "$pc" "$(pkg-config --cflags --libs "$pc")"
-done
-[ "$(pkg-config --modversion meshtopo-core)" = "$(pkg-config --modversion meshtopo)" ] ||
-    fail "meshtopo.pc and meshtopo-core.pc disagree on the version"
-# shellcheck disable=SC2046,SC2086  # pkg-config output is meant to be word-split
-"$cc" $extra_flags $(pkg-config --cflags meshtopo-core) "$here/main.c" \
-    $(pkg-config --libs meshtopo-core) -o "$work/main_pc" ||
-    fail "compiling main.c with pkg-config meshtopo-core failed"
-# shellcheck disable=SC2046,SC2086
-"$cc" $extra_flags $(pkg-config --cflags meshtopo-io) "$here/read_main.c" \
-    $(pkg-config --libs meshtopo-io) -o "$work/read_pc" ||
-    fail "compiling read_main.c with pkg-config meshtopo-io failed"
-# shellcheck disable=SC2046,SC2086
-"$cc" $extra_flags $(pkg-config --cflags meshtopo) "$here/read_main.c" \
-    $(pkg-config --libs meshtopo) -o "$work/read_pc_all" ||
-    fail "compiling read_main.c with pkg-config meshtopo failed"
-# shellcheck disable=SC2046,SC2086
-"$cc" $extra_flags $(pkg-config --cflags meshtopo-client) "$here/client_main.c" \
-    $(pkg-config --libs meshtopo-client) -o "$work/client_pc" ||
-    fail "compiling client_main.c with pkg-config meshtopo-client failed"
-run_expect "main.c (pkg-config)" "Euler characteristic: 2, genus: 0" "$work/main_pc"
-run_expect "read_main.c (pkg-config)" "cube (off): Euler characteristic: 2" "$work/read_pc"
-run_expect "read_main.c (pkg-config meshtopo)" "cube (off): Euler characteristic: 2" \
-    "$work/read_pc_all"
-run_expect "client_main.c (pkg-config)" "$client_line" "$work/client_pc"
+bash "$here/consumers.sh" "$prefix" "$libdir" "$work" "$cc" "$generator" "$extra_flags"
 
 step "install test passed"

@@ -106,3 +106,38 @@ def test_queries_agree_with_report(cli, name):
     assert kinds.count("nonmanifold_vertex") == report["nonmanifold_vertices"]
     assert kinds.count("isolated_vertex") == report["isolated_vertices"]
     assert kinds.count("degenerate_face") == report["degenerate_faces"]
+
+
+# Every field of a defect record, in order (README.md "Defect records").
+RECORD_FIELDS = ["kind", "vertices", "faces", "edge", "face_count", "index", "position",
+                 "face_size", "distinct_vertices", "fans", "on_nonmanifold_edge", "axis"]
+
+
+def record_as_json(record):
+    """A DEFECT_DTYPE record as `inspect --json-defects` writes it (no description)."""
+    none = meshtopo.NONE
+    out = {"kind": meshtopo.DEFECT_KINDS[record["kind"]]}
+    for key in ("vertices", "faces"):
+        out[key] = [int(i) for i in record[key] if i != none]
+    out["edge"] = None if record["edge"][0] == none else [int(i) for i in record["edge"]]
+    for key in RECORD_FIELDS[4:]:
+        value = int(record[key])
+        out[key] = None if value == none else value
+    if out["on_nonmanifold_edge"] is not None:
+        out["on_nonmanifold_edge"] = bool(out["on_nonmanifold_edge"])
+    return out
+
+
+@pytest.mark.parametrize("name", [n for n in MESHES if n in (
+    "assimp_malformed", "vcg_nonmanifold", "cgal_many_umbrellas", "trimesh_notenoughindices",
+    "vcg_moebius")])
+def test_defects_are_the_records_inspect_json_lists(cli, name):
+    path = corpus_file(name)
+    p = subprocess.run([cli, "inspect", path, "--json-defects"], capture_output=True, text=True,
+                       timeout=600)
+    assert p.returncode == 0, p.stderr
+    expected = json.loads(p.stdout)["defects"]
+    assert all(list(d) == RECORD_FIELDS + ["description"] for d in expected)
+    got = [record_as_json(r) for r in meshtopo.Mesh.read(path).defects]
+    assert got == [{k: d[k] for k in RECORD_FIELDS} for d in expected]
+    assert list(meshtopo.DEFECT_DTYPE.names) == RECORD_FIELDS

@@ -72,7 +72,8 @@ def test_nan_positions_are_reported_or_refused():
     mesh = meshtopo.Mesh(positions, faces)
     bad = mesh.defects[mesh.defects["kind"] ==
                        meshtopo.DEFECT_KINDS.index("nonfinite_coordinate")]
-    assert bad["a"].tolist() == [4, 5] and bad["b"].tolist() == [1, 2]
+    assert bad["vertices"].tolist() == [[4, meshtopo.NONE], [5, meshtopo.NONE]]
+    assert bad["axis"].tolist() == [1, 2] and set(bad["fans"].tolist()) == {meshtopo.NONE}
     with pytest.raises(meshtopo.Error) as e:
         meshtopo.Mesh(positions, faces, strict=True)
     assert e.value.status == "MT_ERR_DEFECT" and "4" in e.value.message

@@ -1,6 +1,7 @@
 /* A report from meshtopod as JSON (send, query report, watch): the summary
  * `inspect --json` writes too (meshtopo::json, with the counts only the
- * daemon's reports carry), wrapped with provenance and the listed defects. */
+ * daemon's reports carry), wrapped with provenance and the listed defects
+ * (defect records, README.md "Defect records"). */
 #include "cli_report.h"
 #include "meshtopo/report_json.h"
 #include "remote.h"
@@ -25,23 +26,7 @@ bool mt_cli_report_write_json(mt_json *j, const mt_cli_report *cr)
     mt_json_key(j, "num_defects");
     mt_json_uint(j, cr->num_defects_found);
     mt_json_key(j, "defects");
-    mt_json_array_begin(j);
-    for (size_t i = 0; i < r->num_defects; i++) {
-        const mt_defect *d = &r->defects[i];
-        mt_json_object_begin(j);
-        mt_json_key(j, "kind");
-        mt_json_string(
-            j, d->kind < MT_DEFECT_KIND_COUNT ? mt_defect_key((mt_defect_kind)d->kind) : "unknown");
-        /* as the wire's int32: "no element" reads -1 */
-        mt_json_key(j, "a");
-        mt_json_int(j, (int32_t)d->a);
-        mt_json_key(j, "b");
-        mt_json_int(j, (int32_t)d->b);
-        mt_json_key(j, "c");
-        mt_json_int(j, (int32_t)d->c);
-        mt_json_object_end(j);
-    }
-    mt_json_array_end(j);
+    mt_report_json_write_defects(j, r->defects, r->num_defects);
     mt_json_object_end(j);
     return ok;
 }

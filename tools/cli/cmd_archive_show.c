@@ -10,6 +10,7 @@
 #include "cmd_archive.h"
 #include "inspect.h"
 #include "meshtopo/json_writer.h"
+#include "meshtopo/report_json.h"
 #include "remote.h"
 
 static void json_report(mt_json *j, const mt_report *r)
@@ -70,24 +71,7 @@ static void json_report(mt_json *j, const mt_report *r)
     }
     mt_json_object_end(j);
     mt_json_key(j, "defects");
-    mt_json_array_begin(j);
-    for (size_t i = 0; i < r->num_defects; i++) {
-        const mt_defect *d = &r->defects[i];
-        mt_json_object_begin(j);
-        mt_json_key(j, "kind");
-        mt_json_string(j, mt_defect_key((mt_defect_kind)d->kind));
-        mt_json_key(j, "a");
-        mt_json_uint(j, d->a);
-        mt_json_key(j, "b");
-        mt_json_uint(j, d->b);
-        mt_json_key(j, "c");
-        mt_json_uint(j, d->c);
-        mt_defect_describe(d, text, sizeof text);
-        mt_json_key(j, "description");
-        mt_json_string(j, text);
-        mt_json_object_end(j);
-    }
-    mt_json_array_end(j);
+    mt_report_json_write_defects(j, r->defects, r->num_defects);
     mt_json_object_end(j);
 }
 

@@ -13,6 +13,7 @@
 #include "inspect.h"
 #include "meshtopo/geometry.h"
 #include "meshtopo/report.h"
+#include "meshtopo/report_json.h"
 #include "remote.h"
 
 /* Most ids one command line may expand to (the daemon has its own limit). */
@@ -90,6 +91,15 @@ static mt_client_group group_of(const meshtopo_reply_t *r, const mt_client_item 
     if (k < item->num_groups) return mt_client_item_group(r, item, k);
     mt_client_group none = {false, NULL, 0, NULL, 0};
     return none;
+}
+
+/* A defect of a DEFECTS answer: its kind (the item) and the a, b, c the
+ * wire carries as int32 (reply_t), back to the report's uint32. */
+static mt_defect defect_of(int64_t kind, const int32_t abc[3])
+{
+    mt_defect d = {kind >= 0 && kind < MT_DEFECT_KIND_COUNT ? (uint32_t)kind : MT_DEFECT_KIND_COUNT,
+                   (uint32_t)abc[0], (uint32_t)abc[1], (uint32_t)abc[2]};
+    return d;
 }
 
 static const char *defect_name(int64_t kind)
@@ -269,9 +279,12 @@ static void print_item_text(const meshtopo_reply_t *r, const query_kind *qk, con
                 break;
             case MESHTOPO_QUERY_T_DEFECTS:
                 printf(" %zu %s", g.num_values / 3, g.num_values / 3 == 1 ? "defect" : "defects");
-                for (size_t d = 0; d + 2 < g.num_values; d += 3)
-                    printf("%s (%" PRId32 ", %" PRId32 ", %" PRId32 ")", d ? "," : "", g.values[d],
-                           g.values[d + 1], g.values[d + 2]);
+                for (size_t d = 0; d + 2 < g.num_values; d += 3) {
+                    char text[256];
+                    const mt_defect defect = defect_of(subject, &g.values[d]);
+                    mt_defect_describe(&defect, text, sizeof text);
+                    printf("%s %s", d ? ";" : ":", text);
+                }
                 break;
             default: /* EDGE_FACES */
                 printf(" faces");
@@ -414,14 +427,8 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
             for (size_t k = 0; k < item.num_groups; k++) {
                 mt_client_group g = mt_client_item_group(r, &item, k);
                 for (size_t d = 0; d + 2 < g.num_values; d += 3) {
-                    mt_json_object_begin(j);
-                    mt_json_key(j, "a");
-                    mt_json_int(j, g.values[d]);
-                    mt_json_key(j, "b");
-                    mt_json_int(j, g.values[d + 1]);
-                    mt_json_key(j, "c");
-                    mt_json_int(j, g.values[d + 2]);
-                    mt_json_object_end(j);
+                    const mt_defect defect = defect_of(subject, &g.values[d]);
+                    mt_report_json_write_defect(j, &defect);
                 }
             }
             mt_json_array_end(j);
@@ -623,7 +630,8 @@ const mt_cli_command mt_cli_cmd_query = {
         "                  themselves (as `meshtopo inspect --self-intersections`)\n"
         "An item the build left out (a rejected face, an edge no face has) prints\n"
         "\"not found\". --json prints {mesh_id, version, kind, items: [an object per item]}\n"
-        "({..., report} for report).\n"
+        "({..., report} for report); a defects item lists its defects as records\n"
+        "(README.md \"Defect records\": kind, vertices, faces, edge, face_count, ...).\n"
         "\n"
         "The geometry kinds (dihedral, deficit, convexity, self-intersections) need a mesh\n"
         "sent with positions.\n"

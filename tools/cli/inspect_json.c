@@ -3,8 +3,8 @@
  * cleanly against NAME.expected.json (which adds only "oracle_version"):
  * meshtopo::json writes them (the same document the Python binding reads);
  * --weld appends "weld", --self-intersections the geometry, --json-defects
- * "defects". Built in memory and written only when every query succeeded:
- * never half a document. */
+ * "defects" (defect records, README.md "Defect records"). Built in memory and written only when
+ * every query succeeded: never half a document. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -67,86 +67,6 @@ static void write_weld(mt_json *j, const mt_cli_weld *w)
     mt_json_object_end(j);
 }
 
-static void write_defect(mt_json *j, const mt_defect *d)
-{
-    char text[512];
-    mt_defect_describe(d, text, sizeof text);
-    mt_json_object_begin(j);
-    mt_json_key(j, "kind");
-    mt_json_string(
-        j, d->kind < MT_DEFECT_KIND_COUNT ? mt_defect_key((mt_defect_kind)d->kind) : "unknown");
-    switch (d->kind) {
-        case MT_DEFECT_OUT_OF_RANGE_INDEX:
-            mt_json_key(j, "face");
-            mt_json_uint(j, d->a);
-            mt_json_key(j, "index");
-            mt_json_int(j, mt_index_as_signed(d->b));
-            mt_json_key(j, "position");
-            mt_json_uint(j, d->c);
-            break;
-        case MT_DEFECT_DEGENERATE_FACE:
-            mt_json_key(j, "face");
-            mt_json_uint(j, d->a);
-            mt_json_key(j, "distinct_vertices");
-            mt_json_uint(j, d->b);
-            mt_json_key(j, "size");
-            mt_json_uint(j, d->c);
-            break;
-        case MT_DEFECT_DUPLICATE_FACE:
-            mt_json_key(j, "face");
-            mt_json_uint(j, d->a);
-            mt_json_key(j, "duplicate_of");
-            mt_json_uint(j, d->b);
-            break;
-        case MT_DEFECT_NONMANIFOLD_EDGE:
-            mt_json_key(j, "edge");
-            mt_json_array_begin(j);
-            mt_json_uint(j, d->a);
-            mt_json_uint(j, d->b);
-            mt_json_array_end(j);
-            mt_json_key(j, "faces");
-            mt_json_uint(j, d->c);
-            break;
-        case MT_DEFECT_SAME_DIRECTION_EDGE:
-            mt_json_key(j, "from");
-            mt_json_uint(j, d->a);
-            mt_json_key(j, "to");
-            mt_json_uint(j, d->b);
-            mt_json_key(j, "faces");
-            mt_json_uint(j, d->c);
-            break;
-        case MT_DEFECT_NONMANIFOLD_VERTEX:
-            mt_json_key(j, "vertex");
-            mt_json_uint(j, d->a);
-            mt_json_key(j, "fans");
-            mt_json_uint(j, d->b);
-            mt_json_key(j, "on_nonmanifold_edge");
-            mt_json_bool(j, d->c != 0);
-            break;
-        case MT_DEFECT_ISOLATED_VERTEX:
-            mt_json_key(j, "vertex");
-            mt_json_uint(j, d->a);
-            break;
-        case MT_DEFECT_NONFINITE_COORD:
-            mt_json_key(j, "vertex");
-            mt_json_uint(j, d->a);
-            mt_json_key(j, "axis");
-            mt_json_uint(j, d->b);
-            break;
-        default:
-            mt_json_key(j, "a");
-            mt_json_uint(j, d->a);
-            mt_json_key(j, "b");
-            mt_json_uint(j, d->b);
-            mt_json_key(j, "c");
-            mt_json_uint(j, d->c);
-            break;
-    }
-    mt_json_key(j, "text");
-    mt_json_string(j, text);
-    mt_json_object_end(j);
-}
-
 int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
 {
     const mt_mesh *mesh = req->mesh->mesh;
@@ -173,9 +93,7 @@ int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
         if (req->geometry) mt_inspect_geometry_json(&j, req->geometry);
         if (req->json_defects) {
             mt_json_key(&j, "defects");
-            mt_json_array_begin(&j);
-            for (size_t i = 0; i < r->num_defects; i++) write_defect(&j, &r->defects[i]);
-            mt_json_array_end(&j);
+            mt_report_json_write_defects(&j, r->defects, r->num_defects);
         }
         mt_json_object_end(&j);
     }

@@ -206,7 +206,7 @@ mt_status mt__archive_check(hid_t file, const char *file_name, mt__check *c, mt_
     if (st == MT_OK) st = mt__archive_read_provenance(g, file_name, r, diag);
     hid_t rg = st == MT_OK ? mt__archive_group_open(g, "report", file_name, diag) : -1;
     if (st == MT_OK && rg < 0) st = MT_ERR_PARSE;
-    if (st == MT_OK) st = mt__report_read(rg, file_name, &r->report, diag);
+    if (st == MT_OK) st = mt__report_read(rg, r->format_version, file_name, &r->report, diag);
     if (rg >= 0) H5Gclose(rg);
     /* The face list, decoded: for the caller, or for the comparison with a
      * rebuild that files without a digest need. Its content hash is checked

@@ -474,6 +474,30 @@ static mt_status read_failed(hid_t dset, const char *name, const char *file, mt_
     return mt__h5_fail(diag, MT_ERR_IO, file, "%s: dataset %s cannot be read", file, name);
 }
 
+/* MT_OK when the compound stored in dset has every member of the memory
+ * compound mtype: HDF5 matches members by name and would leave a missing
+ * one unwritten. */
+static mt_status check_members(hid_t dset, hid_t mtype, const char *file, const char *name,
+                               mt_diag *diag)
+{
+    hid_t ftype = H5Dget_type(dset);
+    int n = H5Tget_nmembers(mtype);
+    mt_status st = ftype < 0 || n < 0
+                       ? mt__archive_fail(diag, MT_ERR_PARSE, "%s: dataset %s: no type", file, name)
+                       : MT_OK;
+    for (int i = 0; st == MT_OK && i < n; i++) {
+        char *member = H5Tget_member_name(mtype, (unsigned)i);
+        if (!member)
+            st = mt__archive_fail(diag, MT_ERR_NOMEM, "%s: out of memory", file);
+        else if (H5Tget_member_index(ftype, member) < 0)
+            st = mt__archive_fail(diag, MT_ERR_PARSE, "%s: dataset %s has no member %s", file, name,
+                                  member);
+        if (member) H5free_memory(member);
+    }
+    if (ftype >= 0) H5Tclose(ftype);
+    return st;
+}
+
 mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int rank, hsize_t cols,
                               mt__h5_kind kind, size_t elem_size, hid_t mtype, void **out_data,
                               uint64_t *out_rows, mt_diag *diag)
@@ -484,9 +508,10 @@ mt_status mt__h5_read_dataset(hid_t loc, const char *name, const char *file, int
     uint64_t rows;
     mt_status st = open_checked(loc, name, file, rank, cols, kind, elem_size, &dset, &rows, diag);
     if (st != MT_OK) return st;
+    if (kind == MT__H5_COMPOUND) st = check_members(dset, mtype, file, name, diag);
     uint64_t elements = rows * (rank == 2 ? cols : 1);
     size_t msize = H5Tget_size(mtype);
-    if (elements > 0) {
+    if (st == MT_OK && elements > 0) {
         if (msize == 0 || elements > SIZE_MAX / msize) {
             st =
                 mt__archive_fail(diag, MT_ERR_TOO_LARGE, "%s: dataset %s is too large", file, name);

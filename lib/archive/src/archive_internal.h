@@ -234,7 +234,8 @@ extern const size_t mt__num_report_fields;
 
 /* Writes the report into group `group`: every scalar field as an attribute,
  * num_defects too, and the lists as datasets (boundary_loop_lengths,
- * components, face_size_histogram, edge_use_histogram, defects). */
+ * components, face_size_histogram, edge_use_histogram, defects as defect
+ * records with a description attribute). */
 mt_status mt__report_write(hid_t group, const mt_report *report, const char *file, mt_diag *diag);
 
 /* Reads the scalar attributes into *out (arrays NULL, their counts 0) and
@@ -243,8 +244,10 @@ mt_status mt__report_read_scalars(hid_t group, const char *file, mt_report *out,
                                   uint64_t *out_num_defects, mt_diag *diag);
 
 /* Reads the whole report (free with mt_archive_report_free), checking every
- * list's length against its count and every value's range. */
-mt_status mt__report_read(hid_t group, const char *file, mt_report *out, mt_diag *diag);
+ * list's length against its count and every value's range. The defects are
+ * in the layout of the file's format_version. */
+mt_status mt__report_read(hid_t group, uint32_t format_version, const char *file, mt_report *out,
+                          mt_diag *diag);
 
 /* XXH3-64 of every value the file stores of the report (the fields of
  * mt__report_fields, then each list's length and rows), each as 64

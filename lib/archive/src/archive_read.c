@@ -204,7 +204,7 @@ mt_status mt_archive_load_file(const mt_archive *archive, const char *file_name,
     if (st == MT_OK) st = mt__archive_read_faces(g, file_name, &r.faces, diag);
     hid_t rg = st == MT_OK ? mt__archive_group_open(g, "report", file_name, diag) : -1;
     if (st == MT_OK && rg < 0) st = MT_ERR_PARSE;
-    if (st == MT_OK) st = mt__report_read(rg, file_name, &r.report, diag);
+    if (st == MT_OK) st = mt__report_read(rg, r.format_version, file_name, &r.report, diag);
     if (st == MT_OK &&
         (r.report.num_verts != r.faces.num_verts || r.report.num_faces != r.faces.num_faces))
         st = mt__archive_fail(diag, MT_ERR_PARSE,

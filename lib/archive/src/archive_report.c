@@ -1,7 +1,8 @@
 /* The topology report (meshtopo/report.h) in an archive file: counts and
  * flags as attributes of /meshtopo/report named like mt_report's fields,
  * the lists as datasets of named compound rows (h5dump and h5py show the
- * column names; defect kinds are an HDF5 enum of their keys). Also the
+ * column names; defect kinds are an HDF5 enum of their keys; defects are
+ * defect records, meshtopo/defect_record.h, from format 7 on). Also the
  * field-by-field comparison used to check a rebuild against the file, and
  * the hash of the stored values that the half-edge digest includes. */
 #include <inttypes.h>
@@ -12,6 +13,7 @@
 
 #include "archive_internal.h"
 #include "meshtopo/content_hash.h"
+#include "meshtopo/defect_record.h"
 
 #define FIELD(name, type)                      \
     {                                          \
@@ -94,22 +96,65 @@ static hid_t histogram_type(const char *key_name, const char *count_name)
     return t;
 }
 
-/* A defect {kind: enum of the defect keys, a, b, c: uint32}. */
-static hid_t defect_type(void)
+/* The HDF5 enum of the defect kinds' keys, over uint32. */
+static hid_t defect_kind_type(void)
 {
     hid_t kind = H5Tenum_create(H5T_NATIVE_UINT32);
-    hid_t t = kind < 0 ? -1 : H5Tcreate(H5T_COMPOUND, sizeof(mt_defect));
-    bool ok = t >= 0;
+    bool ok = kind >= 0;
     for (uint32_t k = 0; ok && k < MT_DEFECT_KIND_COUNT; k++)
         ok = H5Tenum_insert(kind, mt_defect_key((mt_defect_kind)k), &k) >= 0;
-    ok = ok && H5Tinsert(t, "kind", offsetof(mt_defect, kind), kind) >= 0 &&
-         H5Tinsert(t, "a", offsetof(mt_defect, a), H5T_NATIVE_UINT32) >= 0 &&
-         H5Tinsert(t, "b", offsetof(mt_defect, b), H5T_NATIVE_UINT32) >= 0 &&
-         H5Tinsert(t, "c", offsetof(mt_defect, c), H5T_NATIVE_UINT32) >= 0;
+    if (!ok && kind >= 0) H5Tclose(kind);
+    return ok ? kind : -1;
+}
+
+/* A defect record (meshtopo/defect_record.h), members named like its
+ * fields: kind the enum of the keys, vertices, faces and edge two uint32
+ * each, index int64, the others uint32. Format 7 and later. */
+static hid_t defect_record_type(void)
+{
+    const hsize_t two[1] = {2};
+    hid_t kind = defect_kind_type();
+    hid_t pair = H5Tarray_create2(H5T_NATIVE_UINT32, 1, two);
+    hid_t t = kind < 0 || pair < 0 ? -1 : H5Tcreate(H5T_COMPOUND, sizeof(mt_defect_record));
+#define MEMBER(name, type) (H5Tinsert(t, #name, offsetof(mt_defect_record, name), type) >= 0)
+    bool ok = t >= 0 && MEMBER(kind, kind) && MEMBER(vertices, pair) && MEMBER(faces, pair) &&
+              MEMBER(edge, pair) && MEMBER(face_count, H5T_NATIVE_UINT32) &&
+              MEMBER(index, H5T_NATIVE_INT64) && MEMBER(position, H5T_NATIVE_UINT32) &&
+              MEMBER(face_size, H5T_NATIVE_UINT32) &&
+              MEMBER(distinct_vertices, H5T_NATIVE_UINT32) && MEMBER(fans, H5T_NATIVE_UINT32) &&
+              MEMBER(on_nonmanifold_edge, H5T_NATIVE_UINT32) && MEMBER(axis, H5T_NATIVE_UINT32);
+#undef MEMBER
+    if (kind >= 0) H5Tclose(kind);
+    if (pair >= 0) H5Tclose(pair);
+    if (!ok && t >= 0) H5Tclose(t);
+    return ok ? t : -1;
+}
+
+/* A defect as formats 1 to 6 stored it: mt_defect {kind: the enum of the
+ * keys, a, b, c: uint32}. */
+static hid_t legacy_defect_type(void)
+{
+    hid_t kind = defect_kind_type();
+    hid_t t = kind < 0 ? -1 : H5Tcreate(H5T_COMPOUND, sizeof(mt_defect));
+    bool ok = t >= 0 && H5Tinsert(t, "kind", offsetof(mt_defect, kind), kind) >= 0 &&
+              H5Tinsert(t, "a", offsetof(mt_defect, a), H5T_NATIVE_UINT32) >= 0 &&
+              H5Tinsert(t, "b", offsetof(mt_defect, b), H5T_NATIVE_UINT32) >= 0 &&
+              H5Tinsert(t, "c", offsetof(mt_defect, c), H5T_NATIVE_UINT32) >= 0;
     if (kind >= 0) H5Tclose(kind);
     if (!ok && t >= 0) H5Tclose(t);
     return ok ? t : -1;
 }
+
+/* The description attribute of /meshtopo/report/defects: the record's
+ * members, from the one table of them. */
+static const char defects_description[] =
+    "One row per defect of the report, grouped by kind, then by first id; the members are "
+    "those of every meshtopo defect record (README.md, Defect records). A member that does not "
+    "apply to the row's kind holds 4294967295, as does the unused end of vertices and faces. "
+#define MT__FIELD_TEXT(name, text) #name ": " text ". "
+    MT_DEFECT_RECORD_FIELDS(MT__FIELD_TEXT)
+#undef MT__FIELD_TEXT
+    ;
 
 static hid_t field_file_type(mt__field_type type)
 {
@@ -155,6 +200,24 @@ static mt_status write_rows(hid_t group, const char *name, hid_t type, const voi
     hsize_t dims[1] = {n};
     mt_status st = mt__h5_write_dataset(group, name, type, type, 1, dims, rows, file, diag);
     H5Tclose(type);
+    return st;
+}
+
+/* Writes /meshtopo/report/defects: the report's defects as records. */
+static mt_status write_defects(hid_t group, const mt_report *r, const char *file, mt_diag *diag)
+{
+    mt_defect_record *rows = calloc(r->num_defects + 1u, sizeof *rows);
+    if (!rows) return mt__archive_fail(diag, MT_ERR_NOMEM, "%s: out of memory", file);
+    mt_defect_to_records(r->defects, r->num_defects, rows);
+    mt_status st =
+        write_rows(group, "defects", defect_record_type(), rows, r->num_defects, file, diag);
+    free(rows);
+    hid_t dset = st == MT_OK ? H5Dopen2(group, "defects", H5P_DEFAULT) : -1;
+    if (st == MT_OK && dset < 0)
+        st = mt__h5_fail(diag, MT_ERR_IO, file, "%s: cannot open dataset report/defects", file);
+    if (st == MT_OK)
+        st = mt__h5_write_attr_string(dset, "description", defects_description, file, diag);
+    if (dset >= 0) H5Dclose(dset);
     return st;
 }
 
@@ -218,8 +281,7 @@ mt_status mt__report_write(hid_t group, const mt_report *r, const char *file, mt
     if (st == MT_OK)
         st = write_rows(group, "edge_use_histogram", histogram_type("faces_per_edge", "edges"),
                         r->edge_use_histogram, r->num_edge_use_bins, file, diag);
-    if (st == MT_OK)
-        st = write_rows(group, "defects", defect_type(), r->defects, r->num_defects, file, diag);
+    if (st == MT_OK) st = write_defects(group, r, file, diag);
     return st;
 }
 
@@ -292,7 +354,44 @@ static mt_status read_rows(hid_t group, const char *name, hid_t type, uint64_t e
     return st;
 }
 
-mt_status mt__report_read(hid_t group, const char *file, mt_report *out, mt_diag *diag)
+/* Reads /meshtopo/report/defects into r (num_defects rows): records from
+ * format 7 on, each converted back to the mt_defect it stands for, and the
+ * rows {kind, a, b, c} of earlier formats. */
+static mt_status read_defects(hid_t group, uint32_t format_version, uint64_t num_defects,
+                              const char *file, mt_report *r, mt_diag *diag)
+{
+    const char *name = "/meshtopo/report/defects";
+    void *data = NULL;
+    if (format_version < MT_ARCHIVE_FORMAT_VERSION_DEFECT_RECORDS) {
+        mt_status st = read_rows(group, name, legacy_defect_type(), num_defects, file, &data, diag);
+        if (st != MT_OK) return st;
+        r->defects = data;
+        r->num_defects = (size_t)num_defects;
+        for (size_t i = 0; i < r->num_defects; i++)
+            if (r->defects[i].kind >= MT_DEFECT_KIND_COUNT)
+                return mt__archive_fail(diag, MT_ERR_PARSE,
+                                        "%s: dataset %s row %zu has unknown kind %u", file, name, i,
+                                        r->defects[i].kind);
+        return MT_OK;
+    }
+    mt_status st = read_rows(group, name, defect_record_type(), num_defects, file, &data, diag);
+    if (st != MT_OK) return st;
+    const mt_defect_record *rows = data;
+    r->defects = calloc((size_t)num_defects + 1u, sizeof *r->defects);
+    if (!r->defects) st = mt__archive_fail(diag, MT_ERR_NOMEM, "%s: out of memory", file);
+    if (st == MT_OK) r->num_defects = (size_t)num_defects;
+    for (size_t i = 0; st == MT_OK && i < r->num_defects; i++)
+        if (mt_defect_from_record(&rows[i], &r->defects[i]) != MT_OK)
+            st = mt__archive_fail(diag, MT_ERR_PARSE,
+                                  "%s: dataset %s row %zu is no defect record (kind %u with "
+                                  "members it does not have, or an unknown kind)",
+                                  file, name, i, rows[i].kind);
+    free(data);
+    return st;
+}
+
+mt_status mt__report_read(hid_t group, uint32_t format_version, const char *file, mt_report *out,
+                          mt_diag *diag)
 {
     mt_report r;
     uint64_t num_defects = 0;
@@ -366,21 +465,7 @@ mt_status mt__report_read(hid_t group, const char *file, mt_report *out, mt_diag
         r.edge_use_histogram = data;
         r.num_edge_use_bins = (size_t)bins;
     }
-    if (st == MT_OK)
-        st = read_rows(group, "/meshtopo/report/defects", defect_type(), num_defects, file, &data,
-                       diag);
-    if (st == MT_OK) {
-        r.defects = data;
-        r.num_defects = (size_t)num_defects;
-        for (size_t i = 0; i < r.num_defects; i++)
-            if (r.defects[i].kind >= MT_DEFECT_KIND_COUNT) {
-                st = mt__archive_fail(
-                    diag, MT_ERR_PARSE,
-                    "%s: dataset /meshtopo/report/defects row %zu has unknown kind %u", file, i,
-                    r.defects[i].kind);
-                break;
-            }
-    }
+    if (st == MT_OK) st = read_defects(group, format_version, num_defects, file, &r, diag);
     *out = r;
     if (st != MT_OK) mt_archive_report_free(out);
     return st;

@@ -23,8 +23,8 @@ const mt__topo_info mt__topo_arrays[MT__TOPO_COUNT] = {
                                "defect kinds of /meshtopo/report/defects involving the face: bit k "
                                "(value 2^k) for kind k, named by attribute bits; a face defect "
                                "involves its face, an edge defect the faces on the edge "
-                               "(same_direction_edge: those running a -> b), a vertex defect the "
-                               "faces with the vertex as a corner"},
+                               "(same_direction_edge: those crossing its edge u -> v), a vertex "
+                               "defect the faces with the vertex as a corner"},
     [MT__TOPO_CELL_TOUCHES_BOUNDARY] = {"touches_boundary", true, MT__TOPO_UINT8, 0, false,
                                         "1 when a side of the face is a boundary edge (an edge "
                                         "used by one face), else 0"},

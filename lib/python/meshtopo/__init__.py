@@ -10,7 +10,7 @@ through the C client library.
     mesh.report()["genus"], mesh.ring(0).neighbors, mesh.defects
 """
 from . import _lib
-from .arrays import COMPONENT_DTYPE, DEFECT_DTYPE, FAN_DTYPE
+from .arrays import COMPACT_DEFECT_DTYPE, COMPONENT_DTYPE, DEFECT_DTYPE, FAN_DTYPE
 from .client import Ack, Client, Reply
 from .errors import STATUS, Error
 from .face_list import FaceList, read_face_list
@@ -34,8 +34,8 @@ def _defect_kinds():
 # Defect kind names by number (the `kind` of Mesh.defects), from the library's table.
 DEFECT_KINDS = _defect_kinds()
 
-for _name, _dtype in (("mt_defect", DEFECT_DTYPE), ("mt_component_info", COMPONENT_DTYPE),
-                      ("mt_fan", FAN_DTYPE)):
+for _name, _dtype in (("mt_defect", COMPACT_DEFECT_DTYPE), ("mt_defect_record", DEFECT_DTYPE),
+                      ("mt_component_info", COMPONENT_DTYPE), ("mt_fan", FAN_DTYPE)):
     _lib.check_layout(_name, _dtype.itemsize)
 
 __all__ = ["Mesh", "FaceList", "Ring", "Client", "Ack", "Reply", "Error", "read",

@@ -120,6 +120,7 @@ mt_strerror = _declare("mt_strerror", c_char_p, c_int)
 mt_py_status_name = _declare("mt_py_status_name", c_char_p, c_int)
 mt_py_sizeof = _declare("mt_py_sizeof", c_size, c_char_p)
 mt_defect_key = _declare("mt_defect_key", c_char_p, c_int)
+mt_defect_to_records = _declare("mt_defect_to_records", None, c_ptr, c_size, c_ptr)
 
 mt_mesh_build = _declare("mt_mesh_build", c_int, P(FaceListStruct), P(BuildOptions), P(c_ptr),
                          P(Diag))

@@ -9,17 +9,34 @@ every value fits 32 bits, float32 and integer positions, non-contiguous or
 byte-swapped arrays. Anything else raises TypeError or ValueError.
 
 Out: arrays that live in the library's memory (a mesh's positions, its
-report's components and defects, a face list read from a file) are read-only
-numpy views that keep their owner alive; query answers are new arrays.
+report's components, a face list read from a file) are read-only numpy views
+that keep their owner alive; a mesh's defect records are made once, read-only;
+query answers are new arrays.
 """
 import numpy as np
 
 _U32_MAX = 0xFFFFFFFF
 
-# Records of meshtopo/report.h and query.h, laid out as the C compiler does
-# (checked against the C sizes when the package loads).
-DEFECT_DTYPE = np.dtype([("kind", np.uint32), ("a", np.uint32), ("b", np.uint32),
-                         ("c", np.uint32)], align=True)
+# Records of meshtopo/defect_record.h, report.h and query.h, laid out as the C
+# compiler does (checked against the C sizes when the package loads).
+
+# A defect record, the one defect schema of meshtopo's outputs (README.md
+# "Defect records"; the archive's /meshtopo/report/defects has these members
+# too): kind (a number, DEFECT_KINDS names it), vertices, faces, edge (two ids
+# each), face_count, index (int64), position, face_size, distinct_vertices,
+# fans, on_nonmanifold_edge (0 or 1), axis. A field that does not apply to the
+# kind, and the unused end of vertices and faces, holds NONE (4294967295).
+DEFECT_DTYPE = np.dtype([("kind", np.uint32), ("vertices", np.uint32, (2,)),
+                         ("faces", np.uint32, (2,)), ("edge", np.uint32, (2,)),
+                         ("face_count", np.uint32), ("index", np.int64),
+                         ("position", np.uint32), ("face_size", np.uint32),
+                         ("distinct_vertices", np.uint32), ("fans", np.uint32),
+                         ("on_nonmanifold_edge", np.uint32), ("axis", np.uint32)], align=True)
+# The report's compact defect (mt_defect: kind, a, b, c, meanings per kind),
+# as the library lists it and meshtopod's answers carry it; the package turns
+# it into DEFECT_DTYPE records with the library's mt_defect_to_records.
+COMPACT_DEFECT_DTYPE = np.dtype([("kind", np.uint32), ("a", np.uint32), ("b", np.uint32),
+                                 ("c", np.uint32)], align=True)
 COMPONENT_DTYPE = np.dtype([("min_face", np.uint32), ("faces", np.uint32),
                             ("vertices", np.uint32), ("edges", np.uint64),
                             ("euler_characteristic", np.int64), ("boundary_edges", np.uint64),

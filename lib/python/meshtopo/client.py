@@ -10,10 +10,10 @@ import weakref
 import numpy as np
 
 from . import _lib
-from .arrays import DEFECT_DTYPE, FAN_DTYPE, address
+from .arrays import COMPACT_DEFECT_DTYPE, FAN_DTYPE, address
 from .errors import STATUS, check
 from .face_list import FaceList
-from .mesh import Ring
+from .mesh import Ring, defect_records
 
 # The answer to a submission: the version the daemon built, the content hash
 # of the mesh (msgs/mesh_t.lcm), and its topology report as a dict (the
@@ -226,9 +226,10 @@ class Client:
         rows = []
         for kind in range(reply.num_items):
             for g in reply.groups(kind):
-                abc = reply.group(g)[0].reshape(-1, 3)
-                rows.extend((kind, a, b, c) for a, b, c in abc)
-        return np.array(rows, dtype=DEFECT_DTYPE)
+                abc = reply.group(g)[0].reshape(-1, 3)  # the report's a, b, c (uint32)
+                rows.extend((kind, a, b, c) for a, b, c in abc.tolist())
+        compact = np.array(rows, dtype=COMPACT_DEFECT_DTYPE)
+        return defect_records(address(compact), len(compact))
 
     def list(self, mesh_id=None):
         """The mesh versions the daemon holds (of one id, or all): a list of

@@ -29,6 +29,16 @@ def _u32(name, value):
     return value
 
 
+def defect_records(defects, count):
+    """(count,) DEFECT_DTYPE records, read-only, of the `count` mt_defect at
+    address `defects`, made by the library (mt_defect_to_records)."""
+    out = np.empty(count, DEFECT_DTYPE)
+    if count:
+        _lib.mt_defect_to_records(defects, count, address(out))
+    out.flags.writeable = False
+    return out
+
+
 class _Handle:
     """Owns an mt_mesh; destroys it when nothing (the Mesh, an array viewing
     its memory) refers to the handle any more."""
@@ -71,6 +81,7 @@ class Mesh:
         code = _lib.mt_mesh_build(face_list.struct(), options, pointer, diag)
         check(code, diag)
         self._handle = _Handle(pointer.value)
+        self._defects = None
         self.file_name = file_name
 
     @classmethod
@@ -126,12 +137,16 @@ class Mesh:
 
     @property
     def defects(self):
-        """Every defect the build found, as DEFECT_DTYPE records (kind, a, b, c),
-        grouped by kind, then by first id: a read-only view of the report's
-        list. meshtopo.DEFECT_KINDS names the kinds; meshtopo/report.h says
-        what a, b and c hold per kind."""
-        r = self._report_struct()
-        return view(self._handle, r.defects, r.num_defects, DEFECT_DTYPE)
+        """Every defect the build found, as (N,) DEFECT_DTYPE records (README.md
+        "Defect records": kind, vertices, faces, edge, face_count, index,
+        position, face_size, distinct_vertices, fans, on_nonmanifold_edge,
+        axis; NONE where a field does not apply), grouped by kind, then by
+        first id. meshtopo.DEFECT_KINDS names the kinds. Read-only, made by
+        the library from the report's list on first use."""
+        if self._defects is None:
+            r = self._report_struct()
+            self._defects = defect_records(r.defects, r.num_defects)
+        return self._defects
 
     @property
     def components(self):

@@ -3,6 +3,7 @@
  * face's component in one call. */
 #include <string.h>
 
+#include "meshtopo/defect_record.h"
 #include "meshtopo/query.h"
 #include "meshtopo/report.h"
 #include "python_api.h"
@@ -29,6 +30,7 @@ size_t mt_py_sizeof(const char *type_name)
         {"mt_build_options", sizeof(mt_build_options)},
         {"mt_component_info", sizeof(mt_component_info)},
         {"mt_defect", sizeof(mt_defect)},
+        {"mt_defect_record", sizeof(mt_defect_record)},
         {"mt_diag", sizeof(mt_diag)},
         {"mt_face_list", sizeof(mt_face_list)},
         {"mt_fan", sizeof(mt_fan)},

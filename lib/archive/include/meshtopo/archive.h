@@ -49,8 +49,11 @@ extern "C" {
  * topology arrays of /VTKHDF/CellData and /VTKHDF/PointData (see "Topology
  * as VTK arrays" below): loads never read them (they are derived from the
  * mesh), verification checks them; files of earlier versions lack them and
- * load and verify as before. */
-#define MT_ARCHIVE_FORMAT_VERSION 6
+ * load and verify as before. 7 stores /meshtopo/report/defects as defect
+ * records (meshtopo/defect_record.h: members kind, vertices, faces, edge,
+ * face_count, index, ...) with a description attribute; earlier versions
+ * store {kind, a, b, c} (mt_defect), which loads read as before. */
+#define MT_ARCHIVE_FORMAT_VERSION 7
 
 /* Oldest format version whose content_hash verification checks. */
 #define MT_ARCHIVE_FORMAT_VERSION_HASHED 3
@@ -60,6 +63,9 @@ extern "C" {
 
 /* Oldest format version whose VTKHDF groups carry the topology arrays. */
 #define MT_ARCHIVE_FORMAT_VERSION_TOPOLOGY 6
+
+/* Oldest format version whose defects are defect records. */
+#define MT_ARCHIVE_FORMAT_VERSION_DEFECT_RECORDS 7
 
 /* Oldest format version read. */
 #define MT_ARCHIVE_FORMAT_VERSION_MIN 1

@@ -3,6 +3,7 @@
 #define MESHTOPO_CORE_H
 
 #include "meshtopo/attributes.h"
+#include "meshtopo/defect_record.h"
 #include "meshtopo/edit.h"
 #include "meshtopo/face_list.h"
 #include "meshtopo/generate.h"

@@ -17,7 +17,8 @@ extern "C" {
 #endif
 
 /* What a defect entry means; a, b, c are per kind. Generated from one table
- * so names and descriptions stay together. */
+ * so names and descriptions stay together. Outside the library a defect
+ * travels as its record of named fields (meshtopo/defect_record.h). */
 #define MT_DEFECT_TABLE(X)                                                                         \
     /* a = face, b = first bad index value (as stored), c = its position in the face */            \
     X(MT_DEFECT_OUT_OF_RANGE_INDEX, "out_of_range_index", "face uses a vertex index out of range") \

@@ -70,6 +70,17 @@ mt_status mt_report_json_write_inspect(mt_json *j, const mt_mesh *mesh, const ui
                                        size_t num_verts, const uint32_t *faces, size_t num_faces,
                                        const char *file_name, mt_diag *diag);
 
+/* Writes one defect as its record (meshtopo/defect_record.h; README.md
+ * "Defect records"): an object with "kind" (the key), "vertices" and
+ * "faces" (arrays of ids, maybe empty), "edge" ([u, v] or null),
+ * "face_count", "index", "position", "face_size", "distinct_vertices",
+ * "fans", "on_nonmanifold_edge" (a boolean) and "axis" (null where they do
+ * not apply to the kind), then "description" (mt_defect_describe). */
+void mt_report_json_write_defect(mt_json *j, const mt_defect *defect);
+
+/* Writes an array of the records of defects[0 .. count). */
+void mt_report_json_write_defects(mt_json *j, const mt_defect *defects, size_t count);
+
 /* The whole document `meshtopo inspect FILE --json` prints for this mesh
  * (no options: the default queries, "file" = file_name or null), as
  * NUL-terminated text in *out_text (out_size, NULL-safe, gets its length).
