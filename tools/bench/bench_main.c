@@ -6,13 +6,16 @@
  *                                      (bench_archive.c)
  *   meshtopo-bench soak [options]      meshtopod under normal and hostile traffic (soak.c)
  *   meshtopo-bench cluster [options]   1 vs 2 members of a cluster, failover (bench_cluster.c)
- *   meshtopo-bench selfx [options]     self-intersections vs CGAL (bench_selfx.c) */
+ *   meshtopo-bench selfx [options]     self-intersections vs CGAL (bench_selfx.c)
+ *   meshtopo-bench inspect [options]   whole-process `meshtopo inspect` and reading vs
+ *                                      OpenMesh (bench_inspect.c) */
 #include <stdio.h>
 #include <string.h>
 
 #include "bench.h"
 #include "bench_archive.h"
 #include "bench_cluster.h"
+#include "bench_inspect.h"
 #include "bench_selfx.h"
 #include "bench_transfer.h"
 #include "rtt.h"
@@ -30,6 +33,8 @@ int main(int argc, char **argv)
         return mt__bench_cluster_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "selfx") == 0)
         return mt__bench_selfx_command(argc - 1, argv + 1);
+    if (argc > 1 && strcmp(argv[1], "inspect") == 0)
+        return mt__bench_inspect_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "build") == 0) return mt__bench_command(argc - 1, argv + 1);
     return mt__bench_command(argc, argv);
 }

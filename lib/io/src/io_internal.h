@@ -24,6 +24,7 @@
 #define MT__UNKNOWN UINT64_MAX
 
 typedef struct mt__io_stream mt__io_stream;
+typedef struct mt__bulk mt__bulk;
 
 /* The bytes being parsed. A plain buffer read whole: data/size is all of it
  * and base 0. Any other input (a file, gzip data): data/size is a window on
@@ -45,6 +46,8 @@ typedef struct mt__io_src {
     uint64_t mark;      /* input offset of the record being read: its line is kept when the */
     uint64_t mark_line; /* window moves past it, so a message can still point there */
     mt__io_stream *stream; /* NULL when data is all the input */
+    unsigned threads;      /* mt_read_options.threads */
+    mt__bulk *bulk;        /* the bulk parser's scratch (io_bulk.c), freed by mt__src_close */
 } mt__io_src;
 
 /* A source over all of [data, data + size). */
@@ -176,8 +179,58 @@ int mt__parse_double(const unsigned char *s, size_t len, double *out);
 /* The fast, exact part of mt__parse_double: reads the longest plain
  * decimal ([+-]digits[.digits][e[+-]digits]) at s and returns how many bytes
  * it took, or 0 when there is none or its value needs strtod (more than 19
- * significant digits, or too large an exponent for one exact operation). */
+ * significant digits, a subnormal or out-of-range value, or one of the rare
+ * roundings the Eisel-Lemire algorithm leaves open). The value is
+ * bit-identical to strtod's. */
 size_t mt__scan_decimal(const unsigned char *s, const unsigned char *end, double *out);
+
+/* Eight digits at a time (Lemire's SWAR): 8 bytes as a little-endian word
+ * (byte 0 the first), which bytes are not ASCII digits, and the value of 8
+ * digits. */
+static inline uint64_t mt__load8(const unsigned char *p)
+{
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    v = __builtin_bswap64(v);
+#endif
+    return v;
+}
+
+/* 0x80 in each byte that is not '0'..'9' and in no byte before the first
+ * such one (borrows and carries only run towards later bytes). */
+static inline uint64_t mt__nondigits8(uint64_t v)
+{
+    return ((v - 0x3030303030303030ull) | (v + 0x4646464646464646ull)) & 0x8080808080808080ull;
+}
+
+static inline int mt__is_8digits(uint64_t v)
+{
+    return mt__nondigits8(v) == 0;
+}
+
+/* The value of 8 digit values (0..9, not ASCII) in bytes 0 (most
+ * significant) to 7. */
+static inline uint32_t mt__digits8_value(uint64_t v)
+{
+    v = v * 10 + (v >> 8);
+    v = ((v & 0x000000ff000000ffull) * 0x000f424000000064ull +
+         ((v >> 16) & 0x000000ff000000ffull) * 0x0000271000000001ull) >>
+        32;
+    return (uint32_t)v;
+}
+
+static inline uint32_t mt__parse_8digits(uint64_t v)
+{
+    return mt__digits8_value(v - 0x3030303030303030ull);
+}
+
+/* 5^q for q in [MT__POW5_SMALLEST, MT__POW5_LARGEST], each scaled by a power
+ * of two into [2^127, 2^128), high 64 bits first (io_pow5.c): the table of
+ * the Eisel-Lemire conversion in mt__scan_decimal. */
+#define MT__POW5_SMALLEST (-342)
+#define MT__POW5_LARGEST 308
+extern const uint64_t mt__pow5_128[MT__POW5_LARGEST - MT__POW5_SMALLEST + 1][2];
 
 /* Reads a plain index token at d[*pos]: [-]digits in 32-bit range followed
  * by whitespace, `stop` or the end. Returns 1 and moves *pos past it, or 0
@@ -330,6 +383,45 @@ mt_status mt__builder_read(mt__io_src *src, mt__builder_reader read, mt_face_lis
 
 /* The failure every reader reports when an array cannot grow. */
 mt_status mt__io_fail_nomem(mt_diag *diag, const mt__io_src *src);
+
+/* ---- Runs of plain records (io_bulk.c) ---------------------------------- */
+
+/* What a line holds, in order, each item after spaces or tabs. */
+enum {
+    MT__BULK_X = 1, /* a number: the vertex's x, y, z */
+    MT__BULK_Y,
+    MT__BULK_Z,
+    MT__BULK_TOKEN,   /* any token, skipped */
+    MT__BULK_INDICES, /* a count and that many vertex indices: the face */
+    MT__BULK_LIST,    /* a count and that many tokens, skipped */
+    MT__BULK_REST     /* anything up to the end of the line (OFF's colours) */
+};
+
+#define MT__BULK_MAX_OPS 16
+/* Longer lists (faces) are left to the general loop. */
+#define MT__BULK_MAX_LIST 255u
+#define MT__BULK_MAX_THREADS 4u
+
+/* One record per line: a vertex (positions) or a face (sizes, indices; then
+ * exactly one MT__BULK_INDICES). */
+typedef struct mt__bulk_spec {
+    unsigned char ops[MT__BULK_MAX_OPS];
+    size_t num_ops;
+    int faces;
+} mt__bulk_spec;
+
+/* Parses the plain records of the lines at window index *pos on (the
+ * start of a line; *pos must follow a '\n' or the start of the data) into
+ * b: vertex or face `first` on, `declared` in all, growing b as the reader
+ * would. Stops before the first line the general loop must read (see
+ * io_bulk.c), at the window's last '\n' or before record declared - 1 (the
+ * last, whose end the general loop must know); on
+ * several threads (src->threads) when the lines are many. Returns how many
+ * records it read, *pos past them: the same records, bit for bit, that the
+ * general loop would have read. */
+uint64_t mt__bulk_parse(mt__io_src *src, const mt__bulk_spec *spec, size_t *pos, uint64_t first,
+                        uint64_t declared, mt__builder *b);
+void mt__bulk_free(mt__bulk *bulk);
 
 /* ---- Streamed input: raw bytes, gzip, the window ------------------------ */
 

@@ -1,8 +1,15 @@
 /* Number text of meshtopo::io, read and written. Coordinates: plain decimals
- * with at most 19 significant digits and a small exponent are read exactly
- * (Clinger's fast path: one exact IEEE multiplication or division); anything
- * else goes to strtod. Doubles are written as the shortest of %.15g/%.16g/
- * %.17g that reads back bit for bit; counts are plain digits. All under the C
+ * with at most 19 significant digits are read exactly without strtod:
+ * Clinger's fast path (one exact IEEE multiplication or division) when the
+ * significand fits in 53 bits and |exponent| <= 22, else the Eisel-Lemire
+ * algorithm (one or two 64x128-bit products with a table of powers of five,
+ * io_pow5.c; Lemire, "Number parsing at a gigabyte per second", 2021),
+ * which gives the correctly rounded double or declines. Anything declined
+ * (more digits, subnormal or out-of-range results, hex, inf, nan) goes to
+ * strtod, so every value is bit-identical to strtod's. Hand-written because
+ * strtod is locale-aware and several times slower, and no Debian C package
+ * offers this. Doubles are written as the shortest of %.15g/%.16g/%.17g
+ * that reads back bit for bit; counts are plain digits. All under the C
  * locale, so that '.' is always the decimal point. */
 #include <errno.h>
 #include <float.h>
@@ -36,45 +43,162 @@ static int parse_with_strtod(const unsigned char *s, size_t len, double *out)
     return ok;
 }
 
+/* The high and low 64 bits of a * b. */
+static inline void mul_64x64(uint64_t a, uint64_t b, uint64_t *hi, uint64_t *lo)
+{
+#if defined(__SIZEOF_INT128__)
+    unsigned __int128 r = (unsigned __int128)a * b;
+    *hi = (uint64_t)(r >> 64);
+    *lo = (uint64_t)r;
+#else
+    uint64_t a0 = (uint32_t)a, a1 = a >> 32, b0 = (uint32_t)b, b1 = b >> 32;
+    uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+    uint64_t mid = (p00 >> 32) + (uint32_t)p01 + (uint32_t)p10;
+    *hi = p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
+    *lo = (mid << 32) | (uint32_t)p00;
+#endif
+}
+
+static inline int leading_zeros(uint64_t x)
+{
+#if defined(__GNUC__)
+    return __builtin_clzll(x);
+#else
+    int n = 0;
+    while (!(x & (1ull << 63))) {
+        x <<= 1;
+        n++;
+    }
+    return n;
+#endif
+}
+
+/* Eisel-Lemire: the double nearest to w * 10^q (w != 0, exact), as
+ * fast_float computes it; 0 when it cannot tell the rounding cheaply or the
+ * result is subnormal, zero or infinite (strtod then decides). */
+static int eisel_lemire(uint64_t w, int64_t q, int neg, double *out)
+{
+    if (q < MT__POW5_SMALLEST || q > MT__POW5_LARGEST) return 0;
+    int lz = leading_zeros(w);
+    w <<= lz;
+    const uint64_t *p5 = mt__pow5_128[q - MT__POW5_SMALLEST];
+    uint64_t hi, lo;
+    mul_64x64(w, p5[0], &hi, &lo);
+    if ((hi & 0x1ff) == 0x1ff) { /* the low bits may carry: add the next 64 bits */
+        uint64_t hi2, lo2;
+        mul_64x64(w, p5[1], &hi2, &lo2);
+        lo += hi2;
+        if (hi2 > lo) hi++;
+    }
+    /* An approximation this close to a carry is left to strtod outside the
+     * exponents where the table's values are exact (5^q < 2^128, or a
+     * reciprocal of 5^-q < 2^64). */
+    if (lo == UINT64_MAX && (q < -27 || q > 55)) return 0;
+    int upperbit = (int)(hi >> 63);
+    int shift = upperbit + 64 - 52 - 3;
+    uint64_t mantissa = hi >> shift;
+    /* floor(log2(10^q)) + 63 by a fixed-point multiplication, floor division */
+    int64_t t = (152170 + 65536) * q;
+    int64_t log2_10q = t >= 0 ? t / 65536 : -((-t + 65535) / 65536);
+    int64_t power2 = log2_10q + 63 + upperbit - lz + 1023;
+    if (power2 <= 0) return 0; /* subnormal or zero */
+    /* Exactly halfway between two doubles: round to even. */
+    if (lo <= 1 && q >= -4 && q <= 23 && (mantissa & 3) == 1 && (mantissa << shift) == hi)
+        mantissa &= ~1ull;
+    mantissa += mantissa & 1;
+    mantissa >>= 1;
+    if (mantissa >= (2ull << 52)) {
+        mantissa = 1ull << 52;
+        power2++;
+    }
+    mantissa &= ~(1ull << 52);
+    if (power2 >= 0x7ff) return 0; /* infinite */
+    uint64_t bits = mantissa | (uint64_t)power2 << 52 | (uint64_t)(neg != 0) << 63;
+    memcpy(out, &bits, sizeof bits);
+    return 1;
+}
+
+/* The digits of a decimal with more than 19 of them, one at a time: the
+ * first 19 significant ones make the significand, and the value is exact
+ * (*exact set) when every later one is 0. Returns past the digits, with
+ * *digits counted. */
+static const unsigned char *scan_long_digits(const unsigned char *p, const unsigned char *end,
+                                             uint64_t *out_mant, int64_t *exp10, int *exact,
+                                             int *digits)
+{
+    uint64_t mant = 0;
+    int sig = 0;
+    for (; p < end && (unsigned)*p - '0' <= 9; p++) {
+        unsigned d = (unsigned)*p - '0';
+        ++*digits;
+        if (mant == 0 && d == 0) continue;
+        if (sig < 19) {
+            mant = mant * 10 + d;
+            sig++;
+        } else {
+            ++*exp10;
+            if (d) *exact = 0;
+        }
+    }
+    if (p < end && *p == '.') {
+        for (p++; p < end && (unsigned)*p - '0' <= 9; p++) {
+            unsigned d = (unsigned)*p - '0';
+            ++*digits;
+            if (mant == 0 && d == 0) {
+                --*exp10;
+                continue;
+            }
+            if (sig < 19) {
+                mant = mant * 10 + d;
+                sig++;
+                --*exp10;
+            } else if (d) {
+                *exact = 0;
+            }
+        }
+    }
+    *out_mant = mant;
+    return p;
+}
+
 size_t mt__scan_decimal(const unsigned char *s, const unsigned char *end, double *out)
 {
 #if FLT_EVAL_METHOD == 0
     const unsigned char *p = s;
     int neg = 0;
     if (p < end && (*p == '-' || *p == '+')) neg = *p++ == '-';
+    const unsigned char *first = p;
+    /* Every digit into a 64-bit significand (leading zeros add nothing),
+     * eight at a time where the platform allows; exact up to 19
+     * significant digits, else read again one at a time. */
     uint64_t mant = 0;
-    int sig = 0, digits = 0, exact = 1;
+    while (p < end && (unsigned)*p - '0' <= 9) mant = mant * 10 + (uint64_t)(*p++ - '0');
+    int digits = (int)(p - first);
     int64_t exp10 = 0;
-    for (; p < end && (unsigned)*p - '0' <= 9; p++) {
-        unsigned d = (unsigned)*p - '0';
-        digits++;
-        if (mant == 0 && d == 0) continue;
-        if (sig < 19) {
-            mant = mant * 10 + d;
-            sig++;
-        } else {
-            exp10++;
-            if (d) exact = 0;
-        }
-    }
     if (p < end && *p == '.') {
-        for (p++; p < end && (unsigned)*p - '0' <= 9; p++) {
-            unsigned d = (unsigned)*p - '0';
-            digits++;
-            if (mant == 0 && d == 0) {
-                exp10--;
-                continue;
-            }
-            if (sig < 19) {
-                mant = mant * 10 + d;
-                sig++;
-                exp10--;
-            } else if (d) {
-                exact = 0;
-            }
+        const unsigned char *frac = ++p;
+        while (end - p >= 8) {
+            uint64_t chunk = mt__load8(p);
+            if (!mt__is_8digits(chunk)) break;
+            mant = mant * 100000000 + mt__parse_8digits(chunk);
+            p += 8;
         }
+        while (p < end && (unsigned)*p - '0' <= 9) mant = mant * 10 + (uint64_t)(*p++ - '0');
+        digits += (int)(p - frac);
+        exp10 = -(int64_t)(p - frac);
     }
     if (digits == 0) return 0;
+    int exact = 1;
+    if (digits > 19) {
+        int zeros = 0;
+        for (const unsigned char *z = first; z < p && (*z == '0' || *z == '.'); z++)
+            zeros += *z == '0';
+        if (digits - zeros > 19) {
+            exp10 = 0;
+            digits = 0;
+            p = scan_long_digits(first, end, &mant, &exp10, &exact, &digits);
+        }
+    }
     if (p < end && (*p == 'e' || *p == 'E')) {
         const unsigned char *q = p + 1;
         int eneg = 0;
@@ -91,12 +215,17 @@ size_t mt__scan_decimal(const unsigned char *s, const unsigned char *end, double
         *out = neg ? -0.0 : 0.0;
         return (size_t)(p - s);
     }
-    if (exact && mant <= (1ull << 53) && exp10 >= -22 && exp10 <= 22) {
+    if (!exact) return 0;
+    if (mant <= (1ull << 53) && exp10 >= -22 && exp10 <= 22) {
         double v = (double)mant;
-        v = exp10 < 0 ? v / pow10_exact[-exp10] : v * pow10_exact[exp10];
+        if (exp10 < 0)
+            v /= pow10_exact[-exp10];
+        else if (exp10 > 0)
+            v *= pow10_exact[exp10];
         *out = neg ? -v : v;
         return (size_t)(p - s);
     }
+    if (eisel_lemire(mant, exp10, neg, out)) return (size_t)(p - s);
 #else
     (void)s;
     (void)end;

@@ -217,8 +217,9 @@ static mt_status read_verts(mt__io_src *src, size_t *pos, const off_counts *c, i
     size_t n = src->size;
     size_t i = *pos, cap = 0;
     double *p = NULL;
+    mt__bulk_spec plain = {{MT__BULK_X, MT__BULK_Y, MT__BULK_Z, MT__BULK_REST}, extras ? 4 : 3, 0};
     for (uint32_t v = 0; v < num_verts; v++) {
-        if (v == cap) {
+        if (v >= cap) {
             cap = mt__builder_ahead(v, num_verts);
             if (!mt__builder_reserve_verts(b, cap)) return mt__builder_fail(b, src, diag);
             p = b->positions;
@@ -229,6 +230,16 @@ static mt_status read_verts(mt__io_src *src, size_t *pos, const off_counts *c, i
             i = skip_space(src, i);
             d = src->data;
             n = src->size;
+        }
+        /* Lines of plain vertices from here on: io_bulk.c reads them. */
+        if (i > 0 && i < n && d[i - 1] == '\n') {
+            uint64_t got = mt__bulk_parse(src, &plain, &i, v, num_verts, b);
+            if (got) {
+                v += (uint32_t)got - 1;
+                p = b->positions;
+                cap = b->cap_verts;
+                continue;
+            }
         }
         src->mark = src->base + i;
         for (int k = 0; k < 3; k++) {
@@ -274,12 +285,23 @@ static mt_status read_faces(mt__io_src *src, size_t *pos, const off_counts *c, m
 {
     uint32_t num_faces = (uint32_t)c->faces;
     size_t i = *pos, cap = 0;
+    mt__bulk_spec plain = {{MT__BULK_INDICES, MT__BULK_REST}, 2, 1};
     for (uint32_t f = 0; f < num_faces; f++) {
-        if (f == cap) {
+        if (f >= cap) {
             cap = mt__builder_ahead(f, num_faces);
             if (!mt__builder_reserve_faces(b, cap) ||
                 !mt__builder_reserve_indices(b, b->num_indices + 3 * (cap - f)))
                 return mt__builder_fail(b, src, diag);
+        }
+        /* Lines of plain faces from here on: io_bulk.c reads them. */
+        while (i < src->size && mt__is_space(src->data[i])) i++;
+        if (i > 0 && i < src->size && src->data[i - 1] == '\n') {
+            uint64_t got = mt__bulk_parse(src, &plain, &i, f, num_faces, b);
+            if (got) {
+                f += (uint32_t)got - 1;
+                cap = b->cap_faces;
+                continue;
+            }
         }
         size_t start, len;
         int found = next_token(src, &i, &start, &len);

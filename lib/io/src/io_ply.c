@@ -438,6 +438,28 @@ static int reserve_items(mt__builder *b, const ply_elem *e, uint64_t item, size_
                                   : mt__builder_reserve_faces(b, *cap);
 }
 
+/* The lines of a vertex or face element that io_bulk.c may read: 1 with
+ * *spec filled, 0 when its items are left to ascii_element alone. */
+static int bulk_spec_of(const ply_elem *e, const ply_prop *props, mt__bulk_spec *spec)
+{
+    if (e->kind == KIND_OTHER || e->num_props > MT__BULK_MAX_OPS) return 0;
+    memset(spec, 0, sizeof *spec);
+    spec->faces = e->kind == KIND_FACE;
+    size_t lists = 0;
+    for (size_t k = 0; k < e->num_props; k++) {
+        const ply_prop *p = &props[k];
+        unsigned char op = MT__BULK_TOKEN;
+        if (p->count_type != PT_NONE) {
+            op = p->role == ROLE_INDICES ? MT__BULK_INDICES : MT__BULK_LIST;
+            lists += op == MT__BULK_INDICES;
+        } else if (p->role >= ROLE_X && p->role <= ROLE_Z) {
+            op = (unsigned char)(MT__BULK_X + (p->role - ROLE_X));
+        }
+        spec->ops[spec->num_ops++] = op;
+    }
+    return spec->faces ? lists == 1 : lists == 0;
+}
+
 static mt_status ascii_element(mt__io_src *src, const ply_header *h, const ply_elem *e, size_t *pos,
                                mt__builder *b, mt_diag *diag)
 {
@@ -446,8 +468,20 @@ static mt_status ascii_element(mt__io_src *src, const ply_header *h, const ply_e
     const ply_prop *props = h->props + e->first_prop;
     list_check lc;
     lc.pending = 0;
+    mt__bulk_spec plain;
+    int bulk = bulk_spec_of(e, props, &plain);
     for (uint64_t item = 0; item < e->count; item++) {
         if (!reserve_items(b, e, item, &cap)) return mt__builder_fail(b, src, diag);
+        /* Lines of plain items from here on: io_bulk.c reads them. */
+        while (bulk && i < n && mt__is_space(d[i])) i++;
+        if (bulk && i > 0 && i < n && d[i - 1] == '\n') {
+            uint64_t got = mt__bulk_parse(src, &plain, &i, item, e->count, b);
+            if (got) {
+                item += got - 1;
+                cap = e->kind == KIND_VERTEX ? b->cap_verts : b->cap_faces;
+                continue;
+            }
+        }
         double xyz[3] = {0, 0, 0};
         for (size_t k = 0; k < e->num_props; k++) {
             const ply_prop *p = &props[k];
@@ -646,6 +680,84 @@ static mt_status binary_end(mt_diag *diag, const mt__io_src *src, const ply_head
     return binary_fail(diag, src, e, item, p, offset, what);
 }
 
+/* How runs of binary items are read without the general loop: vertices
+ * whose properties are all scalars (a fixed stride, x y z at fixed
+ * offsets), faces whose only property is the index list. */
+typedef struct binary_run {
+    int fixed;        /* vertices: every property a scalar */
+    size_t stride;    /* their bytes */
+    size_t offset[3]; /* of x, y, z */
+    ply_type type[3]; /* PT_NONE: absent (0) */
+    int list;         /* faces: only the index list */
+    ply_type count_type, index_type;
+} binary_run;
+
+static void binary_run_of(const ply_elem *e, const ply_prop *props, binary_run *r)
+{
+    memset(r, 0, sizeof *r);
+    if (e->kind == KIND_VERTEX) {
+        r->fixed = 1;
+        for (size_t k = 0; k < e->num_props; k++) {
+            const ply_prop *p = &props[k];
+            if (p->count_type != PT_NONE) r->fixed = 0;
+            if (p->role >= ROLE_X && p->role <= ROLE_Z) {
+                r->offset[p->role - ROLE_X] = r->stride;
+                r->type[p->role - ROLE_X] = p->type;
+            }
+            r->stride += type_size[p->type];
+        }
+    } else if (e->kind == KIND_FACE && e->num_props == 1 && props[0].role == ROLE_INDICES) {
+        r->list = 1;
+        r->count_type = props[0].count_type;
+        r->index_type = props[0].type;
+    }
+}
+
+/* Vertices [*item, *item + k) from the window: as many whole ones as it
+ * holds, up to `limit`. */
+static void binary_run_verts(const binary_run *r, const unsigned char *d, size_t n, size_t *pos,
+                             int be, uint64_t *item, uint64_t limit, double *positions)
+{
+    size_t i = *pos;
+    uint64_t k = (n - i) / r->stride;
+    if (k > limit - *item) k = limit - *item;
+    double *q = positions + 3 * *item;
+    for (uint64_t j = 0; j < k; j++, i += r->stride, q += 3) {
+        for (int c = 0; c < 3; c++)
+            q[c] = r->type[c] == PT_NONE ? 0.0 : load_double(d + i + r->offset[c], r->type[c], be);
+    }
+    *item += k;
+    *pos = i;
+}
+
+/* Faces from the window, while whole ones of at most 2^16 entries are in
+ * it, up to `limit`; anything else is left to the general loop. Returns 0
+ * when the index array cannot grow. */
+static int binary_run_faces(const binary_run *r, const unsigned char *d, size_t n, size_t *pos,
+                            int be, uint64_t *item, uint64_t limit, mt__builder *b)
+{
+    size_t i = *pos, csize = type_size[r->count_type], isize = type_size[r->index_type];
+    uint64_t f = *item;
+    while (f < limit && n - i >= csize) {
+        int64_t count = load_int(d + i, r->count_type, be);
+        if (count < 0 || count > (1 << 16) || (n - i - csize) / isize < (uint64_t)count) break;
+        if (b->cap_indices - b->num_indices < (size_t)count &&
+            !mt__builder_reserve_indices(b, b->num_indices + (size_t)count)) {
+            *pos = i;
+            *item = f;
+            return 0;
+        }
+        load_indices(d + i + csize, r->index_type, be, (uint32_t)count,
+                     b->indices + b->num_indices);
+        b->num_indices += (size_t)count;
+        b->sizes[f++] = (uint32_t)count;
+        i += csize + (size_t)count * isize;
+    }
+    *pos = i;
+    *item = f;
+    return 1;
+}
+
 static mt_status binary_element(mt__io_src *src, const ply_header *h, const ply_elem *e,
                                 size_t *pos, mt__builder *b, mt_diag *diag)
 {
@@ -654,8 +766,20 @@ static mt_status binary_element(mt__io_src *src, const ply_header *h, const ply_
     size_t n = src->size, i = *pos, cap = 0;
     int be = h->encoding == ENC_BE;
     const ply_prop *props = h->props + e->first_prop;
+    binary_run run;
+    binary_run_of(e, props, &run);
     for (uint64_t item = 0; item < e->count; item++) {
         if (!reserve_items(b, e, item, &cap)) return mt__builder_fail(b, src, diag);
+        /* Whole items in the window: a run without the general loop. */
+        uint64_t from = item;
+        if (run.fixed)
+            binary_run_verts(&run, d, n, &i, be, &item, cap, b->positions);
+        else if (run.list && !binary_run_faces(&run, d, n, &i, be, &item, cap, b))
+            return mt__builder_fail(b, src, diag);
+        if (item != from) {
+            item--;
+            continue;
+        }
         double xyz[3] = {0, 0, 0};
         for (size_t k = 0; k < e->num_props; k++) {
             const ply_prop *p = &props[k];

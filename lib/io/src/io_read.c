@@ -141,6 +141,7 @@ mt_status mt_read_memory_with(const void *data, size_t size, mt_format format, c
         status = mt__src_open(&src, src.name, -1, data, size, size, options, diag);
         if (status != MT_OK) return status;
     }
+    src.threads = options ? options->threads : 0;
     return read_source(&src, format, out, diag);
 }
 
@@ -170,6 +171,7 @@ static mt_status read_fd(int fd, const char *name, mt_format format, const mt_re
     uint64_t total = S_ISREG(st.st_mode) ? (uint64_t)st.st_size : MT__UNKNOWN;
     mt__io_src src;
     mt_status status = mt__src_open(&src, name, fd, NULL, 0, total, options, diag);
+    src.threads = options ? options->threads : 0;
     if (status == MT_OK) status = read_source(&src, format, out, diag);
     return status;
 }

@@ -319,6 +319,8 @@ void mt__src_close(mt__io_src *src)
 {
     stream_free(src->stream);
     src->stream = NULL;
+    mt__bulk_free(src->bulk);
+    src->bulk = NULL;
     src->data = NULL;
     src->size = 0;
 }

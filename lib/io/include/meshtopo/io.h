@@ -53,12 +53,17 @@ typedef struct mt_read_options {
      * mt_read_memory_with parse a plain buffer through such a window, as a
      * file is (for tests: the result is the same). */
     size_t window_bytes;
+    /* Threads that parse text (OFF, ASCII PLY, OBJ) at once: 0 (the default)
+     * takes one per online core, up to 4; 1 parses on the calling thread
+     * only. The result is the same whatever the count. */
+    unsigned threads;
 } mt_read_options;
 
 /* 16 GiB: the default of mt_read_options.max_input_bytes. */
 #define MT_READ_DEFAULT_MAX_INPUT_BYTES ((uint64_t)16 << 30)
-/* 256 KiB: the default of mt_read_options.window_bytes. */
-#define MT_READ_DEFAULT_WINDOW_BYTES ((size_t)256 << 10)
+/* 4 MiB: the default of mt_read_options.window_bytes (large enough that
+ * text in it is worth parsing on several threads). */
+#define MT_READ_DEFAULT_WINDOW_BYTES ((size_t)4 << 20)
 /* 4 MiB: the longest token (or PLY header) read from a file or gzip data;
  * a longer one fails with MT_ERR_TOO_LARGE. */
 #define MT_READ_MAX_HELD_BYTES ((size_t)4 << 20)

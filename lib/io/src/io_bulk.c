@@ -1,0 +1,506 @@
+/* Runs of plain records, one per line, parsed ahead of a reader's general
+ * loop and split across threads: an OFF or ASCII PLY vertex ("x y z") or
+ * face ("3 i j k") line of numbers separated by spaces or tabs. A line that
+ * is anything else (a comment, a blank line, a record over several lines, a
+ * malformed number, the window's unfinished last line) stops the run before
+ * it, and the reader's general loop, which owns every message and line
+ * number, takes it from there; so results, errors and their positions are
+ * those of the general loop alone. Numbers: mt__scan_decimal, else
+ * mt__parse_double (strtod), the general loop's own functions. A run large
+ * enough is cut at line ends into parts; part 0 is parsed on the calling
+ * thread into the face list, the others on threads of their own into
+ * scratch arrays appended in order once part 0 ends where part 1 starts. */
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "io_internal.h"
+
+/* Bytes a part gets at least: smaller runs are parsed on one thread. */
+#define PART_BYTES ((size_t)512 << 10)
+/* Bytes parsed on the calling thread before any other starts. */
+#define PROBE_BYTES ((size_t)64 << 10)
+/* A worker checks whether its part is still wanted every this many lines. */
+#define CANCEL_LINES 1024u
+
+/* Where a part's records go: arrays with room for cap_* elements. */
+typedef struct bulk_out {
+    double *positions; /* 3 per vertex */
+    size_t num_verts, cap_verts;
+    uint32_t *sizes;
+    size_t num_faces, cap_faces;
+    uint32_t *indices;
+    size_t num_indices, cap_indices;
+} bulk_out;
+
+/* Why a part stopped. */
+typedef enum part_end {
+    END_DONE,  /* its bytes are all read, or `max` records */
+    END_ROOM,  /* the output is full */
+    END_OTHER, /* a line the bulk parser leaves to the general loop, or cancelled */
+} part_end;
+
+typedef struct bulk_part {
+    const mt__bulk_spec *spec;
+    const unsigned char *d;
+    size_t begin, end; /* [begin, end): whole lines */
+    size_t pos;        /* where parsing is */
+    uint64_t max;      /* records wanted at most */
+    bulk_out out;      /* workers: scratch arrays of their own */
+    part_end why;
+    int nomem;
+    atomic_int *cancel;
+    pthread_t thread;
+    int started;
+} bulk_part;
+
+struct mt__bulk {
+    bulk_part parts[MT__BULK_MAX_THREADS]; /* parts[0].out is unused: it aliases the builder */
+};
+
+/* ---- One line ----------------------------------------------------------- */
+
+static inline int is_hspace(unsigned char c)
+{
+    return c == ' ' || c == '\t';
+}
+
+/* Ends a token: a separator, or the line's end. */
+static inline int ends_token(unsigned char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+
+/* Up to 10 digits at d[k] (8 at a time where 8 bytes are in the window):
+ * their value, and k past them. More than 10 digits: *k moves past 11. */
+static inline uint64_t scan_digits(const unsigned char *d, size_t n, size_t *k)
+{
+    size_t i = *k;
+    if (n - i >= 8) {
+        uint64_t w = mt__load8(d + i);
+        uint64_t nd = mt__nondigits8(w);
+        if (nd) {
+            unsigned len = (unsigned)__builtin_ctzll(nd) / 8;
+            if (len == 0) return 0;
+            *k = i + len;
+            return mt__digits8_value((w - 0x3030303030303030ull) << (8 * (8 - len)));
+        }
+    }
+    uint64_t v = 0;
+    size_t s = i;
+    while (i < n && (unsigned)d[i] - '0' <= 9 && i - s < 11) v = v * 10 + (d[i++] - '0');
+    *k = i;
+    return v;
+}
+
+/* A plain count: 1 to 3 digits. */
+static inline int scan_count(const unsigned char *d, size_t n, size_t *pos, uint32_t *out)
+{
+    size_t k = *pos;
+    uint64_t v = scan_digits(d, n, &k);
+    if (k == *pos || k - *pos > 3 || k >= n || !ends_token(d[k])) return 0;
+    *out = (uint32_t)v;
+    *pos = k;
+    return 1;
+}
+
+/* An index as the general loop's fast path reads it (mt__scan_index),
+ * followed by a separator or the line's end. */
+static inline int scan_index(const unsigned char *d, size_t n, size_t *pos, uint32_t *out)
+{
+    size_t k = *pos;
+    int neg = d[k] == '-';
+    k += (size_t)neg;
+    size_t s = k;
+    uint64_t v = scan_digits(d, n, &k);
+    if (k == s || k - s > 10 || k >= n || !ends_token(d[k])) return 0;
+    if (neg ? v > 0x80000000ull : v > 0xffffffffull) return 0;
+    *out = neg ? (uint32_t) - (int64_t)v : (uint32_t)v;
+    *pos = k;
+    return 1;
+}
+
+/* A token's end as the general loop finds it (any whitespace), which must
+ * be a separator or the line's end here (not '\v' or '\f'); n when the
+ * window ends first. */
+static inline size_t token_end(const unsigned char *d, size_t n, size_t i)
+{
+    while (i < n && !mt__is_space(d[i])) i++;
+    return i < n && ends_token(d[i]) ? i : n;
+}
+
+/* A number, as the general loop reads one. */
+static inline int scan_number(const unsigned char *d, size_t n, size_t *pos, double *out)
+{
+    size_t k = *pos;
+    size_t used = mt__scan_decimal(d + k, d + n, out);
+    if (used && k + used < n && ends_token(d[k + used])) {
+        *pos = k + used;
+        return 1;
+    }
+    size_t e = token_end(d, n, k);
+    if (e == k || e >= n || !mt__parse_double(d + k, e - k, out)) return 0;
+    *pos = e;
+    return 1;
+}
+
+/* Parses the line at *pos (the start of a line) into out, which has room
+ * for one vertex, or one face of MT__BULK_MAX_LIST indices. Returns 1 with
+ * *pos past its '\n', or 0 (out's counts unchanged). */
+static int parse_line(const mt__bulk_spec *spec, const unsigned char *d, size_t n, size_t *pos,
+                      bulk_out *out)
+{
+    size_t i = *pos;
+    double xyz[3] = {0, 0, 0};
+    uint32_t size = 0;
+    uint32_t *idx = out->indices ? out->indices + out->num_indices : NULL;
+    for (size_t o = 0; o < spec->num_ops; o++) {
+        unsigned char op = spec->ops[o];
+        while (i < n && is_hspace(d[i])) i++;
+        if (i >= n || (op != MT__BULK_REST && mt__is_space(d[i])))
+            return 0; /* the line ends before the item, or '\v' '\f' */
+        switch (op) {
+            case MT__BULK_X:
+            case MT__BULK_Y:
+            case MT__BULK_Z:
+                if (!scan_number(d, n, &i, &xyz[op - MT__BULK_X])) return 0;
+                break;
+            case MT__BULK_TOKEN:
+                i = token_end(d, n, i);
+                if (i >= n) return 0;
+                break;
+            case MT__BULK_INDICES:
+            case MT__BULK_LIST: {
+                uint32_t count;
+                if (!scan_count(d, n, &i, &count) || count > MT__BULK_MAX_LIST) return 0;
+                for (uint32_t j = 0; j < count; j++) {
+                    while (i < n && is_hspace(d[i])) i++;
+                    if (i >= n || mt__is_space(d[i])) return 0;
+                    if (op == MT__BULK_INDICES) {
+                        if (!scan_index(d, n, &i, &idx[j])) return 0;
+                    } else {
+                        i = token_end(d, n, i);
+                        if (i >= n) return 0;
+                    }
+                }
+                if (op == MT__BULK_INDICES) size = count;
+                break;
+            }
+            case MT__BULK_REST: {
+                /* anything to the end of the line, which only '\n' or "\r\n"
+                 * may end (the general loop stops at a lone '\r') */
+                const unsigned char *nl = memchr(d + i, '\n', n - i);
+                if (!nl) return 0;
+                size_t e = (size_t)(nl - d);
+                const unsigned char *cr = memchr(d + i, '\r', e - i);
+                if (cr && cr != nl - 1) return 0;
+                i = cr ? e - 1 : e;
+                break;
+            }
+            default:
+                return 0;
+        }
+    }
+    /* the end of the line: only spaces and tabs, then '\n' or "\r\n" */
+    while (i < n && is_hspace(d[i])) i++;
+    if (i < n && d[i] == '\r') i++;
+    if (i >= n || d[i] != '\n') return 0;
+    *pos = i + 1;
+    if (spec->faces) {
+        out->sizes[out->num_faces++] = size;
+        out->num_indices += size;
+    } else {
+        double *p = out->positions + 3 * out->num_verts++;
+        p[0] = xyz[0];
+        p[1] = xyz[1];
+        p[2] = xyz[2];
+    }
+    return 1;
+}
+
+/* ---- A part: lines until its end, `max` records or full output --------- */
+
+static int has_room(const mt__bulk_spec *spec, const bulk_out *out)
+{
+    if (!spec->faces) return out->num_verts < out->cap_verts;
+    return out->num_faces < out->cap_faces &&
+           out->cap_indices - out->num_indices >= MT__BULK_MAX_LIST;
+}
+
+static void parse_part(bulk_part *p)
+{
+    const mt__bulk_spec *spec = p->spec;
+    size_t records = spec->faces ? p->out.num_faces : p->out.num_verts;
+    uint32_t lines = 0;
+    for (;;) {
+        if (p->pos >= p->end || records >= p->max) {
+            p->why = END_DONE;
+            return;
+        }
+        if (!has_room(spec, &p->out)) {
+            p->why = END_ROOM;
+            return;
+        }
+        if (p->cancel && ++lines % CANCEL_LINES == 0 &&
+            atomic_load_explicit(p->cancel, memory_order_relaxed)) {
+            p->why = END_OTHER;
+            return;
+        }
+        if (!parse_line(spec, p->d, p->end, &p->pos, &p->out)) {
+            p->why = END_OTHER;
+            return;
+        }
+        records++;
+    }
+}
+
+/* Scratch arrays of a worker grow with what it parses. */
+static int scratch_grow(const mt__bulk_spec *spec, bulk_out *out)
+{
+    if (!spec->faces) {
+        size_t cap = out->cap_verts < 4096 ? 8192 : 2 * out->cap_verts;
+        double *p = realloc(out->positions, cap * 3 * sizeof(double));
+        if (!p) return 0;
+        out->positions = p;
+        out->cap_verts = cap;
+        return 1;
+    }
+    if (out->num_faces == out->cap_faces) {
+        size_t cap = out->cap_faces < 4096 ? 8192 : 2 * out->cap_faces;
+        uint32_t *p = realloc(out->sizes, cap * sizeof(uint32_t));
+        if (!p) return 0;
+        out->sizes = p;
+        out->cap_faces = cap;
+    }
+    if (out->cap_indices - out->num_indices < MT__BULK_MAX_LIST) {
+        size_t cap = out->cap_indices < 16384 ? 32768 : 2 * out->cap_indices;
+        uint32_t *p = realloc(out->indices, cap * sizeof(uint32_t));
+        if (!p) return 0;
+        out->indices = p;
+        out->cap_indices = cap;
+    }
+    return 1;
+}
+
+static void *worker_main(void *arg)
+{
+    bulk_part *p = arg;
+    /* strtod reads '.' as the decimal point on this thread too */
+    mt__locale_state locale;
+    mt__c_locale_enter(&locale);
+    for (;;) {
+        parse_part(p);
+        if (p->why != END_ROOM) break;
+        if (!scratch_grow(p->spec, &p->out)) {
+            p->nomem = 1;
+            p->why = END_OTHER;
+            break;
+        }
+    }
+    mt__c_locale_leave(&locale);
+    return NULL;
+}
+
+/* ---- Part 0: into the face list ----------------------------------------- */
+
+/* out as a view of the builder's arrays from record `first` on. */
+static void alias_builder(const mt__bulk_spec *spec, mt__builder *b, uint64_t first, bulk_out *out)
+{
+    memset(out, 0, sizeof *out); /* no room where an array is not there yet */
+    if (!spec->faces) {
+        if (!b->positions) return;
+        out->positions = b->positions + 3 * first;
+        out->cap_verts = b->cap_verts - (size_t)first;
+    } else {
+        if (!b->sizes || !b->indices) return;
+        out->sizes = b->sizes + first;
+        out->cap_faces = b->cap_faces - (size_t)first;
+        out->indices = b->indices + b->num_indices;
+        out->cap_indices = b->cap_indices - b->num_indices;
+    }
+}
+
+/* Grows the builder for the records after `done` of `declared`; 0 when it
+ * refuses (the general loop then meets and reports the same refusal). */
+static int builder_grow(const mt__bulk_spec *spec, mt__builder *b, uint64_t done, uint64_t declared)
+{
+    size_t want = mt__builder_ahead((size_t)done, declared);
+    if (want <= done) want = (size_t)done + 1;
+    if (!spec->faces) return mt__builder_reserve_verts(b, want);
+    return mt__builder_reserve_faces(b, want) &&
+           mt__builder_reserve_indices(
+               b, b->num_indices + 3 * (want - (size_t)done) + MT__BULK_MAX_LIST);
+}
+
+/* Part 0 on the calling thread, writing into the builder from record
+ * `first` on; returns the records it parsed. */
+static uint64_t parse_first(bulk_part *p, mt__builder *b, uint64_t first, uint64_t declared)
+{
+    uint64_t done = 0, limit = p->max;
+    for (;;) {
+        alias_builder(p->spec, b, first + done, &p->out);
+        p->max = limit - done;
+        parse_part(p);
+        done += p->spec->faces ? p->out.num_faces : p->out.num_verts;
+        if (p->spec->faces) b->num_indices += p->out.num_indices;
+        if (p->why != END_ROOM) break;
+        if (!builder_grow(p->spec, b, first + done, declared)) {
+            p->why = END_OTHER;
+            break;
+        }
+    }
+    p->max = limit;
+    return done;
+}
+
+/* Appends k records of a worker's scratch to the builder from record
+ * `first` on. Returns 0 when the builder refuses to grow. */
+static int append_part(const bulk_part *p, uint64_t k, mt__builder *b, uint64_t first,
+                       uint64_t declared)
+{
+    if (!p->spec->faces) {
+        if (first + k > b->cap_verts && !mt__builder_reserve_verts(b, (size_t)(first + k)))
+            return 0;
+        memcpy(b->positions + 3 * first, p->out.positions, (size_t)k * 3 * sizeof(double));
+        return 1;
+    }
+    size_t nidx = 0;
+    for (uint64_t r = 0; r < k; r++) nidx += p->out.sizes[r];
+    size_t want_faces = (size_t)(first + k);
+    if (want_faces > b->cap_faces) {
+        size_t ahead = mt__builder_ahead((size_t)first, declared);
+        if (!mt__builder_reserve_faces(b, ahead > want_faces ? ahead : want_faces)) return 0;
+    }
+    if (!mt__builder_reserve_indices(b, b->num_indices + nidx)) return 0;
+    memcpy(b->sizes + first, p->out.sizes, (size_t)k * sizeof(uint32_t));
+    memcpy(b->indices + b->num_indices, p->out.indices, nidx * sizeof(uint32_t));
+    b->num_indices += nidx;
+    return 1;
+}
+
+/* The index just past the k-th '\n' of [i, end) (there are k or more). */
+static size_t after_lines(const unsigned char *d, size_t i, size_t end, uint64_t k)
+{
+    while (k--) i = (size_t)((const unsigned char *)memchr(d + i, '\n', end - i) - d) + 1;
+    return i;
+}
+
+/* ---- The run ------------------------------------------------------------- */
+
+static unsigned threads_for(unsigned wanted)
+{
+    if (wanted == 0) {
+        long cores = sysconf(_SC_NPROCESSORS_ONLN);
+        wanted = cores > 1 ? (unsigned)cores : 1;
+    }
+    return wanted < MT__BULK_MAX_THREADS ? wanted : MT__BULK_MAX_THREADS;
+}
+
+/* Lines [start, end) in `parts` parts (parts[0] on this thread, into b
+ * from record `first` on), at most `max` records. Returns the records read;
+ * *at is where reading stopped. */
+static uint64_t run_parts(const mt__io_src *src, const mt__bulk_spec *spec, bulk_part *pp,
+                          unsigned parts, size_t start, size_t end, uint64_t first, uint64_t max,
+                          uint64_t declared, mt__builder *b, size_t *at)
+{
+    const unsigned char *d = src->data;
+    size_t bytes = end - start, cut = start;
+    atomic_int cancel;
+    atomic_init(&cancel, 0);
+    for (unsigned t = 0; t < parts; t++) {
+        bulk_part *p = &pp[t];
+        p->spec = spec;
+        p->d = d;
+        p->pos = p->begin = cut;
+        if (t + 1 == parts) {
+            cut = end; /* an unfinished last line stops the part */
+        } else {
+            cut = start + bytes / parts * (t + 1);
+            if (cut < p->pos) cut = p->pos;
+            const unsigned char *nl = memchr(d + cut, '\n', end - cut);
+            cut = nl ? (size_t)(nl - d) + 1 : end;
+        }
+        p->end = cut;
+        p->max = max;
+        p->why = END_DONE;
+        p->nomem = 0;
+        p->cancel = parts > 1 ? &cancel : NULL;
+        p->started = 0;
+        if (t > 0) {
+            p->out.num_verts = p->out.num_faces = p->out.num_indices = 0;
+            p->started = pthread_create(&p->thread, NULL, worker_main, p) == 0;
+        }
+    }
+    uint64_t done = parse_first(&pp[0], b, first, declared);
+    int whole = pp[0].why == END_DONE && pp[0].pos == pp[0].end && done < max;
+    if (!whole) atomic_store(&cancel, 1);
+    *at = pp[0].pos;
+    for (unsigned t = 1; t < parts; t++) {
+        bulk_part *p = &pp[t];
+        if (p->started)
+            pthread_join(p->thread, NULL);
+        else if (whole)
+            worker_main(p);
+        if (!whole) continue;
+        uint64_t parsed = spec->faces ? p->out.num_faces : p->out.num_verts;
+        uint64_t got = parsed < max - done ? parsed : max - done;
+        if (!append_part(p, got, b, first + done, declared)) {
+            whole = 0;
+            continue;
+        }
+        done += got;
+        /* when the declared count ends inside this part, after its got-th line */
+        *at = got < parsed ? after_lines(d, p->begin, p->end, got) : p->pos;
+        whole = got == parsed && p->why == END_DONE && p->pos == p->end && done < max;
+        if (!whole) atomic_store(&cancel, 1);
+    }
+    return done;
+}
+
+uint64_t mt__bulk_parse(mt__io_src *src, const mt__bulk_spec *spec, size_t *pos, uint64_t first,
+                        uint64_t declared, mt__builder *b)
+{
+    const unsigned char *d = src->data;
+    size_t n = src->size, start = *pos;
+    /* The last record is left to the general loop: where it stops reading
+     * counts (the allowance of trailing bytes starts there). */
+    if (first + 1 >= declared || start >= n) return 0;
+    uint64_t max = declared - first - 1;
+    /* First a few lines on this thread: threads only for runs that start well. */
+    size_t probe_end = n;
+    if (n - start > PROBE_BYTES) {
+        const unsigned char *nl = memchr(d + start + PROBE_BYTES, '\n', n - start - PROBE_BYTES);
+        probe_end = nl ? (size_t)(nl - d) + 1 : n;
+    }
+    size_t at;
+    bulk_part solo;
+    uint64_t done = run_parts(src, spec, &solo, 1, start, probe_end, first, max, declared, b, &at);
+    if (probe_end == n || at != probe_end || solo.why != END_DONE || done >= max) {
+        *pos = at;
+        return done;
+    }
+    unsigned threads = threads_for(src->threads);
+    size_t bytes = n - at;
+    unsigned parts = bytes / PART_BYTES < threads ? (unsigned)(bytes / PART_BYTES) : threads;
+    if (parts < 1) parts = 1;
+    if (parts > 1 && !src->bulk) {
+        src->bulk = calloc(1, sizeof *src->bulk);
+        if (!src->bulk) parts = 1;
+    }
+    bulk_part *pp = parts > 1 ? src->bulk->parts : &solo;
+    done += run_parts(src, spec, pp, parts, at, n, first + done, max - done, declared, b, &at);
+    *pos = at;
+    return done;
+}
+
+void mt__bulk_free(mt__bulk *bulk)
+{
+    if (!bulk) return;
+    for (unsigned t = 1; t < MT__BULK_MAX_THREADS; t++) { /* parts[0] writes into the builder */
+        free(bulk->parts[t].out.positions);
+        free(bulk->parts[t].out.sizes);
+        free(bulk->parts[t].out.indices);
+    }
+    free(bulk);
+}

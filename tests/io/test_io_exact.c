@@ -1,0 +1,349 @@
+/* The text readers' answers do not depend on how fast they are read:
+ * coordinates are bit-identical to strtod of the same tokens (an
+ * independent slow path: the C library, under the C locale), on tricky
+ * numbers and on many random ones; one thread, several threads and any
+ * window give the same arrays, the same errors and the same line numbers,
+ * on generated files large enough to be split across threads and on the
+ * corpus. */
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness.h"
+#include "meshtopo/io.h"
+
+/* Tokens the fast number paths must read as strtod does (or leave to it). */
+static const char *const tricky[] = {
+    "0",
+    "-0",
+    "-0.0",
+    "+0.000",
+    "00012",
+    "1",
+    "-1",
+    "+1.5",
+    ".5",
+    "5.",
+    "0.1",
+    "0.3",
+    "1e22",
+    "1e23",
+    "1E5",
+    "1e+05",
+    "1e-05",
+    "9007199254740992",
+    "9007199254740993",
+    "9007199254740995",
+    "18446744073709551615",
+    "18446744073709551616",
+    "1234567890123456789",
+    "12345678901234567890",
+    "0.0027762372488338645",
+    "1.2499969169988934",
+    "3.14159265358979323846264338327950288",
+    "123456789012345678901234567890",
+    "0.000000000000000000000000000001",
+    "1.7976931348623157e308",
+    "1.7976931348623159e308",
+    "1e308",
+    "1e309",
+    "-1e309",
+    "2.2250738585072014e-308",
+    "2.2250738585072011e-308",
+    "2.2250738585072012e-308",
+    "4.9406564584124654e-324",
+    "2.4703282292062328e-324",
+    "2.4703282292062327e-324",
+    "1e-400",
+    "-1e-400",
+    "8.98846567431158e307",
+    "0x1p3",
+    "-0x1.8p-2",
+    "inf",
+    "-inf",
+    "infinity",
+    "nan",
+    "1.00000000000000011102230246251565404236316680908203125",
+    "1.00000000000000011102230246251565404236316680908203124",
+    "7.2057594037927933e16",
+    "4503599627370496.5",
+    "4503599627370497.5",
+    "1e-22",
+    "1e-23",
+    "123e-25",
+    "9.999999999999999e22",
+    "5e-324",
+};
+
+static uint64_t rng = 0x9e3779b97f4a7c15ull;
+
+static uint64_t next_rand(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
+    return rng;
+}
+
+/* A random number token into buf (shortest, long, integer, exponent ...). */
+static void random_token(char *buf, size_t size)
+{
+    double v;
+    uint64_t bits = next_rand();
+    switch (next_rand() % 4) {
+        case 0:
+            memcpy(&v, &bits, sizeof v);
+            if (!isfinite(v)) v = 1.0 / 3.0;
+            snprintf(buf, size, "%.*g", 1 + (int)(next_rand() % 17), v);
+            break;
+        case 1:
+            v = (double)(bits >> 11) / 9007199254740992.0 * pow(10, (int)(next_rand() % 40) - 20);
+            snprintf(buf, size, "%.17g", v);
+            break;
+        case 2: {
+            size_t n = 0;
+            if (next_rand() & 1) buf[n++] = '-';
+            int digits = 1 + (int)(next_rand() % 24);
+            int point = (int)(next_rand() % (unsigned)(digits + 1));
+            for (int k = 0; k < digits; k++) {
+                if (k == point && k > 0) buf[n++] = '.';
+                buf[n++] = (char)('0' + next_rand() % 10);
+            }
+            if (next_rand() % 3 == 0)
+                n += (size_t)snprintf(buf + n, size - n, "e%d", (int)(next_rand() % 700) - 350);
+            buf[n] = '\0';
+            break;
+        }
+        default:
+            snprintf(buf, size, "%d", (int)(next_rand() % 2000000) - 1000000);
+            break;
+    }
+}
+
+/* Tokens: the tricky ones, then `count` random ones. */
+static char **make_tokens(size_t count, size_t *out_n)
+{
+    size_t ntricky = sizeof tricky / sizeof tricky[0];
+    size_t n = ntricky + count;
+    n += (3 - n % 3) % 3; /* whole vertices */
+    char **tokens = malloc(n * sizeof *tokens);
+    if (!tokens) return NULL;
+    for (size_t i = 0; i < n; i++) {
+        tokens[i] = malloc(64);
+        if (!tokens[i]) return NULL;
+        if (i < ntricky)
+            snprintf(tokens[i], 64, "%s", tricky[i]);
+        else
+            random_token(tokens[i], 64);
+    }
+    *out_n = n;
+    return tokens;
+}
+
+static void free_tokens(char **tokens, size_t n)
+{
+    for (size_t i = 0; i < n; i++) free(tokens[i]);
+    free(tokens);
+}
+
+/* An OFF (ply = 0) or ASCII PLY file of the tokens as vertices, one per
+ * line, and triangles of them. */
+static char *make_text(char **tokens, size_t n, int ply, size_t *out_len)
+{
+    size_t verts = n / 3, faces = verts >= 3 ? verts - 2 : 0;
+    size_t cap = 256 + n * 66 + faces * 40, len = 0;
+    char *text = malloc(cap);
+    if (!text) return NULL;
+    if (ply)
+        len += (size_t)snprintf(text, cap,
+                                "ply\nformat ascii 1.0\nelement vertex %zu\nproperty double x\n"
+                                "property double y\nproperty double z\nelement face %zu\n"
+                                "property list uchar int vertex_indices\nend_header\n",
+                                verts, faces);
+    else
+        len += (size_t)snprintf(text, cap, "OFF\n%zu %zu 0\n", verts, faces);
+    for (size_t v = 0; v < verts; v++)
+        len += (size_t)snprintf(text + len, cap - len, "%s %s\t%s\n", tokens[3 * v],
+                                tokens[3 * v + 1], tokens[3 * v + 2]);
+    for (size_t f = 0; f < faces; f++)
+        len += (size_t)snprintf(text + len, cap - len, "3 %zu %zu %zu\n", f, f + 1, f + 2);
+    *out_len = len;
+    return text;
+}
+
+static int same_lists(const mt_face_list *a, const mt_face_list *b)
+{
+    return a->num_verts == b->num_verts && a->num_faces == b->num_faces &&
+           a->num_indices == b->num_indices &&
+           memcmp(a->positions, b->positions, 3 * sizeof(double) * a->num_verts) == 0 &&
+           memcmp(a->face_sizes, b->face_sizes, sizeof(uint32_t) * a->num_faces) == 0 &&
+           memcmp(a->face_indices, b->face_indices, sizeof(uint32_t) * a->num_indices) == 0;
+}
+
+/* Reads with one thread, 2 and 4 threads, and small windows: the same
+ * status, arrays, message and line each time. */
+static void expect_same_every_way(const char *text, size_t len, const char *name)
+{
+    static const struct {
+        unsigned threads;
+        size_t window;
+    } ways[] = {{1, 0}, {2, 0}, {4, 0}, {2, 4096}, {1, 7}, {2, (size_t)1 << 20}};
+    mt_face_list first, list;
+    mt_diag first_diag, diag;
+    mt_status first_status = MT_OK;
+    for (size_t w = 0; w < sizeof ways / sizeof ways[0]; w++) {
+        mt_read_options options;
+        memset(&options, 0, sizeof options);
+        options.threads = ways[w].threads;
+        options.window_bytes = ways[w].window;
+        mt_face_list *out = w == 0 ? &first : &list;
+        mt_diag *d = w == 0 ? &first_diag : &diag;
+        mt_status st = mt_read_memory_with(text, len, MT_FORMAT_AUTO, name, &options, out, d);
+        if (w == 0) {
+            first_status = st;
+            continue;
+        }
+        CHECK_EQ(st, first_status);
+        if (st == MT_OK && first_status == MT_OK) {
+            if (!same_lists(&first, &list))
+                mt_test_fail(__FILE__, __LINE__, "%s: threads %u window %zu: other arrays", name,
+                             ways[w].threads, ways[w].window);
+            mt_face_list_free(&list);
+        } else if (st != MT_OK && first_status != MT_OK) {
+            CHECK_EQ(diag.line, first_diag.line);
+            CHECK_EQ(diag.element, first_diag.element);
+            if (strcmp(diag.message, first_diag.message) != 0)
+                mt_test_fail(__FILE__, __LINE__, "%s: '%s' != '%s'", name, diag.message,
+                             first_diag.message);
+        }
+    }
+    if (first_status == MT_OK) mt_face_list_free(&first);
+}
+
+static void test_exact_numbers_match_strtod(void)
+{
+    size_t n;
+    char **tokens = make_tokens(200000, &n); /* several MB: split across threads */
+    CHECK(tokens != NULL);
+    if (!tokens) return;
+    for (int ply = 0; ply < 2; ply++) {
+        size_t len;
+        char *text = make_text(tokens, n, ply, &len);
+        CHECK(text != NULL);
+        if (!text) break;
+        mt_face_list list;
+        mt_diag diag;
+        const char *name = ply ? "numbers.ply" : "numbers.off";
+        CHECK_OK(mt_read_memory(text, len, MT_FORMAT_AUTO, name, &list, &diag));
+        if (list.num_verts == n / 3) {
+            size_t wrong = 0;
+            for (size_t i = 0; i < n; i++) {
+                double want = strtod(tokens[i], NULL);
+                if (memcmp(&want, &list.positions[i], sizeof want) != 0 && wrong++ < 5)
+                    mt_test_fail(__FILE__, __LINE__, "%s: '%s' read as %.17g, strtod %.17g", name,
+                                 tokens[i], list.positions[i], want);
+            }
+            CHECK_EQ(wrong, 0);
+        } else {
+            CHECK_EQ(list.num_verts, n / 3);
+        }
+        mt_face_list_free(&list);
+        expect_same_every_way(text, len, name);
+        free(text);
+    }
+    free_tokens(tokens, n);
+}
+
+/* Large files with something for the general loop here and there (a
+ * comment, a blank line, a vertex over two lines, colours, CRLF) and an
+ * error deep inside: every way of reading agrees on all of it. */
+static void test_exact_threads_errors_and_lines(void)
+{
+    size_t n;
+    char **tokens = make_tokens(150000, &n);
+    CHECK(tokens != NULL);
+    if (!tokens) return;
+    size_t len;
+    char *text = make_text(tokens, n, 0, &len);
+    free_tokens(tokens, n);
+    CHECK(text != NULL);
+    if (!text) return;
+    expect_same_every_way(text, len, "plain.off");
+    /* irregular lines: a comment, a blank line, CRLF */
+    char *mixed = malloc(len + 64);
+    CHECK(mixed != NULL);
+    if (!mixed) {
+        free(text);
+        return;
+    }
+    size_t cut = len / 3;
+    while (text[cut - 1] != '\n') cut++;
+    memcpy(mixed, text, cut);
+    size_t m = cut;
+    m += (size_t)sprintf(mixed + m, "# a comment\n\n");
+    memcpy(mixed + m, text + cut, len - cut);
+    m += len - cut;
+    expect_same_every_way(mixed, m, "mixed.off");
+    /* errors deep in the vertices and in the faces, found at their lines */
+    const double where[] = {0.3, 0.7, 0.95};
+    for (size_t k = 0; k < sizeof where / sizeof where[0]; k++) {
+        memcpy(mixed, text, len);
+        size_t at = (size_t)(where[k] * (double)len);
+        while (mixed[at - 1] != '\n') at++;
+        mixed[at] = 'x'; /* the first character of a line */
+        uint64_t line = 1;
+        for (size_t i = 0; i < at; i++) line += mixed[i] == '\n';
+        mt_face_list list;
+        mt_diag diag;
+        mt_read_options one;
+        memset(&one, 0, sizeof one);
+        one.threads = 1;
+        mt_status st =
+            mt_read_memory_with(mixed, len, MT_FORMAT_OFF, "bad.off", &one, &list, &diag);
+        CHECK_EQ(st, MT_ERR_PARSE);
+        CHECK_EQ(diag.line, line);
+        expect_same_every_way(mixed, len, "bad.off");
+    }
+    free(mixed);
+    free(text);
+}
+
+/* Every corpus file: the same with one thread as with several, and
+ * through a small window. */
+static void test_exact_corpus_every_way(void)
+{
+    const char *dir = mt_test_corpus_dir();
+    DIR *d = dir ? opendir(dir) : NULL;
+    if (!d) return; /* no corpus here: test_io.corpus_* say so */
+    struct dirent *e;
+    size_t files = 0;
+    while ((e = readdir(d))) {
+        const char *dot = strrchr(e->d_name, '.');
+        if (!dot || (strcmp(dot, ".off") && strcmp(dot, ".obj") && strcmp(dot, ".ply"))) continue;
+        char path[4096];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        FILE *f = fopen(path, "rb");
+        if (!f) continue;
+        fseek(f, 0, SEEK_END);
+        long size = ftell(f);
+        fseek(f, 0, SEEK_SET);
+        char *data = size > 0 ? malloc((size_t)size) : NULL;
+        if (data && fread(data, 1, (size_t)size, f) == (size_t)size) {
+            expect_same_every_way(data, (size_t)size, e->d_name);
+            files++;
+        }
+        free(data);
+        fclose(f);
+    }
+    closedir(d);
+    CHECK(files > 0);
+}
+
+static const mt_test_case cases[] = {
+    {"exact_numbers_match_strtod", test_exact_numbers_match_strtod},
+    {"exact_threads_errors_and_lines", test_exact_threads_errors_and_lines},
+    {"exact_corpus_every_way", test_exact_corpus_every_way},
+};
+const mt_test_table mt_tests_io_exact = {cases, sizeof cases / sizeof cases[0]};
