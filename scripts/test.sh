@@ -3,7 +3,8 @@
 #   normal  RelWithDebInfo build with -Werror, every ctest, then the demo
 #   asan    clang ASan+UBSan build (shared libraries), every ctest
 #   tsan    clang ThreadSanitizer build: the core library's tests (builds run
-#           on two threads), the daemon's parts, the whole daemon in process
+#           on two threads), the readers' (large files are parsed on two
+#           threads), the daemon's parts, the whole daemon in process
 #           over memq:// (test_meshtopod*) and the client library
 #   fuzz    clang libFuzzer build, each fuzz target for FUZZ_SECONDS seconds
 #   format  clang-format check of the C sources
@@ -87,7 +88,7 @@ step_tsan() {
     # instrumented and synchronise with futexes TSan cannot see.
     TSAN_OPTIONS="halt_on_error=1 suppressions=$repo/tests/tsan.supp" \
         ctest --test-dir "$dir" --output-on-failure -j 2 \
-        -R '^test_(core|daemon|client|meshtopod[a-z_]*)\.'
+        -R '^test_(core|io|daemon|client|meshtopod[a-z_]*)\.'
 }
 
 # Seeds for one fuzz target: its committed regressions, tests/fuzz/seeds/<target>/
