@@ -1,42 +1,25 @@
-/* Runs one build phase on several threads: worker t gets part t of the
- * phase's range. Part 0 runs on the calling thread. If a thread cannot be
- * started its part runs on the calling thread afterwards, so a phase always
- * completes and gives the same result, only slower. */
-#include <pthread.h>
+/* Runs one build phase on several threads (parallel.c): worker t gets
+ * part t of the phase's range; and how many cores there are. */
 #include <unistd.h>
 
 #include "build_internal.h"
 
-typedef struct worker {
-    pthread_t thread;
-    int started;
+typedef struct phase {
     void (*fn)(mt__build *, uint32_t);
     mt__build *b;
-    uint32_t part;
-} worker;
+} phase;
 
-static void *worker_main(void *arg)
+static void run_phase_part(void *ctx, uint32_t part, uint32_t parts)
 {
-    worker *w = arg;
-    w->fn(w->b, w->part);
-    return NULL;
+    (void)parts;
+    const phase *p = ctx;
+    p->fn(p->b, part);
 }
 
 void mt__parallel_run(mt__build *b, void (*fn)(mt__build *, uint32_t))
 {
-    worker workers[MT__MAX_PARTS];
-    for (uint32_t t = 1; t < b->parts; t++) {
-        workers[t] = (worker){.fn = fn, .b = b, .part = t};
-        workers[t].started =
-            pthread_create(&workers[t].thread, NULL, worker_main, &workers[t]) == 0;
-    }
-    fn(b, 0);
-    for (uint32_t t = 1; t < b->parts; t++) {
-        if (workers[t].started)
-            pthread_join(workers[t].thread, NULL);
-        else
-            fn(b, t);
-    }
+    phase p = {fn, b};
+    mt__in_parallel(b->parts, run_phase_part, &p);
 }
 
 long mt__online_cores(void)

@@ -19,9 +19,8 @@
  * each crosses the ray from v along +x, or not), so the triangles are read
  * in the order given, which is the Morton order of the check: walking each
  * vertex's fan through the half-edges would read a shuffled mesh at random.
- * Threads split the vertices, each reading every triangle. */
+ * Threads (parallel.c) split the vertices, each reading every triangle. */
 #include <math.h>
-#include <pthread.h>
 #include <string.h>
 
 #include "geometry_internal.h"
@@ -40,7 +39,6 @@ typedef struct fan_state {
 } fan_state;
 
 typedef struct fan_pass {
-    pthread_t thread;
     const mt_mesh *m;
     const mt__tri *tris;
     uint32_t num_tris;
@@ -110,9 +108,11 @@ static void judge_corner(fan_pass *p, uint32_t v, uint32_t a, uint32_t b)
     if (here[1] > centre[1] && next[1] <= centre[1] && s->down < UINT8_MAX) s->down++;
 }
 
-static void *run_pass(void *arg)
+/* The fans of pass `part`'s vertices. */
+static void run_pass(void *ctx, uint32_t part, uint32_t parts)
 {
-    fan_pass *p = arg;
+    (void)parts;
+    fan_pass *p = &((fan_pass *)ctx)[part];
     sum_normals(p);
     for (uint32_t t = 0; t < p->num_tris; t++) {
         const uint32_t *v = p->tris[t].v;
@@ -125,7 +125,6 @@ static void *run_pass(void *arg)
         p->flat[v] = p->flat[v] && ((s->turns == TURNS_LEFT && s->up == 1) ||
                                     (s->turns == TURNS_RIGHT && s->down == 1));
     }
-    return NULL;
 }
 
 /* Clears flat[] for the caller vertices at an end of a half-edge without
@@ -161,26 +160,17 @@ mt_status mt__flat_fans(const mt_mesh *m, const mt__tri *tris, uint32_t num_tris
         return MT_ERR_NOMEM;
     }
     fan_pass passes[MT__MAX_THREADS];
-    bool started[MT__MAX_THREADS] = {false};
     if (threads > MT__MAX_THREADS) threads = MT__MAX_THREADS;
     for (uint32_t t = 0; t < threads; t++)
         passes[t] = (fan_pass){.m = m,
                                .tris = tris,
                                .num_tris = num_tris,
-                               .first = (uint32_t)((uint64_t)m->num_verts * t / threads),
-                               .end = (uint32_t)((uint64_t)m->num_verts * (t + 1) / threads),
                                .normal = normal,
                                .state = state,
                                .flat = flat};
-    for (uint32_t t = 1; t < threads; t++)
-        started[t] = pthread_create(&passes[t].thread, NULL, run_pass, &passes[t]) == 0;
-    run_pass(&passes[0]);
-    for (uint32_t t = 1; t < threads; t++) {
-        if (started[t])
-            pthread_join(passes[t].thread, NULL);
-        else
-            run_pass(&passes[t]); /* a thread that did not start: its vertices here */
-    }
+    for (uint32_t t = 0; t < threads; t++)
+        mt__part_range(m->num_verts, t, threads, &passes[t].first, &passes[t].end);
+    mt__in_parallel(threads, run_pass, passes);
     mt__free(normal);
     mt__free(state);
     return MT_OK;

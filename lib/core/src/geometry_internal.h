@@ -105,9 +105,6 @@ typedef bool (*mt__diagonal_ok)(void *user, uint32_t i, uint32_t j);
 bool mt__ear_clip(const double *const *pos, uint32_t n, mt__diagonal_ok diagonal_ok, void *user,
                   uint32_t *rem, uint32_t *out_tris);
 
-/* The most threads a whole-mesh geometry query uses. */
-enum { MT__MAX_THREADS = 8 };
-
 /* A triangle of a face (polygons give several): its corners' caller ids,
  * in the face's orientation. */
 typedef struct mt__tri {

@@ -127,6 +127,21 @@ static inline uint32_t mt__cap_or(uint32_t capacity, uint32_t count)
     return capacity ? capacity : count;
 }
 
+/* The most threads any part of the library runs at once. */
+enum { MT__MAX_THREADS = 8 };
+
+/* Part `part` of `parts` of a piece of work (parallel.c). */
+typedef void (*mt__part_fn)(void *ctx, uint32_t part, uint32_t parts);
+
+/* Runs fn for every part in [0, parts) (at most MT__MAX_THREADS), part 0 on
+ * the calling thread and each other on a thread of its own, and returns
+ * once all are done. A thread that cannot be started leaves its part to
+ * the calling thread. */
+void mt__in_parallel(uint32_t parts, mt__part_fn fn, void *ctx);
+
+/* [*first, *end): part `part` of `parts` equal shares of n items. */
+void mt__part_range(uint32_t n, uint32_t part, uint32_t parts, uint32_t *first, uint32_t *end);
+
 /* Allocation (alloc.c): plain malloc family with a test hook that makes the
  * Nth allocation fail. Sizes of 0 allocate 1 byte so NULL always means failure. */
 void *mt__malloc(size_t bytes);

@@ -12,7 +12,6 @@
  * counter. Boxes are floats rounded outwards, so they never miss a pair. */
 #include <float.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,7 +20,7 @@
 #include "geometry_internal.h"
 
 enum {
-    LEAF_SIZE = 4,         /* triangles per leaf of the tree */
+    LEAF_SIZE = 8,         /* triangles per leaf of the tree, a multiple of 4 (v4f) */
     TASKS_PER_THREAD = 64, /* pairs of subtrees the threads share, per thread */
     MIN_PARALLEL = 20000,  /* fewer triangles than this are checked on one thread */
     MORTON_BITS = 10,      /* bits per axis of a cell of the Morton curve (spread3 takes 10) */
@@ -31,6 +30,15 @@ enum {
 typedef struct box {
     float lo[3], hi[3];
 } box;
+
+/* The boxes of a leaf's triangles by axis, so that one box is tested
+ * against all of them in a few vector operations (GCC and Clang vector
+ * types: SSE on x86-64). Slots past the last triangle hold an empty box. */
+typedef float v4f __attribute__((vector_size(4 * sizeof(float))));
+typedef int32_t v4i __attribute__((vector_size(4 * sizeof(int32_t))));
+typedef struct leaf_boxes {
+    float lo[3][LEAF_SIZE], hi[3][LEAF_SIZE]; /* [axis][slot] */
+} leaf_boxes;
 
 typedef struct sorted_tri {
     uint32_t key; /* Morton code of the centroid */
@@ -45,11 +53,13 @@ typedef struct node_pair {
 
 typedef struct check {
     const mt_mesh *m;
+    const uint8_t *flat;   /* [num_verts]: the vertex's fan is flat (mt__flat_fans) */
     mt__tri *tris;         /* in Morton order */
     uint8_t *flat_corners; /* bit k: corner k of the triangle has a flat fan */
     box *boxes;
     uint32_t num_tris;
     box *nodes;          /* [2 * num_leaves]; node 0 unused */
+    leaf_boxes *leaves;  /* [num_leaves]: node num_leaves + l's triangles' boxes */
     uint32_t num_leaves; /* a power of two */
     node_pair *tasks;    /* pairs of subtrees to traverse, shared by the threads */
     uint32_t num_tasks;
@@ -59,7 +69,6 @@ typedef struct check {
 } check;
 
 typedef struct worker {
-    pthread_t thread;
     check *c;
     mt__vec pairs; /* mt_face_pair, unsorted, possibly repeated */
 } worker;
@@ -163,6 +172,7 @@ typedef struct tri_set {
     mt__tri *tris;
     box *boxes;
     size_t len, cap;
+    box bounds; /* of every box */
 } tri_set;
 
 static void tri_set_free(tri_set *t)
@@ -202,6 +212,7 @@ static mt_status tri_set_add(tri_set *t, const mt_mesh *m, uint32_t a, uint32_t 
         bx->lo[k] = down(lo);
         bx->hi[k] = up(hi);
     }
+    box_add(&t->bounds, bx);
     t->tris[t->len++] = one;
     return MT_OK;
 }
@@ -233,7 +244,6 @@ static mt_status add_face(const mt_mesh *m, uint32_t f, const uint32_t *verts, u
  * when the mesh came shuffled, and waiting on memory is what two threads
  * overlap best. */
 typedef struct collector {
-    pthread_t thread;
     const mt_mesh *m;
     uint32_t first, end;
     mt__vec unflat; /* corners of polygon faces and of faces left out (mt__flat_fans) */
@@ -242,10 +252,13 @@ typedef struct collector {
     uint32_t failed_face;
 } collector;
 
-static void *collect_range(void *arg)
+/* Part t: the triangles of collector t's faces. */
+static void collect_range(void *ctx, uint32_t t, uint32_t threads)
 {
-    collector *c = arg;
+    (void)threads;
+    collector *c = &((collector *)ctx)[t];
     mt__vec verts = {.elem_size = sizeof(uint32_t)};
+    box_empty(&c->out.bounds);
     c->status = tri_set_reserve(&c->out, c->end - c->first); /* one per triangle face */
     for (uint32_t f = c->first; f < c->end && c->status == MT_OK; f++) {
         if (c->m->face_he[f] == MT_NONE) continue; /* rejected or deleted */
@@ -257,7 +270,6 @@ static void *collect_range(void *arg)
         if (c->status != MT_OK) c->failed_face = f;
     }
     mt__vec_free(&verts);
-    return NULL;
 }
 
 /* Threads for a mesh of `faces` faces: one below MIN_PARALLEL, else one
@@ -275,21 +287,12 @@ static uint32_t threads_for(uint32_t faces)
 static mt_status collect(const mt_mesh *m, uint32_t threads, collector *parts, uint8_t *flat,
                          mt_diag *diag, const char *what)
 {
-    bool started[MT__MAX_THREADS] = {false};
     for (uint32_t t = 0; t < threads; t++)
         parts[t] = (collector){.m = m,
                                .first = (uint32_t)((uint64_t)m->num_faces * t / threads),
                                .end = (uint32_t)((uint64_t)m->num_faces * (t + 1) / threads),
                                .unflat = {.elem_size = sizeof(uint32_t)}};
-    for (uint32_t t = 1; t < threads; t++)
-        started[t] = pthread_create(&parts[t].thread, NULL, collect_range, &parts[t]) == 0;
-    collect_range(&parts[0]);
-    for (uint32_t t = 1; t < threads; t++) {
-        if (started[t])
-            pthread_join(parts[t].thread, NULL);
-        else
-            collect_range(&parts[t]); /* a thread that did not start: its range here */
-    }
+    mt__in_parallel(threads, collect_range, parts);
     memset(flat, 1, m->num_verts);
     for (uint32_t t = 0; t < threads; t++) {
         for (size_t i = 0; i < parts[t].unflat.len; i++)
@@ -341,55 +344,104 @@ static mt_status radix_sort(sorted_tri *items, uint32_t n)
     return MT_OK;
 }
 
-/* Sorts the triangles of the parts along the Morton curve of their
- * boxes' centres into c's arrays. */
-static mt_status order_triangles(check *c, const collector *parts, uint32_t num_parts)
-{
-    const uint32_t n = c->num_tris;
-    sorted_tri *order = mt__malloc((size_t)n * sizeof *order);
-    if (!order) return MT_ERR_NOMEM;
+typedef struct ordering {
+    check *c;
+    const collector *parts; /* one per share */
+    sorted_tri *order;
     box all;
-    box_empty(&all);
-    for (uint32_t p = 0; p < num_parts; p++)
-        for (size_t i = 0; i < parts[p].out.len; i++) box_add(&all, &parts[p].out.boxes[i]);
+} ordering;
+
+/* Share t: the Morton keys of part t's triangles. */
+static void morton_keys(void *ctx, uint32_t t, uint32_t threads)
+{
+    (void)threads;
+    ordering *o = ctx;
     const double cells = (double)((1u << MORTON_BITS) - 1);
     uint32_t next = 0;
-    for (uint32_t p = 0; p < num_parts; p++)
-        for (size_t i = 0; i < parts[p].out.len; i++, next++) {
-            const box *b = &parts[p].out.boxes[i];
-            uint32_t key = 0;
-            for (int k = 0; k < 3; k++) {
-                const double centre = 0.5 * ((double)b->lo[k] + (double)b->hi[k]);
-                const double extent = (double)all.hi[k] - (double)all.lo[k];
-                double cell = extent > 0 ? (centre - all.lo[k]) / extent * cells : 0;
-                cell = cell >= 0 ? (cell <= cells ? cell : cells) : 0; /* NaN and overflow too */
-                key |= spread3((uint32_t)cell) << k;
-            }
-            order[next] = (sorted_tri){key, next};
+    for (uint32_t p = 0; p < t; p++) next += (uint32_t)o->parts[p].out.len;
+    const tri_set *part = &o->parts[t].out;
+    for (size_t i = 0; i < part->len; i++, next++) {
+        const box *b = &part->boxes[i];
+        uint32_t key = 0;
+        for (int k = 0; k < 3; k++) {
+            const double centre = 0.5 * ((double)b->lo[k] + (double)b->hi[k]);
+            const double extent = (double)o->all.hi[k] - (double)o->all.lo[k];
+            double cell = extent > 0 ? (centre - o->all.lo[k]) / extent * cells : 0;
+            cell = cell >= 0 ? (cell <= cells ? cell : cells) : 0; /* NaN and overflow too */
+            key |= spread3((uint32_t)cell) << k;
         }
-    mt_status s = radix_sort(order, n);
-    for (uint32_t i = 0; s == MT_OK && i < n; i++) {
-        uint32_t from = order[i].index, p = 0;
-        while (from >= parts[p].out.len) from -= (uint32_t)parts[p++].out.len;
-        const mt__tri *t = &parts[p].out.tris[from];
-        c->tris[i] = *t;
-        c->boxes[i] = parts[p].out.boxes[from];
+        o->order[next] = (sorted_tri){key, next};
     }
-    mt__free(order);
+}
+
+/* Share t of the sorted triangles copied into place with their boxes. */
+static void gather(void *ctx, uint32_t t, uint32_t threads)
+{
+    ordering *o = ctx;
+    uint32_t first, end;
+    mt__part_range(o->c->num_tris, t, threads, &first, &end);
+    for (uint32_t i = first; i < end; i++) {
+        uint32_t from = o->order[i].index, p = 0;
+        while (from >= o->parts[p].out.len) from -= (uint32_t)o->parts[p++].out.len;
+        o->c->tris[i] = o->parts[p].out.tris[from];
+        o->c->boxes[i] = o->parts[p].out.boxes[from];
+    }
+}
+
+/* Sorts the triangles of the parts (one per thread) along the Morton curve
+ * of their boxes' centres into c's arrays. */
+static mt_status order_triangles(check *c, const collector *parts)
+{
+    ordering o = {
+        .c = c, .parts = parts, .order = mt__malloc((size_t)c->num_tris * sizeof *o.order)};
+    if (!o.order) return MT_ERR_NOMEM;
+    box_empty(&o.all);
+    for (uint32_t p = 0; p < c->threads; p++) box_add(&o.all, &parts[p].out.bounds);
+    mt__in_parallel(c->threads, morton_keys, &o);
+    mt_status s = radix_sort(o.order, c->num_tris);
+    if (s == MT_OK) mt__in_parallel(c->threads, gather, &o);
+    mt__free(o.order);
     return s;
 }
 
-/* The tree's node boxes, leaves up. */
+/* Share t of the leaves: their node boxes, their triangles' boxes by axis
+ * and which of their triangles' corners have flat fans. */
+static void build_leaves(void *ctx, uint32_t t, uint32_t threads)
+{
+    check *c = ctx;
+    uint32_t first, end;
+    mt__part_range(c->num_leaves, t, threads, &first, &end);
+    for (uint32_t i = first * LEAF_SIZE; i < end * LEAF_SIZE && i < c->num_tris; i++) {
+        const uint32_t *v = c->tris[i].v;
+        c->flat_corners[i] = (uint8_t)(c->flat[v[0]] | c->flat[v[1]] << 1 | c->flat[v[2]] << 2);
+    }
+    const uint32_t leaves = c->num_leaves;
+    for (uint32_t l = first; l < end; l++) {
+        box *b = &c->nodes[leaves + l];
+        leaf_boxes *lb = &c->leaves[l];
+        box_empty(b);
+        for (uint32_t slot = 0; slot < LEAF_SIZE; slot++) {
+            const uint32_t i = l * LEAF_SIZE + slot;
+            box one;
+            if (i < c->num_tris)
+                one = c->boxes[i];
+            else
+                box_empty(&one);
+            box_add(b, &one);
+            for (int k = 0; k < 3; k++) {
+                lb->lo[k][slot] = one.lo[k];
+                lb->hi[k][slot] = one.hi[k];
+            }
+        }
+    }
+}
+
+/* The tree's node boxes, leaves up, the leaves' triangle boxes and the
+ * triangles' flat corners. */
 static void build_tree(check *c)
 {
-    const uint32_t leaves = c->num_leaves;
-    for (uint32_t l = 0; l < leaves; l++) {
-        box *b = &c->nodes[leaves + l];
-        box_empty(b);
-        for (uint32_t i = l * LEAF_SIZE; i < (l + 1) * LEAF_SIZE && i < c->num_tris; i++)
-            box_add(b, &c->boxes[i]);
-    }
-    for (uint32_t k = leaves - 1; k >= 1; k--) {
+    mt__in_parallel(c->threads, build_leaves, c);
+    for (uint32_t k = c->num_leaves - 1; k >= 1; k--) {
         c->nodes[k] = c->nodes[2 * k];
         box_add(&c->nodes[k], &c->nodes[2 * k + 1]);
     }
@@ -429,26 +481,46 @@ static bool share_flat_corner(const check *c, uint32_t i, uint32_t j)
     return false;
 }
 
-/* Triangles i and j if their boxes overlap and they may cross. */
-static mt_status maybe_test_pair(const check *c, uint32_t i, uint32_t j, mt__vec *pairs)
+/* Bit s set: the box of slot s of `leaf` overlaps box (lo, hi). */
+static unsigned overlapping_slots(const leaf_boxes *leaf, const float lo[3], const float hi[3])
 {
-    if (c->tris[i].face == c->tris[j].face || !overlap(&c->boxes[i], &c->boxes[j]) ||
-        share_flat_corner(c, i, j))
-        return MT_OK;
-    return test_pair(c, i, j, pairs);
+    unsigned bits = 0;
+    for (int first = 0; first < LEAF_SIZE; first += 4) {
+        v4i meet = {-1, -1, -1, -1};
+        for (int k = 0; k < 3; k++) {
+            v4f leaf_lo, leaf_hi;
+            memcpy(&leaf_lo, &leaf->lo[k][first], sizeof leaf_lo);
+            memcpy(&leaf_hi, &leaf->hi[k][first], sizeof leaf_hi);
+            const v4f box_lo = {lo[k], lo[k], lo[k], lo[k]};
+            const v4f box_hi = {hi[k], hi[k], hi[k], hi[k]};
+            meet &= (leaf_lo <= box_hi) & (box_lo <= leaf_hi);
+        }
+        bits |= ((unsigned)(meet[0] != 0) | (unsigned)(meet[1] != 0) << 1 |
+                 (unsigned)(meet[2] != 0) << 2 | (unsigned)(meet[3] != 0) << 3)
+                << first;
+    }
+    return bits;
 }
 
 /* Every triangle of leaf a against every one of leaf b (each pair once
- * when a == b) whose boxes overlap. */
+ * when a == b) whose boxes overlap: those of different faces that share no
+ * corner with a flat fan go to the narrow phase. */
 static mt_status leaf_pairs(const check *c, uint32_t a, uint32_t b, mt__vec *pairs)
 {
-    uint32_t a0, a1, b0, b1;
+    uint32_t a0, a1;
     leaf_range(c, a, &a0, &a1);
-    leaf_range(c, b, &b0, &b1);
+    const uint32_t b0 = (b - c->num_leaves) * LEAF_SIZE; /* empty slots never overlap */
+    const leaf_boxes *la = &c->leaves[a - c->num_leaves], *lb = &c->leaves[b - c->num_leaves];
     for (uint32_t i = a0; i < a1; i++) {
-        if (a != b && !overlap(&c->boxes[i], &c->nodes[b])) continue; /* misses all of b */
-        for (uint32_t j = a == b ? i + 1 : b0; j < b1; j++) {
-            mt_status s = maybe_test_pair(c, i, j, pairs);
+        const uint32_t slot = i - a0;
+        const float lo[3] = {la->lo[0][slot], la->lo[1][slot], la->lo[2][slot]};
+        const float hi[3] = {la->hi[0][slot], la->hi[1][slot], la->hi[2][slot]};
+        unsigned hits = overlapping_slots(lb, lo, hi);
+        if (a == b) hits &= ~((2u << slot) - 1); /* the later triangles only */
+        for (; hits; hits &= hits - 1) {
+            const uint32_t j = b0 + (uint32_t)__builtin_ctz(hits);
+            if (c->tris[i].face == c->tris[j].face || share_flat_corner(c, i, j)) continue;
+            mt_status s = test_pair(c, i, j, pairs);
             if (s != MT_OK) return s;
         }
     }
@@ -490,19 +562,20 @@ static mt_status traverse(const check *c, node_pair start, mt__vec *pairs)
     return MT_OK;
 }
 
-static void *run_tasks(void *arg)
+/* Part t: tasks taken from the shared counter until none is left. */
+static void run_tasks(void *ctx, uint32_t t, uint32_t threads)
 {
-    worker *w = arg;
+    (void)threads;
+    worker *w = &((worker *)ctx)[t];
     check *c = w->c;
     for (;;) {
-        const uint32_t t = atomic_fetch_add(&c->next, 1);
-        if (t >= c->num_tasks || atomic_load(&c->failed)) break;
-        if (traverse(c, c->tasks[t], &w->pairs) != MT_OK) {
+        const uint32_t task = atomic_fetch_add(&c->next, 1);
+        if (task >= c->num_tasks || atomic_load(&c->failed)) break;
+        if (traverse(c, c->tasks[task], &w->pairs) != MT_OK) {
             atomic_store(&c->failed, true);
             break;
         }
     }
-    return NULL;
 }
 
 /* The pairs of nodes at the first depth with at least `want` of them (or
@@ -550,15 +623,11 @@ static mt_status run_all(check *c, mt__vec *out)
     mt_status made = make_tasks(c, TASKS_PER_THREAD * threads);
     if (made != MT_OK) return made;
     worker workers[MT__MAX_THREADS];
-    bool started[MT__MAX_THREADS] = {false};
     for (uint32_t t = 0; t < threads; t++)
         workers[t] = (worker){.c = c, .pairs = {.elem_size = sizeof(mt_face_pair)}};
-    for (uint32_t t = 1; t < threads; t++)
-        started[t] = pthread_create(&workers[t].thread, NULL, run_tasks, &workers[t]) == 0;
-    run_tasks(&workers[0]); /* a thread that did not start leaves its share to this one */
+    mt__in_parallel(threads, run_tasks, workers);
     mt_status s = MT_OK;
     for (uint32_t t = 0; t < threads; t++) {
-        if (started[t]) pthread_join(workers[t].thread, NULL);
         if (s == MT_OK && !atomic_load(&c->failed)) s = mt__vec_append(out, &workers[t].pairs);
         mt__vec_free(&workers[t].pairs);
     }
@@ -594,16 +663,14 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
         c.tris = mt__malloc((size_t)c.num_tris * sizeof *c.tris);
         c.boxes = mt__malloc((size_t)c.num_tris * sizeof *c.boxes);
         c.nodes = mt__malloc(2 * (size_t)c.num_leaves * sizeof *c.nodes);
+        c.leaves = mt__malloc((size_t)c.num_leaves * sizeof *c.leaves);
         c.flat_corners = mt__malloc(c.num_tris);
-        s = c.tris && c.boxes && c.nodes && c.flat_corners ? order_triangles(&c, parts, threads)
-                                                           : MT_ERR_NOMEM;
+        s = c.tris && c.boxes && c.nodes && c.leaves && c.flat_corners ? order_triangles(&c, parts)
+                                                                       : MT_ERR_NOMEM;
         for (uint32_t t = 0; t < threads; t++) tri_set_free(&parts[t].out);
         if (s == MT_OK) s = mt__flat_fans(m, c.tris, c.num_tris, threads, flat);
         if (s == MT_OK) {
-            for (uint32_t i = 0; i < c.num_tris; i++) {
-                const uint32_t *v = c.tris[i].v;
-                c.flat_corners[i] = (uint8_t)(flat[v[0]] | flat[v[1]] << 1 | flat[v[2]] << 2);
-            }
+            c.flat = flat;
             build_tree(&c);
             s = run_all(&c, pairs);
         }
@@ -615,6 +682,7 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
     mt__free(c.tris);
     mt__free(c.boxes);
     mt__free(c.nodes);
+    mt__free(c.leaves);
     mt__free(c.flat_corners);
     mt__free(c.tasks);
     mt__free(flat);
