@@ -1,8 +1,21 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages meshtopo needs to build, test, fuzz and
-# benchmark (the one package list; .ci/run calls this too). Run as root:
-#   sudo scripts/install-deps.sh
+# benchmark (the one package list). Run as root:
+#   sudo scripts/install-deps.sh           # build, run, the test suite but archive.paraview
+#   sudo scripts/install-deps.sh --tests   # also ParaView for archive.paraview (.ci/run)
+# Debian 12's python3-paraview conflicts with python3-vtk9: with --tests it
+# replaces it, and its VTK modules (VTK 9.2) serve meshtopo render too.
 set -euo pipefail
+
+with_tests=false
+case "${1:-}" in
+    "") ;;
+    --tests) with_tests=true ;;
+    *)
+        echo "usage: install-deps.sh [--tests]" >&2
+        exit 2
+        ;;
+esac
 
 packages=(
     build-essential cmake ninja-build pkg-config   # compiler and build
@@ -26,10 +39,10 @@ packages=(
     nftables iproute2                              # tests/netns: private network, packet loss
     xvfb xauth                                     # meshtopo render (VTK 9.1 draws through X: its own
                                                    # Xvfb without a display); tests/cli: meshtopo spy
-    # Tests only: archive.paraview opens every archived corpus mesh in
-    # ParaView's pvbatch (large; meshtopo itself never needs ParaView)
-    paraview python3-paraview
 )
+# --tests: archive.paraview opens every archived corpus mesh in ParaView's
+# pvbatch (large; meshtopo itself never needs ParaView).
+test_packages=(paraview python3-paraview)
 
 if [ "$(id -u)" -ne 0 ]; then
     echo "install-deps.sh: run as root (sudo scripts/install-deps.sh)" >&2
@@ -37,4 +50,10 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 export DEBIAN_FRONTEND=noninteractive
 apt-get update
+if $with_tests; then
+    # python3-vtk9 (asked for above) and python3-paraview conflict: ask for
+    # the list without it, and apt replaces an installed python3-vtk9.
+    mapfile -t packages < <(printf '%s\n' "${packages[@]}" | grep -vx python3-vtk9)
+    packages+=("${test_packages[@]}")
+fi
 apt-get install -y --no-install-recommends "${packages[@]}"

@@ -15,10 +15,12 @@ import subprocess
 import sys
 import tempfile
 
-# Debian 12's VTK (and ParaView) link the MPI build of HDF5, whose plugin
-# directory Debian's filter packages leave empty: as the README tells their
-# users, point HDF5_PLUGIN_PATH at the serial build's plugins, which that
-# HDF5 loads too. h5py (serial HDF5) finds them without it.
+# ParaView's VTK modules (python3-paraview, which the test dependencies
+# install in place of python3-vtk9) link the MPI build of HDF5, whose plugin
+# directory Debian's filter packages leave empty: as the README tells
+# ParaView's users, point HDF5_PLUGIN_PATH at the serial build's plugins,
+# which that HDF5 loads too. h5py and python3-vtk9 (serial HDF5) find them
+# without it.
 if "HDF5_PLUGIN_PATH" not in os.environ:
     import glob
     found = glob.glob("/usr/lib/*/hdf5/serial/plugins")

@@ -45,6 +45,14 @@ def main():
     if not args.pvbatch or not os.path.exists(args.pvbatch):
         print("skip: pvbatch not found (Debian: apt install paraview python3-paraview)")
         return 77
+    # pvbatch runs its scripts with ParaView's Python modules, which Debian
+    # ships apart (python3-paraview, which conflicts with python3-vtk9).
+    probe = subprocess.run([args.pvbatch, "-c", "import paraview.simple"],
+                           capture_output=True, text=True, timeout=120)
+    if probe.returncode != 0:
+        print("skip: pvbatch cannot import paraview (Debian: apt install python3-paraview; "
+              "scripts/install-deps.sh --tests)")
+        return 77
     meshes = sorted(glob.glob(os.path.join(args.corpus, "*.off")) +
                     glob.glob(os.path.join(args.corpus, "*.off.gz")))
     expect(len(meshes) >= 20, f"{len(meshes)} corpus meshes")
