@@ -747,8 +747,9 @@ static int binary_run_faces(const binary_run *r, const unsigned char *d, size_t 
             *item = f;
             return 0;
         }
-        load_indices(d + i + csize, r->index_type, be, (uint32_t)count,
-                     b->indices + b->num_indices);
+        if (count > 0) /* an empty face may come before any index array exists */
+            load_indices(d + i + csize, r->index_type, be, (uint32_t)count,
+                         b->indices + b->num_indices);
         b->num_indices += (size_t)count;
         b->sizes[f++] = (uint32_t)count;
         i += csize + (size_t)count * isize;
