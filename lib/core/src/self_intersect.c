@@ -56,7 +56,6 @@ typedef struct check {
     const uint8_t *flat;   /* [num_verts]: the vertex's fan is flat (mt__flat_fans) */
     mt__tri *tris;         /* in Morton order */
     uint8_t *flat_corners; /* bit k: corner k of the triangle has a flat fan */
-    box *boxes;
     uint32_t num_tris;
     box *nodes;          /* [2 * num_leaves]; node 0 unused */
     leaf_boxes *leaves;  /* [num_leaves]: node num_leaves + l's triangles' boxes */
@@ -374,7 +373,8 @@ static void morton_keys(void *ctx, uint32_t t, uint32_t threads)
     }
 }
 
-/* Share t of the sorted triangles copied into place with their boxes. */
+/* Share t of the sorted triangles copied into place, their boxes into
+ * their leaves' slots. */
 static void gather(void *ctx, uint32_t t, uint32_t threads)
 {
     ordering *o = ctx;
@@ -384,7 +384,12 @@ static void gather(void *ctx, uint32_t t, uint32_t threads)
         uint32_t from = o->order[i].index, p = 0;
         while (from >= o->parts[p].out.len) from -= (uint32_t)o->parts[p++].out.len;
         o->c->tris[i] = o->parts[p].out.tris[from];
-        o->c->boxes[i] = o->parts[p].out.boxes[from];
+        const box *b = &o->parts[p].out.boxes[from];
+        leaf_boxes *leaf = &o->c->leaves[i / LEAF_SIZE];
+        for (int k = 0; k < 3; k++) {
+            leaf->lo[k][i % LEAF_SIZE] = b->lo[k];
+            leaf->hi[k][i % LEAF_SIZE] = b->hi[k];
+        }
     }
 }
 
@@ -404,8 +409,9 @@ static mt_status order_triangles(check *c, const collector *parts)
     return s;
 }
 
-/* Share t of the leaves: their node boxes, their triangles' boxes by axis
- * and which of their triangles' corners have flat fans. */
+/* Share t of the leaves: their node boxes, empty boxes in their slots past
+ * the last triangle (gather filled the others) and which of their
+ * triangles' corners have flat fans. */
 static void build_leaves(void *ctx, uint32_t t, uint32_t threads)
 {
     check *c = ctx;
@@ -421,17 +427,14 @@ static void build_leaves(void *ctx, uint32_t t, uint32_t threads)
         leaf_boxes *lb = &c->leaves[l];
         box_empty(b);
         for (uint32_t slot = 0; slot < LEAF_SIZE; slot++) {
-            const uint32_t i = l * LEAF_SIZE + slot;
+            const bool empty = l * LEAF_SIZE + slot >= c->num_tris; /* past the last */
             box one;
-            if (i < c->num_tris)
-                one = c->boxes[i];
-            else
-                box_empty(&one);
-            box_add(b, &one);
             for (int k = 0; k < 3; k++) {
-                lb->lo[k][slot] = one.lo[k];
-                lb->hi[k][slot] = one.hi[k];
+                if (empty) lb->lo[k][slot] = INFINITY, lb->hi[k][slot] = -INFINITY;
+                one.lo[k] = lb->lo[k][slot];
+                one.hi[k] = lb->hi[k][slot];
             }
+            box_add(b, &one);
         }
     }
 }
@@ -661,12 +664,11 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
         atomic_init(&c.next, 0);
         atomic_init(&c.failed, false);
         c.tris = mt__malloc((size_t)c.num_tris * sizeof *c.tris);
-        c.boxes = mt__malloc((size_t)c.num_tris * sizeof *c.boxes);
         c.nodes = mt__malloc(2 * (size_t)c.num_leaves * sizeof *c.nodes);
         c.leaves = mt__malloc((size_t)c.num_leaves * sizeof *c.leaves);
         c.flat_corners = mt__malloc(c.num_tris);
-        s = c.tris && c.boxes && c.nodes && c.leaves && c.flat_corners ? order_triangles(&c, parts)
-                                                                       : MT_ERR_NOMEM;
+        s = c.tris && c.nodes && c.leaves && c.flat_corners ? order_triangles(&c, parts)
+                                                            : MT_ERR_NOMEM;
         for (uint32_t t = 0; t < threads; t++) tri_set_free(&parts[t].out);
         if (s == MT_OK) s = mt__flat_fans(m, c.tris, c.num_tris, threads, flat);
         if (s == MT_OK) {
@@ -680,7 +682,6 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
     }
     for (uint32_t t = 0; t < threads; t++) tri_set_free(&parts[t].out);
     mt__free(c.tris);
-    mt__free(c.boxes);
     mt__free(c.nodes);
     mt__free(c.leaves);
     mt__free(c.flat_corners);
