@@ -512,13 +512,17 @@ static mt_status leaf_pairs(const check *c, uint32_t a, uint32_t b, mt__vec *pai
 {
     uint32_t a0, a1;
     leaf_range(c, a, &a0, &a1);
-    const uint32_t b0 = (b - c->num_leaves) * LEAF_SIZE; /* empty slots never overlap */
+    uint32_t b0, b1;
+    leaf_range(c, b, &b0, &b1);
+    /* An empty slot's box (+inf to -inf) still meets a box that spans
+     * every axis from -inf to +inf: only the slots holding triangles count. */
+    const unsigned filled = (1u << (b1 - b0)) - 1;
     const leaf_boxes *la = &c->leaves[a - c->num_leaves], *lb = &c->leaves[b - c->num_leaves];
     for (uint32_t i = a0; i < a1; i++) {
         const uint32_t slot = i - a0;
         const float lo[3] = {la->lo[0][slot], la->lo[1][slot], la->lo[2][slot]};
         const float hi[3] = {la->hi[0][slot], la->hi[1][slot], la->hi[2][slot]};
-        unsigned hits = overlapping_slots(lb, lo, hi);
+        unsigned hits = overlapping_slots(lb, lo, hi) & filled;
         if (a == b) hits &= ~((2u << slot) - 1); /* the later triangles only */
         for (; hits; hits &= hits - 1) {
             const uint32_t j = b0 + (uint32_t)__builtin_ctz(hits);
