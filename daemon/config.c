@@ -55,6 +55,9 @@ static const setting settings[] = {
      "largest face count accepted"},
     {"max-indices", "MESHTOPOD_MAX_INDICES", KIND_BYTES, FIELD(max_indices), 1, 0x7fffffff,
      "largest face-index count accepted (suffixes k, M, G allowed)"},
+    {"prepare-faces", "MESHTOPOD_PREPARE_FACES", KIND_U32, FIELD(prepare_faces), 0, 0x7fffffff,
+     "at start, build a grid of about this many triangles into the kept build memory, so "
+     "that the first mesh up to that size finds its memory ready, 0 = none"},
     {"max-store-bytes", "MESHTOPOD_MAX_STORE_BYTES", KIND_BYTES, FIELD(max_store_bytes), 0,
      UINT64_MAX - 1,
      "memory for built meshes, 0 = no limit (k, M, G; default: half the memory of the "
@@ -351,6 +354,12 @@ mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_ac
         return fail(diag, "option --cluster", out->cluster,
                     "needs --archive-mode sync: another member serves a mesh from the archive "
                     "once its builder is gone");
+    if (out->prepare_faces > out->max_faces) {
+        char text[24];
+        snprintf(text, sizeof text, "%u", out->prepare_faces);
+        return fail(diag, "option --prepare-faces", text,
+                    "is more than --max-faces: no mesh that large is accepted");
+    }
     if (out->max_archive_bytes == DERIVED_FROM_ARCHIVE)
         out->max_archive_bytes = out->archive_dir[0] ? half_free_space(out->archive_dir) : 0;
     return MT_OK;
@@ -412,13 +421,14 @@ void mtd_config_log(const mtd_config *c)
 {
     mtd_log(MTD_LOG_INFO, "config",
             "lcm_url=%s prefix=%s name=%s workers=%u max_verts=%u max_faces=%u "
-            "max_indices=%llu max_store_bytes=%llu max_archive_bytes=%llu max_claim_ratio=%u "
+            "max_indices=%llu prepare_faces=%u max_store_bytes=%llu max_archive_bytes=%llu "
+            "max_claim_ratio=%u "
             "max_versions=%u heartbeat_ms=%u "
             "max_transfer_bytes=%llu "
             "transfer_timeout_ms=%u log_level=%s archive=%s archive_mode=%s "
             "archive_compression=%s archive_queue=%u preload=%u memory_budget=%llu cluster=%s",
             c->lcm_url[0] ? c->lcm_url : "(lcm default)", c->channel_prefix, c->name, c->workers,
-            c->max_verts, c->max_faces, (unsigned long long)c->max_indices,
+            c->max_verts, c->max_faces, (unsigned long long)c->max_indices, c->prepare_faces,
             (unsigned long long)c->max_store_bytes, (unsigned long long)c->max_archive_bytes,
             c->max_claim_ratio, c->max_versions, c->heartbeat_ms,
             (unsigned long long)c->max_transfer_bytes, c->transfer_timeout_ms,

@@ -36,6 +36,7 @@ typedef struct mtd_config {
     uint32_t max_verts;                /* largest mesh accepted */
     uint32_t max_faces;
     uint64_t max_indices;
+    uint32_t prepare_faces;       /* a build of this many triangles at start, 0 = none */
     uint64_t max_store_bytes;     /* memory for built meshes, 0 = no limit */
     uint64_t max_archive_bytes;   /* archive files, 0 = no limit */
     uint32_t max_claim_ratio;     /* a mesh's memory over the bytes it carries, 0 = no limit */

@@ -90,6 +90,13 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
     if (mtd_content_pool_create(&d->contents) != MT_OK ||
         mtd_workspace_pool_create(&d->workspaces) != MT_OK)
         return fail_nomem(diag, "kept buffers");
+    if (c->prepare_faces) {
+        const int64_t start = mtd_now_utime();
+        if (mtd_workspace_pool_prepare(d->workspaces, c->prepare_faces, diag) != MT_OK)
+            return diag ? diag->status : MT_ERR_NOMEM;
+        mtd_log(MTD_LOG_INFO, "prepared", "faces=%u bytes=%zu ms=%.1f", c->prepare_faces,
+                mtd_workspace_pool_bytes(d->workspaces), (double)(mtd_now_utime() - start) / 1e3);
+    }
     mtd_store_options store_options = {
         .max_versions_per_id = c->max_versions,
         .max_bytes = (size_t)c->max_store_bytes,

@@ -1,10 +1,15 @@
 /* meshtopod's kept build workspace (workspace_pool.h): one workspace under a
  * mutex, taken and given back around each build, and the target of meshes
- * the store drops. Any thread. */
+ * the store drops; prepared at start by a build of a grid when asked
+ * (--prepare-faces). Any thread. */
 #include "workspace_pool.h"
 
+#include <math.h>
 #include <pthread.h>
+#include <stdio.h>
 #include <stdlib.h>
+
+#include "meshtopo/generate.h"
 
 struct mtd_workspace_pool {
     pthread_mutex_t lock;
@@ -69,6 +74,33 @@ const mt_build_workspace *mtd_workspace_pool_kept(mtd_workspace_pool *pool)
     const mt_build_workspace *kept = pool->kept;
     pthread_mutex_unlock(&pool->lock);
     return kept;
+}
+
+mt_status mtd_workspace_pool_prepare(mtd_workspace_pool *pool, uint32_t faces, mt_diag *out_diag)
+{
+    mt_diag local;
+    mt_diag *diag = out_diag ? out_diag : &local;
+    mt_diag_clear(diag);
+    if (faces == 0) return MT_OK;
+    /* side x side cells of two triangles: at least `faces` triangles */
+    const uint32_t side = (uint32_t)ceil(sqrt((double)faces / 2.0));
+    mt_face_list grid;
+    mt_status s = mt_gen_grid(side, side, true, &grid);
+    if (s != MT_OK) {
+        snprintf(diag->message, sizeof diag->message,
+                 "cannot generate a grid of %u triangles to prepare the build memory: %s", faces,
+                 mt_strerror(s));
+        diag->status = s;
+        return s;
+    }
+    /* as the build workers build: one thread each */
+    mt_build_options options = {.threads = 1, .workspace = mtd_workspace_take(pool)};
+    mt_mesh *mesh = NULL;
+    s = mt_mesh_build(&grid, &options, &mesh, diag);
+    mt_face_list_free(&grid);
+    if (s == MT_OK) mt_build_workspace_recycle(options.workspace, mesh);
+    mtd_workspace_release(pool, options.workspace);
+    return s;
 }
 
 size_t mtd_workspace_pool_bytes(mtd_workspace_pool *pool)

@@ -9,6 +9,7 @@
 #define MESHTOPOD_WORKSPACE_POOL_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "meshtopo/mesh.h"
 
@@ -32,6 +33,14 @@ void mtd_workspace_release(mtd_workspace_pool *pool, mt_build_workspace *workspa
  * the pool as ctx): its arrays go to the kept workspace for the next build,
  * or it is destroyed while a build has the workspace. */
 void mtd_workspace_recycle_mesh(void *pool, mt_mesh *mesh);
+
+/* Makes the kept workspace ready for a first mesh of up to about `faces`
+ * triangles: builds a grid of at least that many with it (one thread, as
+ * the workers build) and recycles the grid's mesh into it, so that the
+ * first real build finds both its scratch and its mesh arrays already
+ * faulted in. 0 does nothing. Fails (diag filled) only when memory runs
+ * out. */
+mt_status mtd_workspace_pool_prepare(mtd_workspace_pool *pool, uint32_t faces, mt_diag *diag);
 
 /* The kept workspace (NULL while a build has it), for tests and stats. */
 const mt_build_workspace *mtd_workspace_pool_kept(mtd_workspace_pool *pool);

@@ -99,6 +99,10 @@ static void config_bad_values_named(void)
          3,
          "option --cluster 'map': needs --archive-mode sync"},
         {{"--cluster", "a b"}, 2, "option --cluster 'a b': only printable"},
+        {{"--max-faces=1000", "--prepare-faces=1001"},
+         2,
+         "option --prepare-faces '1001': is more than --max-faces"},
+        {{"--prepare-faces", "-1"}, 2, "option --prepare-faces '-1'"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         const char *argv[4] = {"meshtopod", cases[i].args[0], cases[i].args[1], cases[i].args[2]};

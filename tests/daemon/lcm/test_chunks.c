@@ -818,6 +818,40 @@ static void test_builds_keep_a_workspace(void)
     fixture_free(&fx);
 }
 
+/* --prepare-faces: the daemon starts with a kept workspace that a grid of
+ * about that many triangles was built with, holding that grid's mesh
+ * arrays. The first mesh of a similar size is built with that workspace
+ * and into those arrays: the same workspace is kept afterwards, holding
+ * less (the mesh took at least its half-edge block, 36 bytes per face). */
+static void test_prepared_workspace(void)
+{
+    mtd_config config;
+    fixture_config(&config, "64M", "10000");
+    config.prepare_faces = 2000;
+    fixture fx;
+    fixture_start(&fx, &config);
+    mtd_workspace_pool *workspaces = mtd_daemon_workspace_pool(fx.daemon);
+    const mt_build_workspace *prepared = mtd_workspace_pool_kept(workspaces);
+    const size_t bytes = mtd_workspace_pool_bytes(workspaces);
+    CHECK(prepared != NULL);
+    /* the sides (16 bytes per corner) and the grid's half-edges at least */
+    CHECK(bytes >= 16 * 3 * 2000 + 36 * 2000);
+    sent_mesh s;
+    sent_mesh_make(&s, "first", 30, 30);
+    for (size_t k = 0; k < num_chunks(&s); k++) send_chunk(&fx, &s, REPLY, 90, k, false);
+    expect_stored(&fx, &s, expect_ack(&fx, &s, 90, __LINE__), __LINE__);
+    CHECK(mtd_workspace_pool_kept(workspaces) == prepared);
+    CHECK(mtd_workspace_pool_bytes(workspaces) + 36 * (size_t)s.list.num_faces <= bytes);
+    sent_mesh_free(&s);
+    fixture_free(&fx);
+
+    /* Without it the daemon starts with no workspace (test_builds_keep_a_workspace). */
+    fixture_config(&config, "64M", "10000");
+    fixture_start(&fx, &config);
+    CHECK(mtd_workspace_pool_kept(mtd_daemon_workspace_pool(fx.daemon)) == NULL);
+    fixture_free(&fx);
+}
+
 /* The half-edge block of a stored version. */
 static const uint32_t *stored_half_edges(fixture *fx, const char *id, uint32_t version)
 {
@@ -935,6 +969,7 @@ static const mt_test_case cases[] = {
     {"client_chunks", test_client_chunks},
     {"odd_pieces", test_odd_pieces},
     {"builds_keep_a_workspace", test_builds_keep_a_workspace},
+    {"prepared_workspace", test_prepared_workspace},
     {"dropped_meshes_are_recycled", test_dropped_meshes_are_recycled},
     {"counts_that_do_not_fit", test_counts_that_do_not_fit},
 };
