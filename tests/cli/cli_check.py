@@ -7,6 +7,9 @@
   exit_codes   --fail-on-defect (1), --strict (4), --json-defects, readable output
   self_intersections  inspect --self-intersections, text and JSON
   stdin        inspect - reads standard input (plain and gzip)
+  module       archive, replay and render come from a module loaded only for
+               them: inspect never loads HDF5, archive ls does; a program
+               without its module still inspects and says what is missing
 
 usage: cli_check.py --meshtopo PATH --corpus DIR
                     {read_errors,usage,exit_codes,self_intersections}
@@ -264,18 +267,58 @@ def check_self_intersections(meshtopo, corpus):
            "a clean tetrahedron: 0 pairs, exit 0", code, out, err)
 
 
+def loaded_libraries(meshtopo, *args):
+    """The code and the shared objects the dynamic loader loaded for `meshtopo args`."""
+    env = dict(os.environ, LD_DEBUG="files")
+    proc = subprocess.run([meshtopo, *args], capture_output=True, text=True, timeout=120, env=env)
+    return proc.returncode, set(re.findall(r"file=(\S+) \[0\];", proc.stderr)), proc.stderr
+
+
+def check_module(meshtopo, corpus):
+    mesh = os.path.join(corpus, "cgal_tetrahedron.off")
+    with tempfile.TemporaryDirectory() as tmp:
+        code, libs, err = loaded_libraries(meshtopo, "inspect", mesh)
+        names = " ".join(sorted(libs))
+        expect(code == 0 and "libc.so" in names and "hdf5" not in names
+               and "archive-commands" not in names,
+               "inspect loads neither HDF5 nor the archive module", code, names, "")
+        code, libs, err = loaded_libraries(meshtopo, "archive", "ls", tmp)
+        names = " ".join(sorted(libs))
+        expect(code == 0 and "meshtopo-archive-commands.so" in names and "hdf5" in names,
+               "archive ls loads the archive module and HDF5", code, names, "")
+        # The program alone, away from its module: inspect works, the archive
+        # commands fail with exit 7 naming what could not be loaded.
+        alone = os.path.join(tmp, "meshtopo")
+        with open(meshtopo, "rb") as src, open(alone, "wb") as dst:
+            dst.write(src.read())
+        os.chmod(alone, 0o755)
+        code, out, err = run(alone, "inspect", mesh, "--json")
+        expect(code == 0 and parse_json(out).get("V") == 4, "without the module: inspect works",
+               code, out, err)
+        for args in (["archive", "ls", tmp], ["replay", tmp], ["help", "render"]):
+            code, out, err = run(alone, *args)
+            expect(code == 7 and "cannot load the archive commands" in err
+                   and "meshtopo-archive-commands.so" in err and out == "",
+                   f"without the module: {args[0]} exits 7 naming the module", code, out, err)
+        code, out, err = run(alone, "--help")
+        expect(code == 0 and re.search(r"archive +cannot load the archive commands", out),
+               "without the module: --help says so in place of the summaries", code, out, err)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--meshtopo", default=os.environ.get("MESHTOPO_CLI"))
     ap.add_argument("--corpus", default=os.environ.get("MESHTOPO_CORPUS"))
     ap.add_argument("check",
-                    choices=["read_errors", "usage", "exit_codes", "self_intersections", "stdin"])
+                    choices=["read_errors", "usage", "exit_codes", "self_intersections", "stdin",
+                             "module"])
     args = ap.parse_args()
     if not args.meshtopo or not args.corpus:
         ap.error("need --meshtopo and --corpus (or MESHTOPO_CLI / MESHTOPO_CORPUS)")
     {"read_errors": check_read_errors, "usage": check_usage,
      "exit_codes": check_exit_codes,
-     "self_intersections": check_self_intersections, "stdin": check_stdin}[args.check](args.meshtopo, args.corpus)
+     "self_intersections": check_self_intersections, "stdin": check_stdin,
+     "module": check_module}[args.check](args.meshtopo, args.corpus)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1

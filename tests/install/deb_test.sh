@@ -93,7 +93,8 @@ for f in usr/bin/meshtopo usr/bin/meshtopod usr/share/doc/meshtopo/README.md \
     usr/include/lcmtypes/meshtopo_mesh_t.h "usr/$libdir/cmake/meshtopo/meshtopoConfig.cmake" \
     "usr/$libdir/pkgconfig/meshtopo-core.pc" "usr/$libdir/pkgconfig/meshtopo-archive.pc" \
     usr/lib/python3/dist-packages/meshtopo/__init__.py \
-    usr/lib/python3/dist-packages/meshtopo/libmeshtopo-python.so; do
+    usr/lib/python3/dist-packages/meshtopo/libmeshtopo-python.so \
+    "usr/$libdir/meshtopo/meshtopo-archive-commands.so"; do
     [ -f "$root/$f" ] || fail "no package holds /$f"
 done
 ls "$prefix/$libdir"/libmeshtopo-archive.* >/dev/null || fail "libmeshtopo-archive not packaged"
@@ -108,6 +109,10 @@ grep -qx "ExecStart=/usr/bin/meshtopod" "$root/usr/lib/systemd/system/meshtopod.
 step "the unpacked tools run"
 "$prefix/bin/meshtopo" --version
 "$prefix/bin/meshtopod" --version
+# The archive commands load their module from beside the unpacked program.
+mkdir -p "$work/empty-archive"
+"$prefix/bin/meshtopo" archive ls "$work/empty-archive" ||
+    fail "the unpacked meshtopo cannot run its archive commands"
 
 bash "$here/consumers.sh" "$prefix" "$libdir" "$work" "$cc" "$generator" "$extra_flags"
 

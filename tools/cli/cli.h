@@ -22,8 +22,9 @@ enum {
     MT_CLI_EXIT_READ = 3,   /* a file could not be read or parsed */
     MT_CLI_EXIT_BUILD =
         4, /* the mesh could not be built (strict mode refused it, too large, ...) */
-    MT_CLI_EXIT_REFUSED = 5,  /* meshtopod answered with an error (unknown mesh, refused defect) */
-    MT_CLI_EXIT_NO_ANSWER = 6 /* no answer from meshtopod (timeout) or LCM could not be used */
+    MT_CLI_EXIT_REFUSED = 5,   /* meshtopod answered with an error (unknown mesh, refused defect) */
+    MT_CLI_EXIT_NO_ANSWER = 6, /* no answer from meshtopod (timeout) or LCM could not be used */
+    MT_CLI_EXIT_MISSING = 7    /* a part of meshtopo could not be loaded (broken installation) */
 };
 
 /* One option of a command: `--name` (a flag) or `--name VALUE` / `--name=VALUE`. */
@@ -58,7 +59,8 @@ typedef struct mt_cli_command {
     int (*run_raw)(int argc, char **argv);
 } mt_cli_command;
 
-/* The commands, each defined in its cmd_*.c. */
+/* The commands, each defined in its cmd_*.c; archive, replay and render in
+ * the archive module (cli_module.c). */
 extern const mt_cli_command mt_cli_cmd_inspect;
 extern const mt_cli_command mt_cli_cmd_send;
 extern const mt_cli_command mt_cli_cmd_query;
@@ -69,6 +71,13 @@ extern const mt_cli_command mt_cli_cmd_bench;
 extern const mt_cli_command mt_cli_cmd_archive;
 extern const mt_cli_command mt_cli_cmd_replay;
 extern const mt_cli_command mt_cli_cmd_render;
+
+/* The commands of the archive module: how many, and the name of the i-th. */
+size_t mt_cli_module_count(void);
+const char *mt_cli_module_name(size_t i);
+/* The command `name` of the archive module, which is loaded the first time;
+ * NULL with err filled when it cannot be loaded or has no such command. */
+const mt_cli_command *mt_cli_module_command(const char *name, char *err, size_t err_size);
 
 /* Parses argv[0..argc) (the arguments after the command name) against the
  * command's options into *out (arrays malloc'ed; free with mt_cli_args_free).

@@ -1,6 +1,8 @@
 /* `meshtopo <command> [args]`: the command table and the dispatch. A new
- * subcommand is one row in `commands` plus its cmd_*.c file; help, --help,
- * option parsing and exit codes are handled here for all of them. */
+ * subcommand is one row in `commands` plus its cmd_*.c file (or, for one
+ * that reads or writes archives, a name in cli_module.c and a file of the
+ * module); help, --help, option parsing and exit codes are handled here for
+ * all of them. */
 #include <stdio.h>
 #include <string.h>
 
@@ -11,16 +13,26 @@
 #endif
 
 static const mt_cli_command *const commands[] = {
-    &mt_cli_cmd_inspect, &mt_cli_cmd_send,   &mt_cli_cmd_query, &mt_cli_cmd_list,
-    &mt_cli_cmd_watch,   &mt_cli_cmd_spy,    &mt_cli_cmd_bench, &mt_cli_cmd_archive,
-    &mt_cli_cmd_replay,  &mt_cli_cmd_render,
+    &mt_cli_cmd_inspect, &mt_cli_cmd_send, &mt_cli_cmd_query, &mt_cli_cmd_list,
+    &mt_cli_cmd_watch,   &mt_cli_cmd_spy,  &mt_cli_cmd_bench,
 };
 static const size_t num_commands = sizeof commands / sizeof commands[0];
 
-static const mt_cli_command *command_find(const char *name)
+/* The command called `name`; NULL after printing why when it is none, or
+ * when its module cannot be loaded (*out_unknown tells which). */
+static const mt_cli_command *command_find(const char *name, bool *out_unknown)
 {
+    *out_unknown = false;
     for (size_t i = 0; i < num_commands; i++)
         if (strcmp(commands[i]->name, name) == 0) return commands[i];
+    for (size_t i = 0; i < mt_cli_module_count(); i++) {
+        if (strcmp(mt_cli_module_name(i), name) != 0) continue;
+        char err[512];
+        const mt_cli_command *cmd = mt_cli_module_command(name, err, sizeof err);
+        if (!cmd) mt_cli_error(name, "%s", err);
+        return cmd;
+    }
+    *out_unknown = true;
     return NULL;
 }
 
@@ -34,6 +46,11 @@ static void print_usage(FILE *out)
             "commands:\n");
     for (size_t i = 0; i < num_commands; i++)
         fprintf(out, "  %-10s %s\n", commands[i]->name, commands[i]->summary);
+    for (size_t i = 0; i < mt_cli_module_count(); i++) {
+        char err[512];
+        const mt_cli_command *cmd = mt_cli_module_command(mt_cli_module_name(i), err, sizeof err);
+        fprintf(out, "  %-10s %s\n", mt_cli_module_name(i), cmd ? cmd->summary : err);
+    }
 }
 
 static void print_help(FILE *out)
@@ -52,6 +69,7 @@ static void print_help(FILE *out)
             "  4  the mesh could not be built (e.g. --strict refused a defect)\n"
             "  5  meshtopod answered with an error (unknown mesh, refused defect, ...)\n"
             "  6  no answer from meshtopod (timeout), or LCM could not be used\n"
+            "  7  a part of meshtopo could not be loaded (a broken installation)\n"
             "\n"
             "send, query, list, watch and replay talk to meshtopod over LCM; --lcm-url and\n"
             "--prefix default to $MESHTOPO_LCM_URL and $MESHTOPO_PREFIX.\n");
@@ -98,7 +116,9 @@ int main(int argc, char **argv)
             print_help(stdout);
             return MT_CLI_EXIT_OK;
         }
-        const mt_cli_command *cmd = command_find(argv[2]);
+        bool unknown;
+        const mt_cli_command *cmd = command_find(argv[2], &unknown);
+        if (!cmd && !unknown) return MT_CLI_EXIT_MISSING;
         if (!cmd || argc > 3) {
             if (!cmd)
                 fprintf(stderr, "meshtopo: unknown command '%s'\n", argv[2]);
@@ -110,7 +130,9 @@ int main(int argc, char **argv)
         mt_cli_print_command_help(cmd, stdout);
         return MT_CLI_EXIT_OK;
     }
-    const mt_cli_command *cmd = command_find(name);
+    bool unknown;
+    const mt_cli_command *cmd = command_find(name, &unknown);
+    if (!cmd && !unknown) return MT_CLI_EXIT_MISSING;
     if (!cmd) {
         fprintf(stderr, "meshtopo: unknown command '%s'\n", name);
         print_usage(stderr);
