@@ -425,6 +425,63 @@ static void check_same_mesh(const mt_mesh *a_mesh, const mt_mesh *b_mesh)
     CHECK_EQ(ra->nonmanifold_vertices, rb->nonmanifold_vertices);
 }
 
+/* mt_mesh_build_taking_positions: the mesh holds the list's own positions
+ * array (no copy) and the list gives it up; structure, report and positions
+ * are those of a copying build, the non-finite coordinate planted here
+ * included. A build that fails (a strict refusal, each allocation failing
+ * in turn) leaves the array to the list, which frees it. */
+static void test_taking_positions(void)
+{
+    mt_face_list fl, copy;
+    messy_list(&fl);
+    messy_list(&copy);
+    fl.positions[3 * 7 + 2] = copy.positions[3 * 7 + 2] = NAN;
+    const double *array = fl.positions;
+    mt_mesh *taken = NULL, *copied = NULL;
+    mt_diag d;
+    CHECK_OK(mt_mesh_build(&copy, NULL, &copied, &d));
+    CHECK_OK(mt_mesh_build_taking_positions(&fl, NULL, &taken, &d));
+    CHECK(fl.positions == NULL);
+    CHECK(mt_mesh_position(taken, 0) == array);
+    CHECK_OK(mt_mesh_validate(taken, &d));
+    check_same_mesh(taken, copied);
+    CHECK_EQ(mt_mesh_report(taken)->nonfinite_vertices, 1);
+    for (uint32_t v = 0; v < copy.num_verts; v++)
+        CHECK(memcmp(mt_mesh_position(taken, v), &copy.positions[3 * (size_t)v],
+                     3 * sizeof(double)) == 0);
+    mt_mesh_destroy(taken);
+    mt_mesh_destroy(copied);
+    mt_face_list_free(&fl);
+    mt_face_list_free(&copy);
+
+    mt_build_options strict = {.strict = true};
+    CHECK_OK(mt_gen_fin(&fl));
+    array = fl.positions;
+    CHECK_STATUS(mt_mesh_build_taking_positions(&fl, &strict, &taken, &d), MT_ERR_DEFECT);
+    CHECK(taken == NULL && fl.positions == array);
+    mt_face_list_free(&fl);
+
+    int succeeded = 0;
+    for (long n = 0; n < 200 && !succeeded; n++) {
+        messy_list(&fl);
+        array = fl.positions;
+        mt__test_fail_alloc_after(n);
+        mt_status s = mt_mesh_build_taking_positions(&fl, NULL, &taken, &d);
+        mt__test_fail_alloc_after(-1);
+        if (s == MT_OK) {
+            succeeded = 1;
+            CHECK(fl.positions == NULL && mt_mesh_position(taken, 0) == array);
+            CHECK_OK(mt_mesh_validate(taken, &d));
+            mt_mesh_destroy(taken);
+        } else {
+            CHECK_EQ(s, MT_ERR_NOMEM);
+            CHECK(taken == NULL && fl.positions == array);
+        }
+        mt_face_list_free(&fl);
+    }
+    CHECK(succeeded);
+}
+
 /* Any thread count gives the same structure, messy input included. */
 static void test_thread_counts_agree(void)
 {
@@ -727,6 +784,7 @@ static const mt_test_case cases[] = {
     {"build_strict_mode", test_strict_mode},
     {"build_bad_arguments", test_bad_arguments},
     {"build_allocation_failures", test_allocation_failures},
+    {"build_taking_positions", test_taking_positions},
     {"build_thread_counts_agree", test_thread_counts_agree},
     {"build_thread_counts_agree_across_blocks", test_thread_counts_agree_across_blocks},
     {"build_workspace_reuse", test_workspace_reuse},

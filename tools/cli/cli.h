@@ -158,10 +158,13 @@ int mt_cli_face_list_read(const char *command, const char *path, const char *for
  * unwelded list is built first, without options, to tell which vertices
  * the weld made non-manifold (out->weld). Returns MT_CLI_EXIT_OK,
  * MT_CLI_EXIT_USAGE (unknown format name), MT_CLI_EXIT_READ or
- * MT_CLI_EXIT_BUILD after printing the reason, naming the file, to stderr. */
+ * MT_CLI_EXIT_BUILD after printing the reason, naming the file, to stderr.
+ * Unless keep_positions, the mesh takes the positions of out->list
+ * (mt_mesh_build_taking_positions) rather than a copy: out->list then holds
+ * the faces only. */
 int mt_cli_mesh_load(const char *command, const char *path, const char *format_name,
                      uint64_t max_input_bytes, const double *weld_eps,
-                     const mt_build_options *options, mt_cli_mesh *out);
+                     const mt_build_options *options, bool keep_positions, mt_cli_mesh *out);
 void mt_cli_mesh_free(mt_cli_mesh *m);
 
 /* Environment variable giving the default of --max-input-bytes. */

@@ -97,7 +97,7 @@ static int run_inspect(const mt_cli_args *args)
     build.strict = mt_cli_flag(args, "strict");
     mt_cli_mesh mesh;
     int code = mt_cli_mesh_load("inspect", path, mt_cli_arg(args, "format"), max_input,
-                                weld_text ? &weld_eps : NULL, &build, &mesh);
+                                weld_text ? &weld_eps : NULL, &build, false, &mesh);
     if (code != MT_CLI_EXIT_OK) return code;
 
     mt_inspect_request req;

@@ -108,7 +108,7 @@ static int run_render(const mt_cli_args *args)
         code = load_archive_file(path, &rec, &mesh);
         list = &rec.faces;
     } else {
-        code = mt_cli_mesh_load("render", path, NULL, 0, weld ? &eps : NULL, NULL, &loaded);
+        code = mt_cli_mesh_load("render", path, NULL, 0, weld ? &eps : NULL, NULL, true, &loaded);
         mesh = loaded.mesh;
         list = &loaded.list;
     }

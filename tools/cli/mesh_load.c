@@ -218,7 +218,7 @@ static bool weld_news(mt_cli_mesh *out, unsigned char *was)
 
 int mt_cli_mesh_load(const char *command, const char *path, const char *format_name,
                      uint64_t max_input_bytes, const double *weld_eps,
-                     const mt_build_options *options, mt_cli_mesh *out)
+                     const mt_build_options *options, bool keep_positions, mt_cli_mesh *out)
 {
     memset(out, 0, sizeof *out);
     double t0 = mt_cli_now_ms();
@@ -238,7 +238,9 @@ int mt_cli_mesh_load(const char *command, const char *path, const char *format_n
     mt_diag diag;
     mt_diag_clear(&diag);
     t0 = mt_cli_now_ms();
-    mt_status st = mt_mesh_build(&out->list, options, &out->mesh, &diag);
+    mt_status st = keep_positions
+                       ? mt_mesh_build(&out->list, options, &out->mesh, &diag)
+                       : mt_mesh_build_taking_positions(&out->list, options, &out->mesh, &diag);
     out->build_ms = mt_cli_now_ms() - t0;
     if (st != MT_OK) {
         mt_cli_error(command, "cannot build a mesh from %s%s: %s", weld_eps ? "the welded " : "",

@@ -170,7 +170,9 @@ static mt_status build(mt__build *b)
     m->num_verts = m->num_verts_internal = in->num_verts;
     m->num_faces = in->num_faces;
     m->face_he = mesh_array(b, in->num_faces, sizeof(uint32_t), 0);
-    if (in->positions) m->positions = mesh_array(b, in->num_verts, 3 * sizeof(double), 0);
+    if (in->positions)
+        m->positions = b->positions_taken ? in->positions
+                                          : mesh_array(b, in->num_verts, 3 * sizeof(double), 0);
     if (!m->face_he || (in->positions && !m->positions)) return MT_ERR_NOMEM;
     b->block_shift = MT__BLOCK_MIN_SHIFT;
     while ((in->num_verts >> b->block_shift) >= MT__MAX_BLOCKS) b->block_shift++;
@@ -216,8 +218,10 @@ static mt_status build(mt__build *b)
     return mt__build_report(b);
 }
 
-mt_status mt_mesh_build(const mt_face_list *in, const mt_build_options *options, mt_mesh **out_mesh,
-                        mt_diag *diag)
+/* mt_mesh_build, with the mesh taking in->positions instead of a copy when
+ * `take_positions`. */
+static mt_status build_mesh(const mt_face_list *in, bool take_positions,
+                            const mt_build_options *options, mt_mesh **out_mesh, mt_diag *diag)
 {
     mt_diag_clear(diag);
     mt_status s = check_input(in, out_mesh, diag);
@@ -227,6 +231,7 @@ mt_status mt_mesh_build(const mt_face_list *in, const mt_build_options *options,
     b.in = in;
     b.diag = diag;
     b.workspace = options ? options->workspace : NULL;
+    b.positions_taken = take_positions;
     plan_parts(&b, options ? options->threads : 0);
     b.large_sizes.elem_size = b.invalid_refs.elem_size = sizeof(uint32_t);
     b.large_uses.elem_size = sizeof(uint32_t);
@@ -245,9 +250,24 @@ mt_status mt_mesh_build(const mt_face_list *in, const mt_build_options *options,
             mt__fail(diag, MT_ERR_NOMEM, MT_NONE,
                      "build: out of memory (%u vertices, %u faces, %llu indices)", in->num_verts,
                      in->num_faces, (unsigned long long)in->num_indices);
+        if (b.positions_taken) b.m->positions = NULL; /* still the caller's */
         mt_mesh_destroy(b.m);
         return s;
     }
     *out_mesh = b.m;
     return MT_OK;
+}
+
+mt_status mt_mesh_build(const mt_face_list *in, const mt_build_options *options, mt_mesh **out_mesh,
+                        mt_diag *diag)
+{
+    return build_mesh(in, false, options, out_mesh, diag);
+}
+
+mt_status mt_mesh_build_taking_positions(mt_face_list *in, const mt_build_options *options,
+                                         mt_mesh **out_mesh, mt_diag *diag)
+{
+    mt_status s = build_mesh(in, true, options, out_mesh, diag);
+    if (s == MT_OK) in->positions = NULL;
+    return s;
 }

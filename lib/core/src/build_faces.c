@@ -97,11 +97,16 @@ static mt_status copy_positions(mt__build *b, mt__part *p)
     const size_t first = 3 * (size_t)p->vert_begin, end = 3 * (size_t)p->vert_end;
     const double *src = in->positions;
     double *dst = b->m->positions;
-    /* Copy and test in one pass; name the bad vertices only if there are any. */
+    /* Copy (unless the mesh took the caller's array) and test in one pass;
+     * name the bad vertices only if there are any. */
     uint64_t any_bad = 0;
-    for (size_t i = first; i < end; i++) {
-        dst[i] = src[i];
-        any_bad |= nonfinite_bits(src[i]);
+    if (b->positions_taken) {
+        for (size_t i = first; i < end; i++) any_bad |= nonfinite_bits(src[i]);
+    } else {
+        for (size_t i = first; i < end; i++) {
+            dst[i] = src[i];
+            any_bad |= nonfinite_bits(src[i]);
+        }
     }
     if (!any_bad) return MT_OK;
     for (uint32_t v = p->vert_begin; v < p->vert_end; v++) {

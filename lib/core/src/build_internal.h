@@ -119,6 +119,7 @@ typedef struct mt__build {
     mt_mesh *m;
     mt_diag *diag;
     mt_build_workspace *workspace; /* NULL: scratch is the build's own */
+    bool positions_taken;          /* m->positions is in->positions, not a copy */
     uint32_t parts;
     mt__part part[MT__MAX_PARTS];
 
