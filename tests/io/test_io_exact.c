@@ -12,6 +12,8 @@
 #include <string.h>
 
 #include "harness.h"
+#include "io_test_util.h"
+#include "meshtopo/generate.h"
 #include "meshtopo/io.h"
 
 /* Tokens the fast number paths must read as strtod does (or leave to it). */
@@ -341,9 +343,88 @@ static void test_exact_corpus_every_way(void)
     CHECK(files > 0);
 }
 
+/* Binary PLY read by its fast paths (x y z doubles copied whole, triangles
+ * with a one-byte count and 32-bit indices copied as they are) gives the
+ * arrays the ASCII PLY of the same list gives through the text reader, and
+ * those the big-endian file gives through the per-value loop: triangles
+ * among a quad and a pentagon, a negative and an out-of-range index,
+ * coordinates that are not integers, windows that cut records anywhere. */
+static void test_exact_binary_ply_fast_paths(void)
+{
+    mt_face_list grid, list;
+    CHECK_OK(mt_gen_grid(40, 30, true, &grid));
+    const uint32_t extra[] = {
+        4, 0, 1, 42, 41, 5, 2, 3, 44, 60, 43, 3, 7, 0xffffffffu, 8, 3, 9, 10, grid.num_verts + 3};
+    const uint32_t extra_faces = 4, extra_indices = 4 + 5 + 3 + 3;
+    CHECK_OK(mt_face_list_alloc(&list, grid.num_verts, grid.num_faces + extra_faces,
+                                grid.num_indices + extra_indices, NULL));
+    for (uint32_t i = 0; i < 3 * grid.num_verts; i++)
+        list.positions[i] = grid.positions[i] + 0.1 * i - 1e-3 / (i + 1);
+    /* the extra faces first, between, and after the grid's triangles */
+    uint32_t f = 0;
+    uint64_t k = 0;
+    size_t e = 0;
+    for (uint32_t g = 0; g <= grid.num_faces; g++) {
+        if (g == 0 || g == grid.num_faces / 2 || g == grid.num_faces) {
+            uint32_t n = extra[e++];
+            list.face_sizes[f++] = n;
+            for (uint32_t j = 0; j < n; j++) list.face_indices[k++] = extra[e++];
+            if (g == grid.num_faces) {
+                n = extra[e++];
+                list.face_sizes[f++] = n;
+                for (uint32_t j = 0; j < n; j++) list.face_indices[k++] = extra[e++];
+            }
+        }
+        if (g == grid.num_faces) break;
+        list.face_sizes[f++] = 3;
+        for (uint32_t j = 0; j < 3; j++) list.face_indices[k++] = grid.face_indices[3 * g + j];
+    }
+    CHECK_EQ(f, list.num_faces);
+    CHECK_EQ(k, list.num_indices);
+    static const mt_format formats[] = {MT_FORMAT_PLY_ASCII, MT_FORMAT_PLY_BINARY_LE,
+                                        MT_FORMAT_PLY_BINARY_BE};
+    static const size_t windows[] = {0, 4096, 100};
+    mt_face_list ascii;
+    memset(&ascii, 0, sizeof ascii);
+    for (size_t i = 0; i < 3; i++) {
+        const char *path = io_test_path(i == 0   ? "fast.ascii.ply"
+                                        : i == 1 ? "fast.le.ply"
+                                                 : "fast.be.ply");
+        mt_diag diag;
+        CHECK_OK(mt_write_file(path, formats[i], &list, &diag));
+        unsigned char *data = NULL;
+        size_t size = 0;
+        CHECK(io_test_slurp(path, &data, &size));
+        for (size_t w = 0; w < 3 && data; w++) {
+            mt_read_options options;
+            memset(&options, 0, sizeof options);
+            options.window_bytes = windows[w];
+            mt_face_list read;
+            CHECK_OK(mt_read_memory_with(data, size, MT_FORMAT_AUTO, path, &options, &read, &diag));
+            if (i == 0 && w == 0) {
+                ascii = read;
+                CHECK_EQ(ascii.num_faces, list.num_faces);
+                CHECK(ascii.num_indices == list.num_indices &&
+                      memcmp(ascii.face_indices, list.face_indices,
+                             list.num_indices * sizeof(uint32_t)) == 0);
+                continue;
+            }
+            if (!same_lists(&ascii, &read))
+                mt_test_fail(__FILE__, __LINE__, "%s, window %zu: not the ASCII file's arrays",
+                             path, windows[w]);
+            mt_face_list_free(&read);
+        }
+        free(data);
+    }
+    mt_face_list_free(&ascii);
+    mt_face_list_free(&list);
+    mt_face_list_free(&grid);
+}
+
 static const mt_test_case cases[] = {
     {"exact_numbers_match_strtod", test_exact_numbers_match_strtod},
     {"exact_threads_errors_and_lines", test_exact_threads_errors_and_lines},
     {"exact_corpus_every_way", test_exact_corpus_every_way},
+    {"exact_binary_ply_fast_paths", test_exact_binary_ply_fast_paths},
 };
 const mt_test_table mt_tests_io_exact = {cases, sizeof cases / sizeof cases[0]};

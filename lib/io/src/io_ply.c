@@ -713,8 +713,22 @@ static void binary_run_of(const ply_elem *e, const ply_prop *props, binary_run *
     }
 }
 
+/* The data's byte order is this machine's: values can be copied as they are. */
+static int native_order(int be)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    return !be;
+#elif defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    return be;
+#else
+    (void)be;
+    return 0;
+#endif
+}
+
 /* Vertices [*item, *item + k) from the window: as many whole ones as it
- * holds, up to `limit`. */
+ * holds, up to `limit`. Vertices of x, y, z doubles only, in this machine's
+ * byte order, are the positions array's own layout: copied at once. */
 static void binary_run_verts(const binary_run *r, const unsigned char *d, size_t n, size_t *pos,
                              int be, uint64_t *item, uint64_t limit, double *positions)
 {
@@ -722,12 +736,42 @@ static void binary_run_verts(const binary_run *r, const unsigned char *d, size_t
     uint64_t k = (n - i) / r->stride;
     if (k > limit - *item) k = limit - *item;
     double *q = positions + 3 * *item;
+    if (r->stride == 3 * sizeof(double) && r->offset[1] == 8 && r->offset[2] == 16 &&
+        r->type[0] == PT_F64 && r->type[1] == PT_F64 && r->type[2] == PT_F64 && native_order(be)) {
+        if (k) memcpy(q, d + i, (size_t)k * r->stride);
+        *item += k;
+        *pos = i + (size_t)k * r->stride;
+        return;
+    }
     for (uint64_t j = 0; j < k; j++, i += r->stride, q += 3) {
         for (int c = 0; c < 3; c++)
             q[c] = r->type[c] == PT_NONE ? 0.0 : load_double(d + i + r->offset[c], r->type[c], be);
     }
     *item += k;
     *pos = i;
+}
+
+/* Triangles with a one-byte count and 32-bit indices in this machine's
+ * byte order, from window index i, while the index array has room: their
+ * indices are copied as they are (a signed index keeps its bits, as
+ * load_indices stores it). Returns the faces read; *pos moves past them. */
+static uint64_t binary_run_triangles(const unsigned char *d, size_t n, size_t *pos, uint64_t f,
+                                     uint64_t limit, mt__builder *b)
+{
+    enum { BYTES = 1 + 3 * 4 };
+    size_t i = *pos;
+    uint64_t k = (n - i) / BYTES, room = (b->cap_indices - b->num_indices) / 3;
+    if (k > limit - f) k = limit - f;
+    if (k > room) k = room;
+    uint32_t *out = b->indices ? b->indices + b->num_indices : NULL;
+    uint64_t j = 0;
+    for (; j < k && d[i] == 3; j++, i += BYTES) {
+        memcpy(out + 3 * j, d + i + 1, 3 * sizeof(uint32_t));
+        b->sizes[f + j] = 3;
+    }
+    b->num_indices += 3 * (size_t)j;
+    *pos = i;
+    return j;
 }
 
 /* Faces from the window, while whole ones of at most 2^16 entries are in
@@ -737,8 +781,13 @@ static int binary_run_faces(const binary_run *r, const unsigned char *d, size_t 
                             int be, uint64_t *item, uint64_t limit, mt__builder *b)
 {
     size_t i = *pos, csize = type_size[r->count_type], isize = type_size[r->index_type];
+    const int triangles = csize == 1 && isize == 4 && native_order(be);
     uint64_t f = *item;
     while (f < limit && n - i >= csize) {
+        if (triangles) {
+            f += binary_run_triangles(d, n, &i, f, limit, b);
+            if (f == limit || n - i < csize) break;
+        }
         int64_t count = load_int(d + i, r->count_type, be);
         if (count < 0 || count > (1 << 16) || (n - i - csize) / isize < (uint64_t)count) break;
         if (b->cap_indices - b->num_indices < (size_t)count &&
