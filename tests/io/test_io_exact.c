@@ -346,34 +346,39 @@ static void test_exact_corpus_every_way(void)
 /* Binary PLY read by its fast paths (x y z doubles copied whole, triangles
  * with a one-byte count and 32-bit indices copied as they are) gives the
  * arrays the ASCII PLY of the same list gives through the text reader, and
- * those the big-endian file gives through the per-value loop: triangles
- * among a quad and a pentagon, a negative and an out-of-range index,
- * coordinates that are not integers, windows that cut records anywhere. */
+ * those the big-endian file gives through the per-value loop: with a quad
+ * and a 16-gon (65 bytes, five triangles' worth) among the triangles, a
+ * negative and an out-of-range index, coordinates that are not integers,
+ * one thread or two, and windows that cut records anywhere. */
 static void test_exact_binary_ply_fast_paths(void)
 {
     mt_face_list grid, list;
-    CHECK_OK(mt_gen_grid(40, 30, true, &grid));
-    const uint32_t extra[] = {
-        4, 0, 1, 42, 41, 5, 2, 3, 44, 60, 43, 3, 7, 0xffffffffu, 8, 3, 9, 10, grid.num_verts + 3};
-    const uint32_t extra_faces = 4, extra_indices = 4 + 5 + 3 + 3;
-    CHECK_OK(mt_face_list_alloc(&list, grid.num_verts, grid.num_faces + extra_faces,
+    CHECK_OK(mt_gen_grid(160, 160, true, &grid));
+    const uint32_t q = grid.num_faces / 4;
+    /* before grid face `at`: the face `size` [v...] */
+    const struct {
+        uint32_t at, size, v[16];
+    } extra[] = {
+        {0, 4, {0, 1, 162, 161}},
+        {q, 16, {2, 3, 4, 5, 6, 7, 8, 9, 170, 169, 168, 167, 166, 165, 164, 163}},
+        {3 * q, 3, {7, 0xffffffffu, 8}},
+        {grid.num_faces, 3, {9, 10, grid.num_verts + 3}},
+        {grid.num_faces, 4, {11, 12, 173, 172}},
+    };
+    const size_t num_extra = sizeof extra / sizeof extra[0];
+    uint64_t extra_indices = 0;
+    for (size_t e = 0; e < num_extra; e++) extra_indices += extra[e].size;
+    CHECK_OK(mt_face_list_alloc(&list, grid.num_verts, grid.num_faces + (uint32_t)num_extra,
                                 grid.num_indices + extra_indices, NULL));
     for (uint32_t i = 0; i < 3 * grid.num_verts; i++)
         list.positions[i] = grid.positions[i] + 0.1 * i - 1e-3 / (i + 1);
-    /* the extra faces first, between, and after the grid's triangles */
     uint32_t f = 0;
     uint64_t k = 0;
     size_t e = 0;
     for (uint32_t g = 0; g <= grid.num_faces; g++) {
-        if (g == 0 || g == grid.num_faces / 2 || g == grid.num_faces) {
-            uint32_t n = extra[e++];
-            list.face_sizes[f++] = n;
-            for (uint32_t j = 0; j < n; j++) list.face_indices[k++] = extra[e++];
-            if (g == grid.num_faces) {
-                n = extra[e++];
-                list.face_sizes[f++] = n;
-                for (uint32_t j = 0; j < n; j++) list.face_indices[k++] = extra[e++];
-            }
+        for (; e < num_extra && extra[e].at == g; e++) {
+            list.face_sizes[f++] = extra[e].size;
+            for (uint32_t j = 0; j < extra[e].size; j++) list.face_indices[k++] = extra[e].v[j];
         }
         if (g == grid.num_faces) break;
         list.face_sizes[f++] = 3;
@@ -383,7 +388,10 @@ static void test_exact_binary_ply_fast_paths(void)
     CHECK_EQ(k, list.num_indices);
     static const mt_format formats[] = {MT_FORMAT_PLY_ASCII, MT_FORMAT_PLY_BINARY_LE,
                                         MT_FORMAT_PLY_BINARY_BE};
-    static const size_t windows[] = {0, 4096, 100};
+    static const struct {
+        unsigned threads;
+        size_t window;
+    } ways[] = {{0, 0}, {1, 0}, {2, (size_t)1 << 20}, {2, 4096}, {2, 100}};
     mt_face_list ascii;
     memset(&ascii, 0, sizeof ascii);
     for (size_t i = 0; i < 3; i++) {
@@ -395,10 +403,11 @@ static void test_exact_binary_ply_fast_paths(void)
         unsigned char *data = NULL;
         size_t size = 0;
         CHECK(io_test_slurp(path, &data, &size));
-        for (size_t w = 0; w < 3 && data; w++) {
+        for (size_t w = 0; w < sizeof ways / sizeof ways[0] && data; w++) {
             mt_read_options options;
             memset(&options, 0, sizeof options);
-            options.window_bytes = windows[w];
+            options.threads = ways[w].threads;
+            options.window_bytes = ways[w].window;
             mt_face_list read;
             CHECK_OK(mt_read_memory_with(data, size, MT_FORMAT_AUTO, path, &options, &read, &diag));
             if (i == 0 && w == 0) {
@@ -410,8 +419,9 @@ static void test_exact_binary_ply_fast_paths(void)
                 continue;
             }
             if (!same_lists(&ascii, &read))
-                mt_test_fail(__FILE__, __LINE__, "%s, window %zu: not the ASCII file's arrays",
-                             path, windows[w]);
+                mt_test_fail(__FILE__, __LINE__,
+                             "%s, threads %u, window %zu: not the ASCII file's arrays", path,
+                             ways[w].threads, ways[w].window);
             mt_face_list_free(&read);
         }
         free(data);
