@@ -72,6 +72,10 @@ extern const mt_cli_command mt_cli_cmd_archive;
 extern const mt_cli_command mt_cli_cmd_replay;
 extern const mt_cli_command mt_cli_cmd_render;
 
+/* `relative` resolved from the directory of this program (/proc/self/exe)
+ * into out; false without /proc or when it does not fit. */
+bool mt_cli_beside_program(const char *relative, char *out, size_t size);
+
 /* The commands of the archive module: how many, and the name of the i-th. */
 size_t mt_cli_module_count(void);
 const char *mt_cli_module_name(size_t i);

@@ -9,7 +9,6 @@
 #include <dlfcn.h>
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "cli.h"
 
@@ -20,20 +19,6 @@
 enum { MODULE_PATH_MAX = 4096 };
 
 static const char *const module_commands[] = {"archive", "replay", "render"};
-
-/* The module's path beside this program, into out. */
-static bool module_path(char *out, size_t size)
-{
-    char exe[MODULE_PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n <= 0) return false;
-    exe[n] = '\0';
-    char *slash = strrchr(exe, '/');
-    if (!slash) return false;
-    *slash = '\0';
-    int len = snprintf(out, size, "%s/%s", exe, MESHTOPO_CLI_MODULE_FROM_BINDIR);
-    return len > 0 && (size_t)len < size;
-}
 
 size_t mt_cli_module_count(void)
 {
@@ -56,7 +41,7 @@ const mt_cli_command *mt_cli_module_command(const char *name, char *err, size_t 
     static void *module;
     char path[MODULE_PATH_MAX];
     if (!module) {
-        if (!module_path(path, sizeof path)) {
+        if (!mt_cli_beside_program(MESHTOPO_CLI_MODULE_FROM_BINDIR, path, sizeof path)) {
             snprintf(err, err_size, "cannot find this program's directory (/proc/self/exe)");
             return NULL;
         }

@@ -62,21 +62,6 @@ static bool file_readable(const char *path)
     return path[0] && access(path, R_OK) == 0;
 }
 
-/* The jar installed with this program: MESHTOPO_MSGS_JAR_FROM_BINDIR from
- * the directory of /proc/self/exe, into out. false without /proc. */
-static bool jar_next_to_program(char *out, size_t size)
-{
-    char exe[SPY_PATH_MAX];
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (n <= 0) return false;
-    exe[n] = '\0';
-    char *slash = strrchr(exe, '/');
-    if (!slash) return false;
-    *slash = '\0';
-    int len = snprintf(out, size, "%s/%s", exe, MESHTOPO_MSGS_JAR_FROM_BINDIR);
-    return len > 0 && (size_t)len < size;
-}
-
 /* The message jar: $MESHTOPO_MSGS_JAR when set (and then nothing else), else
  * the build tree's, else the one installed with this program, else the one
  * at the configured prefix. NULL after printing what was looked for. */
@@ -91,7 +76,10 @@ static const char *msgs_jar_find(void)
         return NULL;
     }
     if (file_readable(MESHTOPO_MSGS_JAR_BUILD)) return MESHTOPO_MSGS_JAR_BUILD;
-    if (jar_next_to_program(beside, sizeof beside) && file_readable(beside)) return beside;
+    /* the jar installed with this program */
+    if (mt_cli_beside_program(MESHTOPO_MSGS_JAR_FROM_BINDIR, beside, sizeof beside) &&
+        file_readable(beside))
+        return beside;
     if (file_readable(MESHTOPO_MSGS_JAR_INSTALLED)) return MESHTOPO_MSGS_JAR_INSTALLED;
     mt_cli_error("spy",
                  "meshtopo-msgs.jar (the message types for lcm-spy) not found: looked at "
