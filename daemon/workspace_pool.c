@@ -4,7 +4,6 @@
  * (--prepare-faces). Any thread. */
 #include "workspace_pool.h"
 
-#include <math.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -83,7 +82,8 @@ mt_status mtd_workspace_pool_prepare(mtd_workspace_pool *pool, uint32_t faces, m
     mt_diag_clear(diag);
     if (faces == 0) return MT_OK;
     /* side x side cells of two triangles: at least `faces` triangles */
-    const uint32_t side = (uint32_t)ceil(sqrt((double)faces / 2.0));
+    uint32_t side = 1;
+    while (2 * (uint64_t)side * side < faces) side++;
     mt_face_list grid;
     mt_status s = mt_gen_grid(side, side, true, &grid);
     if (s != MT_OK) {

@@ -13,7 +13,8 @@
 #include "cli.h"
 
 #ifndef MESHTOPO_CLI_MODULE_FROM_BINDIR
-#define MESHTOPO_CLI_MODULE_FROM_BINDIR "../lib/meshtopo/meshtopo-archive-commands.so"
+/* the module's path from the program's directory, set by tools/CMakeLists.txt */
+#error "MESHTOPO_CLI_MODULE_FROM_BINDIR is not set"
 #endif
 
 enum { MODULE_PATH_MAX = 4096 };
