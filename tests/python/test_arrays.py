@@ -122,6 +122,28 @@ def test_a_file_is_read_into_views_without_copy():
     assert meshtopo.Mesh(fl).report()["V"] == len(fl.positions)
 
 
+def test_mesh_read_keeps_the_positions_the_reader_read(monkeypatch):
+    """Mesh.read builds with mt_mesh_build_taking_positions: the mesh's
+    positions are the very array the reader filled, holding the file's
+    values, and stay valid once the reader's list is gone."""
+    read = meshtopo.mesh.read_face_list
+    filled = []
+
+    def spy(path):
+        fl = read(path)
+        filled.append((addr(fl.positions), fl.positions.copy()))
+        return fl
+
+    monkeypatch.setattr(meshtopo.mesh, "read_face_list", spy)
+    mesh = meshtopo.Mesh.read(corpus_file("npm_bunny"))
+    gc.collect()
+    garbage = [np.full(4096, 7.0) for _ in range(64)]  # reuse freed memory, if any
+    assert addr(mesh.positions) == filled[0][0]
+    assert np.array_equal(mesh.positions, filled[0][1])
+    assert mesh.report()["V"] == len(filled[0][1])
+    del garbage
+
+
 def test_closed_mesh_refuses_queries_but_views_survive():
     positions, faces = grid(2)
     with meshtopo.Mesh(positions, faces) as mesh:

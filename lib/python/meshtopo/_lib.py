@@ -124,6 +124,8 @@ mt_defect_to_records = _declare("mt_defect_to_records", None, c_ptr, c_size, c_p
 
 mt_mesh_build = _declare("mt_mesh_build", c_int, P(FaceListStruct), P(BuildOptions), P(c_ptr),
                          P(Diag))
+mt_mesh_build_taking_positions = _declare("mt_mesh_build_taking_positions", c_int,
+                                          P(FaceListStruct), P(BuildOptions), P(c_ptr), P(Diag))
 mt_mesh_destroy = _declare("mt_mesh_destroy", None, c_ptr)
 mt_mesh_report = _declare("mt_mesh_report", P(ReportStruct), c_ptr)
 mt_mesh_num_verts = _declare("mt_mesh_num_verts", c_u32, c_ptr)

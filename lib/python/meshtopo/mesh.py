@@ -73,23 +73,33 @@ class Mesh:
         else:
             face_list = FaceList(positions, faces, counts=counts, indices=indices,
                                  num_verts=num_verts)
+        self._build(_lib.mt_mesh_build, face_list.struct(), strict, threads)
+        self.file_name = file_name
+
+    def _build(self, build, struct, strict, threads):
         options = _lib.BuildOptions()
         options.strict = bool(strict)
         options.threads = _u32("threads", threads)
         pointer = _lib.c_ptr()
         diag = _lib.Diag()
-        code = _lib.mt_mesh_build(face_list.struct(), options, pointer, diag)
+        code = build(struct, options, pointer, diag)
         check(code, diag)
         self._handle = _Handle(pointer.value)
         self._defects = None
-        self.file_name = file_name
 
     @classmethod
     def read(cls, path, *, strict=False, threads=0):
         """Reads an OFF, OBJ, PLY or STL file (gzip too) and builds it, as
-        `meshtopo inspect FILE` does; report()["file"] is the file's name."""
-        return cls(read_face_list(path), strict=strict, threads=threads,
-                   file_name=os.path.basename(os.fsdecode(path)))
+        `meshtopo inspect FILE` does; report()["file"] is the file's name.
+        The mesh keeps the positions the reader read instead of a copy."""
+        face_list = read_face_list(path)
+        mesh = cls.__new__(cls)
+        # On the reader's own list, which then no longer frees the positions
+        # (the views of face_list, dropped here, would not see them go).
+        mesh._build(_lib.mt_mesh_build_taking_positions, face_list._owner.struct, strict,
+                    threads)
+        mesh.file_name = os.path.basename(os.fsdecode(path))
+        return mesh
 
     # ---- lifetime -----------------------------------------------------------
 
@@ -127,8 +137,9 @@ class Mesh:
 
     @property
     def positions(self):
-        """(V, 3) float64, read-only view of the mesh's copy of the positions
-        (None without geometry)."""
+        """(V, 3) float64, read-only view of the mesh's positions: its copy
+        of those it was built from, or for Mesh.read those the file was read
+        into (None without geometry)."""
         v = _lib.MeshView()
         _lib.mt_mesh_get_view(self._ptr, v)
         if not v.positions:
