@@ -28,33 +28,7 @@ for tool in lcm-logger lcm-logplayer python3; do
     fi
 done
 
-# The URL the README gives for recording: every process asks for a 4 MiB
-# receive buffer (the kernel grants twice the request, capped at
-# net.core.rmem_max, which is left alone).
-echo "net.core.rmem_max $(cat /proc/sys/net/core/rmem_max)," \
-    "net.core.rmem_default $(cat /proc/sys/net/core/rmem_default)"
-url="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
-export MESHTOPO_LCM_URL=$url LCM_DEFAULT_URL=$url
-unset MESHTOPO_PREFIX
-
-rm -rf "$work"
-mkdir -p "$work" || exit 1
-log=$work/session.lcmlog daemon_log=$work/meshtopod.log logger_log=$work/lcm-logger.log
-logger_pid='' daemon_pid=''
-
-. "$here/../netns/stop_pid.sh"
-cleanup() {
-    [ -n "$daemon_pid" ] && mt_stop_pid "$daemon_pid" TERM meshtopod
-    [ -n "$logger_pid" ] && mt_stop_pid "$logger_pid" INT lcm-logger
-}
-trap cleanup EXIT
-
-fail() {
-    echo "FAIL: $*" >&2
-    echo "meshtopod log (last 20 lines):" >&2
-    tail -20 "$daemon_log" >&2
-    exit 1
-}
+. "$here/lcm_log_env.sh"
 
 start_daemon() {
     "$meshtopod" --lcm-url "$url" --heartbeat-ms 200 --workers 2 2>>"$daemon_log" &

@@ -25,36 +25,8 @@ if ! command -v lcm-logger >/dev/null; then
     exit 77
 fi
 
-# A window of chunks or answer parts is megabytes; the kernel's default UDP
-# receive buffer (about 200 KiB) would drop most of it at the logger. Every
-# process asks for 4 MiB in the URL (capped at net.core.rmem_max) like
-# scripts/demo-network.sh; the kernel's settings are left alone (they are not
-# the namespace's own on every kernel).
-echo "net.core.rmem_max $(cat /proc/sys/net/core/rmem_max)," \
-    "net.core.rmem_default $(cat /proc/sys/net/core/rmem_default)"
-url="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
-export MESHTOPO_LCM_URL=$url LCM_DEFAULT_URL=$url
-unset MESHTOPO_PREFIX
+. "$here/lcm_log_env.sh"
 prefix=MESHTOPO_
-
-rm -rf "$work"
-mkdir -p "$work" || exit 1
-log=$work/session.lcmlog daemon_log=$work/meshtopod.log logger_log=$work/lcm-logger.log
-logger_pid= daemon_pid=
-
-. "$here/../netns/stop_pid.sh"
-cleanup() {
-    [ -n "$daemon_pid" ] && mt_stop_pid "$daemon_pid" TERM meshtopod
-    [ -n "$logger_pid" ] && mt_stop_pid "$logger_pid" INT lcm-logger
-}
-trap cleanup EXIT
-
-fail() {
-    echo "FAIL: $*" >&2
-    echo "meshtopod log (last 30 lines):" >&2
-    tail -30 "$daemon_log" >&2
-    exit 1
-}
 
 # Runs the CLI with a time limit, its output to the session's files.
 cli() {

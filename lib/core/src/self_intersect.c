@@ -430,7 +430,10 @@ static void build_leaves(void *ctx, uint32_t t, uint32_t threads)
             const bool empty = l * LEAF_SIZE + slot >= c->num_tris; /* past the last */
             box one;
             for (int k = 0; k < 3; k++) {
-                if (empty) lb->lo[k][slot] = INFINITY, lb->hi[k][slot] = -INFINITY;
+                if (empty) {
+                    lb->lo[k][slot] = INFINITY;
+                    lb->hi[k][slot] = -INFINITY;
+                }
                 one.lo[k] = lb->lo[k][slot];
                 one.hi[k] = lb->hi[k][slot];
             }
