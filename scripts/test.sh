@@ -70,8 +70,10 @@ step_asan() {
     # buffers, which LeakSanitizer then reports as leaks of an unknown
     # module. Preloading that library keeps it, and them, reachable, as in
     # a normal run.
+    # awk reads the whole list: quitting at the match would end ldconfig
+    # with SIGPIPE, which pipefail turns into this step's failure.
     local blosc
-    blosc=$(ldconfig -p | awk '/libblosc\.so\.1 /{print $NF; exit}')
+    blosc=$(ldconfig -p | awk '/libblosc\.so\.1 / && !path {path = $NF} END {print path}')
     LD_PRELOAD=${blosc} \
         ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:check_initialization_order=1 \
         UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 run_ctest "$dir"
@@ -157,7 +159,7 @@ step_fuzz() {
             tail -n 40 "$logs/$name.log"
         fi
     done
-    if [ "$failed" -ne 0 ] || [ -n "$(find "$crashes" -type f | head -1)" ]; then
+    if [ "$failed" -ne 0 ] || [ -n "$(find "$crashes" -type f -print -quit)" ]; then
         echo
         echo "Crashing inputs (reproduce with: $dir/tests/fuzz/<target> FILE; once fixed, commit"
         echo "each into tests/fuzz/regressions/<target>/ so the normal build replays it):"

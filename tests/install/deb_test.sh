@@ -54,7 +54,7 @@ ls -l "$packages"/*.deb
 # The one package named $1 (its file), failing when it is missing.
 deb_of() {
     local found
-    found=$(find "$packages" -maxdepth 1 -name "$1_*.deb" | head -1)
+    found=$(find "$packages" -maxdepth 1 -name "$1_*.deb" -print -quit)
     [ -n "$found" ] || fail "no package $1 among $(ls "$packages")"
     printf '%s\n' "$found"
 }
