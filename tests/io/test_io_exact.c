@@ -431,10 +431,71 @@ static void test_exact_binary_ply_fast_paths(void)
     mt_face_list_free(&grid);
 }
 
+/* The size of face f in the mixed file: runs of triangles, of quads, of
+ * random sizes 3 to 6, and of triangles with a rare octagon, so that the
+ * parts of a window meet faces of other sizes than those just before them. */
+static uint32_t mixed_face_size(uint32_t f)
+{
+    if (f < 100000) return 3;
+    if (f < 150000) return 4;
+    if (f < 220000) return 3 + (uint32_t)(next_rand() % 4);
+    if (f < 260000) return 3;
+    return f % 1000 == 999 ? 8 : 3;
+}
+
+/* Faces of many sizes in files large enough to be cut into parts: every
+ * part that writes straight into the face list at a guessed index (too
+ * far: a gap closed afterwards; too near: the part stops and the rest is
+ * read again) gives the written arrays exactly, as OFF and as ASCII PLY,
+ * on one to four threads. */
+static void test_exact_mixed_face_sizes(void)
+{
+    const uint32_t num_verts = 1000, num_faces = 300000;
+    uint32_t *sizes = malloc(num_faces * sizeof *sizes);
+    CHECK(sizes != NULL);
+    if (!sizes) return;
+    uint64_t num_indices = 0;
+    for (uint32_t f = 0; f < num_faces; f++) num_indices += sizes[f] = mixed_face_size(f);
+    mt_face_list list;
+    CHECK_OK(mt_face_list_alloc(&list, num_verts, num_faces, num_indices, NULL));
+    for (uint32_t i = 0; i < 3 * num_verts; i++) list.positions[i] = (double)(i % 97) - 48;
+    uint64_t k = 0;
+    for (uint32_t f = 0; f < num_faces; f++) {
+        list.face_sizes[f] = sizes[f];
+        for (uint32_t j = 0; j < sizes[f]; j++)
+            list.face_indices[k++] = (f * 7 + j * 13) % num_verts;
+    }
+    free(sizes);
+    static const mt_format formats[] = {MT_FORMAT_OFF, MT_FORMAT_PLY_ASCII};
+    static const struct {
+        unsigned threads;
+        size_t window;
+    } ways[] = {{1, 0}, {2, 0}, {3, 0}, {4, 0}, {2, (size_t)3 << 20}};
+    for (size_t i = 0; i < 2; i++) {
+        const char *path = io_test_path(i == 0 ? "mixed.off" : "mixed.ply");
+        mt_diag diag;
+        CHECK_OK(mt_write_file(path, formats[i], &list, &diag));
+        for (size_t w = 0; w < sizeof ways / sizeof ways[0]; w++) {
+            mt_read_options options;
+            memset(&options, 0, sizeof options);
+            options.threads = ways[w].threads;
+            options.window_bytes = ways[w].window;
+            mt_face_list read;
+            CHECK_OK(mt_read_file_with(path, MT_FORMAT_AUTO, &options, &read, &diag));
+            if (!same_lists(&list, &read))
+                mt_test_fail(__FILE__, __LINE__, "%s, threads %u, window %zu: other arrays", path,
+                             ways[w].threads, ways[w].window);
+            mt_face_list_free(&read);
+        }
+    }
+    mt_face_list_free(&list);
+}
+
 static const mt_test_case cases[] = {
     {"exact_numbers_match_strtod", test_exact_numbers_match_strtod},
     {"exact_threads_errors_and_lines", test_exact_threads_errors_and_lines},
     {"exact_corpus_every_way", test_exact_corpus_every_way},
     {"exact_binary_ply_fast_paths", test_exact_binary_ply_fast_paths},
+    {"exact_mixed_face_sizes", test_exact_mixed_face_sizes},
 };
 const mt_test_table mt_tests_io_exact = {cases, sizeof cases / sizeof cases[0]};

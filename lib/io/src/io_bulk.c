@@ -8,8 +8,14 @@
  * those of the general loop alone. Numbers: mt__scan_decimal, else
  * mt__parse_double (strtod), the general loop's own functions. A run large
  * enough is cut at line ends into parts; part 0 is parsed on the calling
- * thread into the face list, the others on threads of their own into
- * scratch arrays appended in order once part 0 ends where part 1 starts. */
+ * thread into the face list, the others on threads of their own. Where the
+ * face list already has room, each part writes straight into its own
+ * region of it: a line is a record, so a part's first record follows the
+ * lines before it, and its first index is guessed from the faces read just
+ * before (exact for meshes of one face size; a gap left by a wrong guess is
+ * closed afterwards, and an index region too small stops the part there).
+ * Otherwise a part parses into scratch arrays appended in order once part 0
+ * ends where part 1 starts. */
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -47,7 +53,10 @@ typedef struct bulk_part {
     size_t begin, end; /* [begin, end): whole lines */
     size_t pos;        /* where parsing is */
     uint64_t max;      /* records wanted at most */
-    bulk_out out;      /* workers: scratch arrays of their own */
+    bulk_out out;      /* where records go: a region of the face list, or scratch */
+    bulk_out scratch;  /* workers: arrays of their own, kept from run to run */
+    int direct;        /* out is a region of the face list */
+    size_t index_at;   /* direct: where out.indices starts in the face list's indices */
     part_end why;
     int nomem;
     atomic_int *cancel;
@@ -56,7 +65,7 @@ typedef struct bulk_part {
 } bulk_part;
 
 struct mt__bulk {
-    bulk_part parts[MT__BULK_MAX_THREADS]; /* parts[0].out is unused: it aliases the builder */
+    bulk_part parts[MT__BULK_MAX_THREADS]; /* parts[0].scratch is unused */
 };
 
 /* ---- One line ----------------------------------------------------------- */
@@ -145,11 +154,18 @@ static inline int scan_number(const unsigned char *d, size_t n, size_t *pos, dou
     return 1;
 }
 
+/* What parse_line found. */
+typedef enum line_result {
+    LINE_OTHER,   /* a line the bulk parser leaves to the general loop */
+    LINE_READ,    /* a record, now in out */
+    LINE_NO_ROOM, /* a face with more indices than out has room for */
+} line_result;
+
 /* Parses the line at *pos (the start of a line) into out, which has room
- * for one vertex, or one face of MT__BULK_MAX_LIST indices. Returns 1 with
- * *pos past its '\n', or 0 (out's counts unchanged). */
-static int parse_line(const mt__bulk_spec *spec, const unsigned char *d, size_t n, size_t *pos,
-                      bulk_out *out)
+ * for one vertex, or one face. Returns LINE_READ with *pos past its '\n';
+ * otherwise out's counts are unchanged. */
+static line_result parse_line(const mt__bulk_spec *spec, const unsigned char *d, size_t n,
+                              size_t *pos, bulk_out *out)
 {
     size_t i = *pos;
     double xyz[3] = {0, 0, 0};
@@ -159,29 +175,31 @@ static int parse_line(const mt__bulk_spec *spec, const unsigned char *d, size_t 
         unsigned char op = spec->ops[o];
         while (i < n && is_hspace(d[i])) i++;
         if (i >= n || (op != MT__BULK_REST && mt__is_space(d[i])))
-            return 0; /* the line ends before the item, or '\v' '\f' */
+            return LINE_OTHER; /* the line ends before the item, or '\v' '\f' */
         switch (op) {
             case MT__BULK_X:
             case MT__BULK_Y:
             case MT__BULK_Z:
-                if (!scan_number(d, n, &i, &xyz[op - MT__BULK_X])) return 0;
+                if (!scan_number(d, n, &i, &xyz[op - MT__BULK_X])) return LINE_OTHER;
                 break;
             case MT__BULK_TOKEN:
                 i = token_end(d, n, i);
-                if (i >= n) return 0;
+                if (i >= n) return LINE_OTHER;
                 break;
             case MT__BULK_INDICES:
             case MT__BULK_LIST: {
                 uint32_t count;
-                if (!scan_count(d, n, &i, &count) || count > MT__BULK_MAX_LIST) return 0;
+                if (!scan_count(d, n, &i, &count) || count > MT__BULK_MAX_LIST) return LINE_OTHER;
+                if (op == MT__BULK_INDICES && count > out->cap_indices - out->num_indices)
+                    return LINE_NO_ROOM;
                 for (uint32_t j = 0; j < count; j++) {
                     while (i < n && is_hspace(d[i])) i++;
-                    if (i >= n || mt__is_space(d[i])) return 0;
+                    if (i >= n || mt__is_space(d[i])) return LINE_OTHER;
                     if (op == MT__BULK_INDICES) {
-                        if (!scan_index(d, n, &i, &idx[j])) return 0;
+                        if (!scan_index(d, n, &i, &idx[j])) return LINE_OTHER;
                     } else {
                         i = token_end(d, n, i);
-                        if (i >= n) return 0;
+                        if (i >= n) return LINE_OTHER;
                     }
                 }
                 if (op == MT__BULK_INDICES) size = count;
@@ -189,23 +207,25 @@ static int parse_line(const mt__bulk_spec *spec, const unsigned char *d, size_t 
             }
             case MT__BULK_REST: {
                 /* anything to the end of the line, which only '\n' or "\r\n"
-                 * may end (the general loop stops at a lone '\r') */
+                 * may end (the general loop stops at a lone '\r'); most
+                 * lines have nothing left */
+                if (d[i] == '\n' || d[i] == '\r') break;
                 const unsigned char *nl = memchr(d + i, '\n', n - i);
-                if (!nl) return 0;
+                if (!nl) return LINE_OTHER;
                 size_t e = (size_t)(nl - d);
                 const unsigned char *cr = memchr(d + i, '\r', e - i);
-                if (cr && cr != nl - 1) return 0;
+                if (cr && cr != nl - 1) return LINE_OTHER;
                 i = cr ? e - 1 : e;
                 break;
             }
             default:
-                return 0;
+                return LINE_OTHER;
         }
     }
     /* the end of the line: only spaces and tabs, then '\n' or "\r\n" */
     while (i < n && is_hspace(d[i])) i++;
     if (i < n && d[i] == '\r') i++;
-    if (i >= n || d[i] != '\n') return 0;
+    if (i >= n || d[i] != '\n') return LINE_OTHER;
     *pos = i + 1;
     if (spec->faces) {
         out->sizes[out->num_faces++] = size;
@@ -216,16 +236,17 @@ static int parse_line(const mt__bulk_spec *spec, const unsigned char *d, size_t 
         p[1] = xyz[1];
         p[2] = xyz[2];
     }
-    return 1;
+    return LINE_READ;
 }
 
 /* ---- A part: lines until its end, `max` records or full output --------- */
 
+/* Room for one more record (a face's indices are checked once its count
+ * is read). */
 static int has_room(const mt__bulk_spec *spec, const bulk_out *out)
 {
     if (!spec->faces) return out->num_verts < out->cap_verts;
-    return out->num_faces < out->cap_faces &&
-           out->cap_indices - out->num_indices >= MT__BULK_MAX_LIST;
+    return out->num_faces < out->cap_faces;
 }
 
 static void parse_part(bulk_part *p)
@@ -247,8 +268,9 @@ static void parse_part(bulk_part *p)
             p->why = END_OTHER;
             return;
         }
-        if (!parse_line(spec, p->d, p->end, &p->pos, &p->out)) {
-            p->why = END_OTHER;
+        line_result r = parse_line(spec, p->d, p->end, &p->pos, &p->out);
+        if (r != LINE_READ) {
+            p->why = r == LINE_NO_ROOM ? END_ROOM : END_OTHER;
             return;
         }
         records++;
@@ -273,7 +295,7 @@ static int scratch_grow(const mt__bulk_spec *spec, bulk_out *out)
         out->sizes = p;
         out->cap_faces = cap;
     }
-    if (out->cap_indices - out->num_indices < MT__BULK_MAX_LIST) {
+    if (out->cap_indices - out->num_indices < MT__BULK_MAX_LIST) { /* room for any face */
         size_t cap = out->cap_indices < 16384 ? 32768 : 2 * out->cap_indices;
         uint32_t *p = realloc(out->indices, cap * sizeof(uint32_t));
         if (!p) return 0;
@@ -291,7 +313,7 @@ static void *worker_main(void *arg)
     mt__c_locale_enter(&locale);
     for (;;) {
         parse_part(p);
-        if (p->why != END_ROOM) break;
+        if (p->why != END_ROOM || p->direct) break; /* a region of the face list cannot grow */
         if (!scratch_grow(p->spec, &p->out)) {
             p->nomem = 1;
             p->why = END_OTHER;
@@ -304,20 +326,25 @@ static void *worker_main(void *arg)
 
 /* ---- Part 0: into the face list ----------------------------------------- */
 
-/* out as a view of the builder's arrays from record `first` on. */
-static void alias_builder(const mt__bulk_spec *spec, mt__builder *b, uint64_t first, bulk_out *out)
+/* out as a view of the builder's arrays from record `rec` and index `index`
+ * on, up to record rec_end and index index_end or the arrays' ends. */
+static void alias_builder(const mt__bulk_spec *spec, const mt__builder *b, size_t rec, size_t index,
+                          size_t rec_end, size_t index_end, bulk_out *out)
 {
     memset(out, 0, sizeof *out); /* no room where an array is not there yet */
     if (!spec->faces) {
-        if (!b->positions) return;
-        out->positions = b->positions + 3 * first;
-        out->cap_verts = b->cap_verts - (size_t)first;
+        size_t cap = rec_end < b->cap_verts ? rec_end : b->cap_verts;
+        if (!b->positions || rec >= cap) return;
+        out->positions = b->positions + 3 * rec;
+        out->cap_verts = cap - rec;
     } else {
-        if (!b->sizes || !b->indices) return;
-        out->sizes = b->sizes + first;
-        out->cap_faces = b->cap_faces - (size_t)first;
-        out->indices = b->indices + b->num_indices;
-        out->cap_indices = b->cap_indices - b->num_indices;
+        size_t cap = rec_end < b->cap_faces ? rec_end : b->cap_faces;
+        size_t index_cap = index_end < b->cap_indices ? index_end : b->cap_indices;
+        if (!b->sizes || !b->indices || rec >= cap || index > index_cap) return;
+        out->sizes = b->sizes + rec;
+        out->cap_faces = cap - rec;
+        out->indices = b->indices + index;
+        out->cap_indices = index_cap - index;
     }
 }
 
@@ -334,17 +361,22 @@ static int builder_grow(const mt__bulk_spec *spec, mt__builder *b, uint64_t done
 }
 
 /* Part 0 on the calling thread, writing into the builder from record
- * `first` on; returns the records it parsed. */
-static uint64_t parse_first(bulk_part *p, mt__builder *b, uint64_t first, uint64_t declared)
+ * `first` on, up to record rec_end and index index_end when other parts
+ * write after it (the builder then must not move: part 0 stops when its
+ * region is full); returns the records it parsed. */
+static uint64_t parse_first(bulk_part *p, mt__builder *b, uint64_t first, uint64_t declared,
+                            size_t rec_end, size_t index_end)
 {
+    int may_grow = rec_end == SIZE_MAX;
     uint64_t done = 0, limit = p->max;
     for (;;) {
-        alias_builder(p->spec, b, first + done, &p->out);
+        alias_builder(p->spec, b, (size_t)(first + done), b->num_indices, rec_end, index_end,
+                      &p->out);
         p->max = limit - done;
         parse_part(p);
         done += p->spec->faces ? p->out.num_faces : p->out.num_verts;
         if (p->spec->faces) b->num_indices += p->out.num_indices;
-        if (p->why != END_ROOM) break;
+        if (p->why != END_ROOM || !may_grow) break;
         if (!builder_grow(p->spec, b, first + done, declared)) {
             p->why = END_OTHER;
             break;
@@ -352,6 +384,63 @@ static uint64_t parse_first(bulk_part *p, mt__builder *b, uint64_t first, uint64
     }
     p->max = limit;
     return done;
+}
+
+/* ---- The other parts: straight into the face list, or into scratch ------ */
+
+/* Indices in `lines` faces after record `first`, guessed from the faces
+ * before it: exactly their size times `lines` when they all have one size,
+ * else their mean with some slack (a gap is closed once the parts end). */
+static size_t guess_indices(const mt__builder *b, uint64_t first, uint64_t lines)
+{
+    size_t seen = first < 256 ? (size_t)first : 256;
+    if (seen == 0) return 3 * (size_t)lines;
+    uint64_t sum = 0;
+    uint32_t lo = UINT32_MAX, hi = 0;
+    for (size_t r = (size_t)first - seen; r < first; r++) {
+        uint32_t size = b->sizes[r];
+        sum += size;
+        lo = size < lo ? size : lo;
+        hi = size > hi ? size : hi;
+    }
+    if (lo == hi) return (size_t)(lo * lines);
+    return (size_t)(sum * lines / seen + lines / 8 + MT__BULK_MAX_LIST);
+}
+
+/* Makes parts 1 and later write straight into b, each at its place, when b has
+ * (or grows as the reader would to) room for them; returns 1 then. A part's
+ * first record follows the lines of the parts before it: when those are
+ * whole, each line was a record. *rec_end, *index_end: part 0's region. */
+static int place_parts(const mt__bulk_spec *spec, mt__builder *b, bulk_part *pp, unsigned parts,
+                       uint64_t first, uint64_t declared, size_t *rec_end, size_t *index_end)
+{
+    size_t rec[MT__BULK_MAX_THREADS + 1], index[MT__BULK_MAX_THREADS + 1];
+    uint64_t lines = 0;
+    for (unsigned t = 1; t < parts; t++) {
+        lines += mt__count_newlines(pp[t - 1].d + pp[t - 1].begin, pp[t - 1].end - pp[t - 1].begin);
+        rec[t] = (size_t)(first + lines);
+    }
+    /* the lines of the last part, about those of the others */
+    uint64_t all_lines = lines + lines / (parts - 1);
+    if (!builder_grow(spec, b, first + lines, declared)) return 0;
+    if (spec->faces &&
+        !mt__builder_reserve_indices(b, b->num_indices + guess_indices(b, first, all_lines)))
+        return 0;
+    rec[parts] = spec->faces ? b->cap_faces : b->cap_verts;
+    index[parts] = b->cap_indices;
+    for (unsigned t = 1; t < parts; t++) {
+        if (rec[t] >= rec[parts]) return 0;
+        index[t] = spec->faces ? b->num_indices + guess_indices(b, first, rec[t] - first) : 0;
+        if (index[t] > index[parts]) return 0;
+    }
+    for (unsigned t = 1; t < parts; t++) {
+        alias_builder(spec, b, rec[t], index[t], rec[t + 1], index[t + 1], &pp[t].out);
+        pp[t].index_at = index[t];
+        pp[t].direct = 1;
+    }
+    *rec_end = rec[1];
+    *index_end = index[1];
+    return 1;
 }
 
 /* Appends k records of a worker's scratch to the builder from record
@@ -377,6 +466,18 @@ static int append_part(const bulk_part *p, uint64_t k, mt__builder *b, uint64_t 
     memcpy(b->indices + b->num_indices, p->out.indices, nidx * sizeof(uint32_t));
     b->num_indices += nidx;
     return 1;
+}
+
+/* Takes the first k records of a part that wrote straight into b: they are
+ * in place but for a gap before their indices, closed here. */
+static void take_direct(const bulk_part *p, uint64_t k, mt__builder *b)
+{
+    if (!p->spec->faces) return;
+    size_t nidx = 0;
+    for (uint64_t r = 0; r < k; r++) nidx += p->out.sizes[r];
+    if (p->index_at != b->num_indices)
+        memmove(b->indices + b->num_indices, b->indices + p->index_at, nidx * sizeof(uint32_t));
+    b->num_indices += nidx;
 }
 
 /* The index just past the k-th '\n' of [i, end) (there are k or more). */
@@ -427,12 +528,18 @@ static uint64_t run_parts(const mt__io_src *src, const mt__bulk_spec *spec, bulk
         p->nomem = 0;
         p->cancel = parts > 1 ? &cancel : NULL;
         p->started = 0;
-        if (t > 0) {
-            p->out.num_verts = p->out.num_faces = p->out.num_indices = 0;
-            p->started = pthread_create(&p->thread, NULL, worker_main, p) == 0;
+        p->direct = 0;
+    }
+    size_t rec_end = SIZE_MAX, index_end = SIZE_MAX;
+    if (parts > 1 && !place_parts(spec, b, pp, parts, first, declared, &rec_end, &index_end)) {
+        for (unsigned t = 1; t < parts; t++) {
+            pp[t].out = pp[t].scratch;
+            pp[t].out.num_verts = pp[t].out.num_faces = pp[t].out.num_indices = 0;
         }
     }
-    uint64_t done = parse_first(&pp[0], b, first, declared);
+    for (unsigned t = 1; t < parts; t++)
+        pp[t].started = pthread_create(&pp[t].thread, NULL, worker_main, &pp[t]) == 0;
+    uint64_t done = parse_first(&pp[0], b, first, declared, rec_end, index_end);
     int whole = pp[0].why == END_DONE && pp[0].pos == pp[0].end && done < max;
     if (!whole) atomic_store(&cancel, 1);
     *at = pp[0].pos;
@@ -442,10 +549,13 @@ static uint64_t run_parts(const mt__io_src *src, const mt__bulk_spec *spec, bulk
             pthread_join(p->thread, NULL);
         else if (whole)
             worker_main(p);
+        if (!p->direct) p->scratch = p->out; /* keeps what its arrays grew to */
         if (!whole) continue;
         uint64_t parsed = spec->faces ? p->out.num_faces : p->out.num_verts;
         uint64_t got = parsed < max - done ? parsed : max - done;
-        if (!append_part(p, got, b, first + done, declared)) {
+        if (p->direct) {
+            take_direct(p, got, b);
+        } else if (!append_part(p, got, b, first + done, declared)) {
             whole = 0;
             continue;
         }
@@ -498,9 +608,9 @@ void mt__bulk_free(mt__bulk *bulk)
 {
     if (!bulk) return;
     for (unsigned t = 1; t < MT__BULK_MAX_THREADS; t++) { /* parts[0] writes into the builder */
-        free(bulk->parts[t].out.positions);
-        free(bulk->parts[t].out.sizes);
-        free(bulk->parts[t].out.indices);
+        free(bulk->parts[t].scratch.positions);
+        free(bulk->parts[t].scratch.sizes);
+        free(bulk->parts[t].scratch.indices);
     }
     free(bulk);
 }
