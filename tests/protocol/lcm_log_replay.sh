@@ -52,16 +52,7 @@ for m in json.load(sys.stdin)["meshes"]:
         print(m["num_verts"], m["num_faces"], m["content_hash"])'
 }
 
-# A 316 x 316 grid of squares cut in two: 100,489 vertices, 199,712
-# triangles, 5.6 MB of content: about 100 mesh_chunk_t datagrams.
-awk -v n=317 'BEGIN {
-    print "OFF"; print n * n, 2 * (n - 1) * (n - 1), 0
-    for (j = 0; j < n; j++) for (i = 0; i < n; i++) printf "%d %d 0\n", i, j
-    for (j = 0; j < n - 1; j++) for (i = 0; i < n - 1; i++) {
-        a = j * n + i
-        printf "3 %d %d %d\n3 %d %d %d\n", a, a + 1, a + n + 1, a, a + n + 1, a + n
-    }
-}' >"$work/grid.off" || fail "could not write the grid"
+write_grid_off "$work/grid.off"
 
 # lcm-logger 1.3 keeps at most 30 received messages waiting for its main
 # thread and drops the rest inside LCM, whatever the receive buffer: when the

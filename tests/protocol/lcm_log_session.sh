@@ -38,16 +38,7 @@ cli() {
     [ "$rc" -eq 0 ] || { tail -20 "$work/$out" >&2; fail "meshtopo $* exited with $rc"; }
 }
 
-# A 316 x 316 grid of squares cut in two: 100,489 vertices, 199,712
-# triangles, about 5.6 MB of content, so it travels as mesh_chunk_t pieces.
-awk -v n=317 'BEGIN {
-    print "OFF"; print n * n, 2 * (n - 1) * (n - 1), 0
-    for (j = 0; j < n; j++) for (i = 0; i < n; i++) printf "%d %d 0\n", i, j
-    for (j = 0; j < n - 1; j++) for (i = 0; i < n - 1; i++) {
-        a = j * n + i
-        printf "3 %d %d %d\n3 %d %d %d\n", a, a + 1, a + n + 1, a, a + n + 1, a + n
-    }
-}' >"$work/grid.off" || fail "could not write the grid"
+write_grid_off "$work/grid.off"
 
 # Every channel but LCM_SELF_TEST, which each LCM process's udpm provider
 # publishes for itself when it starts (LCM's, not meshtopo's).
