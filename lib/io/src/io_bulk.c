@@ -23,10 +23,16 @@
 
 #include "io_internal.h"
 
-/* Bytes a part gets at least: smaller runs are parsed on one thread. */
+/* Bytes a part gets at least: smaller runs are parsed on one thread; and
+ * bytes parsed on the calling thread before any other starts. The fuzz
+ * build makes both tiny, so that its small inputs are cut into parts too. */
+#ifdef MESHTOPO_FUZZ_SMALL_PARTS
+#define PART_BYTES ((size_t)64)
+#define PROBE_BYTES ((size_t)32)
+#else
 #define PART_BYTES ((size_t)512 << 10)
-/* Bytes parsed on the calling thread before any other starts. */
 #define PROBE_BYTES ((size_t)64 << 10)
+#endif
 /* A worker checks whether its part is still wanted every this many lines. */
 #define CANCEL_LINES 1024u
 
