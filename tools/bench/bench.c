@@ -294,8 +294,8 @@ static void provenance_fill(mt__bench_options *o, int argc, char **argv)
 }
 
 /* The rows of every case: meshtopo (1 and 2 threads recycling each mesh
- * into the workspace and 2 threads building into new memory, or one row of
- * --threads), the peers, the two memcpy floors. Returns the count. */
+ * into the workspace and 1 and 2 threads building into new memory, or one
+ * row of --threads), the peers, the two memcpy floors. Returns the count. */
 static uint32_t runners_make(const mt__bench_options *o, mt__bench_runner *out)
 {
     uint32_t n = 0;
@@ -304,6 +304,7 @@ static uint32_t runners_make(const mt__bench_options *o, mt__bench_runner *out)
     } else {
         mt__bench_runner_meshtopo(&out[n++], 1, true);
         mt__bench_runner_meshtopo(&out[n++], 2, true);
+        mt__bench_runner_meshtopo(&out[n++], 1, false);
         mt__bench_runner_meshtopo(&out[n++], 2, false);
     }
     for (size_t p = 0; p < MT__BENCH_NUM_PEERS; p++) {

@@ -22,7 +22,7 @@
 
 #define MT__BENCH_MAX_REPS 99
 #define MT__BENCH_MAX_CASES 16
-#define MT__BENCH_MAX_RUNNERS 8
+#define MT__BENCH_MAX_RUNNERS 9
 
 /* Command-line options (see usage in bench.c). */
 typedef struct mt__bench_options {

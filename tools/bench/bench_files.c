@@ -101,7 +101,7 @@ bool mt__bench_markdown_write(const char *path, const mt__bench_options *options
             "bytes read, meshtopo's structure bytes written)\n"
             "- meshtopo rows keep a build workspace across the repetitions; meshtopo-1t and -2t "
             "hand each mesh back to it (mt_build_workspace_recycle), so the next build reuses "
-            "its arrays, while meshtopo-2t-new builds every mesh into new memory\n",
+            "its arrays, while meshtopo-1t-new and -2t-new build every mesh into new memory\n",
             options->reps,
             options->peer_no_reserve ? "do not reserve()"
                                      : "reserve() the V, E, F of their warm-up build");

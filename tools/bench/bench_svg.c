@@ -14,8 +14,8 @@
 #define TOP 40.0
 #define BOTTOM 460.0
 
-static const char *const colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
-                                      "#9467bd", "#8c564b", "#e377c2", "#7f7f7f"};
+static const char *const colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                      "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
 
 static double map(double value, double lo, double hi, double out_lo, double out_hi)
 {

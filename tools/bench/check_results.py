@@ -17,7 +17,14 @@ COLUMNS = (
 ).split(",")
 MESHES = ("npm_bunny", "igl_fertility", "grid", "torus")
 ORDERS = ("ordered", "permuted")
-ALWAYS = ("meshtopo-1t", "meshtopo-2t", "meshtopo-2t-new", "memcpy-fresh", "memcpy-reused")
+ALWAYS = (
+    "meshtopo-1t",
+    "meshtopo-2t",
+    "meshtopo-1t-new",
+    "meshtopo-2t-new",
+    "memcpy-fresh",
+    "memcpy-reused",
+)
 PEERS = ("OpenMesh", "CGAL", "CGAL-soup")
 
 
