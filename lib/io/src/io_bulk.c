@@ -23,14 +23,14 @@
 
 #include "io_internal.h"
 
-/* Bytes a part gets at least: smaller runs are parsed on one thread; and
+/* Bytes each thread gets at least (smaller runs are parsed on one), and
  * bytes parsed on the calling thread before any other starts. The fuzz
  * build makes both tiny, so that its small inputs are cut into parts too. */
 #ifdef MESHTOPO_FUZZ_SMALL_PARTS
-#define PART_BYTES ((size_t)64)
+#define THREAD_MIN_BYTES ((size_t)64)
 #define PROBE_BYTES ((size_t)32)
 #else
-#define PART_BYTES ((size_t)512 << 10)
+#define THREAD_MIN_BYTES ((size_t)512 << 10)
 #define PROBE_BYTES ((size_t)64 << 10)
 #endif
 /* A worker checks whether its part is still wanted every this many lines. */
@@ -598,7 +598,8 @@ uint64_t mt__bulk_parse(mt__io_src *src, const mt__bulk_spec *spec, size_t *pos,
     }
     unsigned threads = threads_for(src->threads);
     size_t bytes = n - at;
-    unsigned parts = bytes / PART_BYTES < threads ? (unsigned)(bytes / PART_BYTES) : threads;
+    unsigned parts =
+        bytes / THREAD_MIN_BYTES < threads ? (unsigned)(bytes / THREAD_MIN_BYTES) : threads;
     if (parts < 1) parts = 1;
     if (parts > 1 && !src->bulk) {
         src->bulk = calloc(1, sizeof *src->bulk);
