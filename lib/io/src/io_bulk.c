@@ -62,7 +62,6 @@ typedef struct bulk_part {
     bulk_out out;      /* where records go: a region of the face list, or scratch */
     bulk_out scratch;  /* workers: arrays of their own, kept from run to run */
     int direct;        /* out is a region of the face list */
-    size_t index_at;   /* direct: where out.indices starts in the face list's indices */
     part_end why;
     int nomem;
     atomic_int *cancel;
@@ -441,7 +440,6 @@ static int place_parts(const mt__bulk_spec *spec, mt__builder *b, bulk_part *pp,
     }
     for (unsigned t = 1; t < parts; t++) {
         alias_builder(spec, b, rec[t], index[t], rec[t + 1], index[t + 1], &pp[t].out);
-        pp[t].index_at = index[t];
         pp[t].direct = 1;
     }
     *rec_end = rec[1];
@@ -481,8 +479,8 @@ static void take_direct(const bulk_part *p, uint64_t k, mt__builder *b)
     if (!p->spec->faces) return;
     size_t nidx = 0;
     for (uint64_t r = 0; r < k; r++) nidx += p->out.sizes[r];
-    if (p->index_at != b->num_indices)
-        memmove(b->indices + b->num_indices, b->indices + p->index_at, nidx * sizeof(uint32_t));
+    uint32_t *at = b->indices + b->num_indices;
+    if (p->out.indices != at) memmove(at, p->out.indices, nidx * sizeof(uint32_t));
     b->num_indices += nidx;
 }
 
