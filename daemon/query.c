@@ -467,10 +467,13 @@ typedef struct geometry_list {
     const char *what;
 } geometry_list;
 
+/* At most the pairs a reply carries: n faces piled at one place make
+ * n^2/2 pairs, which the check would otherwise gather before counting. */
 static mt_status self_intersections_list(const mt_mesh *m, void *out, size_t cap, size_t *n,
                                          mt_diag *d)
 {
-    return mt_mesh_self_intersections(m, out, cap, n, d);
+    return mt_mesh_self_intersections_at_most(m, MTD_REPLY_MAX_BYTES / sizeof(mt_face_pair), out,
+                                              cap, n, d);
 }
 
 static mt_status nonsimple_faces_list(const mt_mesh *m, void *out, size_t cap, size_t *n,
@@ -489,25 +492,22 @@ static mt_status loop_crossings_list(const mt_mesh *m, void *out, size_t cap, si
  * not fit, so the whole-mesh check usually runs once. */
 static void *fetch_list(answer *a, const mt_mesh *mesh, const geometry_list *list, size_t *count)
 {
+    const size_t most = MTD_REPLY_MAX_BYTES / list->elem_size;
     size_t cap = 256;
     void *items = malloc(cap * list->elem_size);
     mt_status s = items ? list->query(mesh, items, cap, count, NULL) : MT_ERR_NOMEM;
-    if (s == MT_ERR_BUFFER_TOO_SMALL) {
-        void *all = *count > MTD_REPLY_MAX_BYTES / list->elem_size
-                        ? NULL
-                        : realloc(items, *count * list->elem_size);
-        if (!all) {
-            fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE,
-                 "%zu %s exceed the daemon's reply limit of %u bytes", *count, list->what,
-                 (unsigned)MTD_REPLY_MAX_BYTES);
-            free(items);
-            return NULL;
-        }
-        items = all;
-        s = list->query(mesh, items, *count, count, NULL);
+    if (s == MT_ERR_BUFFER_TOO_SMALL && *count <= most) {
+        void *all = realloc(items, *count * list->elem_size);
+        s = all ? list->query(mesh, all, *count, count, NULL) : MT_ERR_NOMEM;
+        items = all ? all : items;
     }
-    if (s != MT_OK) {
+    if (s == MT_ERR_BUFFER_TOO_SMALL || s == MT_ERR_TOO_LARGE)
+        fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE,
+             "more than %zu %s: they exceed the daemon's reply limit of %u bytes", most, list->what,
+             (unsigned)MTD_REPLY_MAX_BYTES);
+    else if (s != MT_OK)
         fail_geometry(a, s, list->what, 0);
+    if (s != MT_OK) {
         free(items);
         return NULL;
     }

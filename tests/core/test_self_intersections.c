@@ -6,7 +6,9 @@
  * degenerate triangles, polygon faces (a concave one whose notch another face
  * passes through), faces skipped for NaN corners or deletion, the size query
  * and a short buffer; and, on a soup of random triangles large enough to be
- * checked on several threads, the same pairs as a check of every pair. */
+ * checked on several threads, the same pairs as a check of every pair.
+ * mt_mesh_self_intersections_at_most: piles of faces at one place, whose
+ * pairs number n(n-1)/2, against the bound. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -337,6 +339,71 @@ static void test_selfx_random_soup_against_pairs(void)
     free(faces);
 }
 
+/* n copies of one polygon of `corners` corners (a regular polygon in the
+ * plane z = 0), each on vertices of its own: every two meet. */
+static mt_mesh *pile_of(uint32_t n, uint32_t corners)
+{
+    double *pos = malloc(3 * (size_t)n * corners * sizeof *pos);
+    uint32_t *indices = malloc((size_t)n * corners * sizeof *indices);
+    uint32_t *sizes = malloc(n * sizeof *sizes);
+    for (uint32_t f = 0; f < n; f++) {
+        sizes[f] = corners;
+        for (uint32_t k = 0; k < corners; k++) {
+            const uint32_t v = f * corners + k;
+            const double turn = 6.283185307179586 * k / corners;
+            pos[3 * (size_t)v] = cos(turn);
+            pos[3 * (size_t)v + 1] = sin(turn);
+            pos[3 * (size_t)v + 2] = 0;
+            indices[v] = v;
+        }
+    }
+    mt_mesh *mesh = mesh_of(pos, n * corners, indices, sizes, n);
+    free(pos);
+    free(indices);
+    free(sizes);
+    return mesh;
+}
+
+static void test_selfx_at_most_counts_pairs_not_repeats(void)
+{
+    /* 40 quads at one place: 780 pairs of faces, each met by up to four
+     * pairs of their triangles, so the repeats pass the bound's doubling
+     * (2 * 780 + 64) before the pairs are all found. */
+    mt_mesh *mesh = pile_of(40, 4);
+    mt_diag diag;
+    size_t count = 99;
+    CHECK_OK(mt_mesh_self_intersections_at_most(mesh, 780, NULL, 0, &count, &diag));
+    CHECK_EQ(count, 780);
+    mt_face_pair *all = malloc(780 * sizeof *all);
+    CHECK_OK(mt_mesh_self_intersections_at_most(mesh, 780, all, 780, &count, &diag));
+    size_t i = 0;
+    for (uint32_t a = 0; a < 40; a++)
+        for (uint32_t b = a + 1; b < 40; b++, i++) CHECK(all[i].a == a && all[i].b == b);
+    CHECK_STATUS(mt_mesh_self_intersections_at_most(mesh, 779, all, 780, &count, &diag),
+                 MT_ERR_TOO_LARGE);
+    CHECK_EQ(count, 0);
+    CHECK(strstr(diag.message, "more than 779 self-intersecting face pairs") != NULL);
+    CHECK_OK(mt_mesh_self_intersections(mesh, NULL, 0, &count, &diag));
+    CHECK_EQ(count, 780);
+    free(all);
+    mt_mesh_destroy(mesh);
+}
+
+static void test_selfx_at_most_stops_on_a_pile(void)
+{
+    /* 30000 triangles at one place (enough for several threads) make
+     * 449,985,000 pairs: checking them all would take minutes and gigabytes;
+     * the bound ends the search soon after its 1000th pair. */
+    mt_mesh *mesh = pile_of(30000, 3);
+    mt_diag diag;
+    size_t count = 99;
+    CHECK_STATUS(mt_mesh_self_intersections_at_most(mesh, 1000, NULL, 0, &count, &diag),
+                 MT_ERR_TOO_LARGE);
+    CHECK_EQ(count, 0);
+    CHECK(strstr(diag.message, "more than 1000") != NULL);
+    mt_mesh_destroy(mesh);
+}
+
 static const mt_test_case cases[] = {
     {"selfx_octahedron_pushed_through", test_selfx_octahedron_pushed_through},
     {"selfx_interpenetrating_tetrahedra", test_selfx_interpenetrating_tetrahedra},
@@ -348,5 +415,7 @@ static const mt_test_case cases[] = {
     {"selfx_skipped_faces", test_selfx_skipped_faces},
     {"selfx_buffers_and_errors", test_selfx_buffers_and_errors},
     {"selfx_random_soup_against_pairs", test_selfx_random_soup_against_pairs},
+    {"selfx_at_most_counts_pairs_not_repeats", test_selfx_at_most_counts_pairs_not_repeats},
+    {"selfx_at_most_stops_on_a_pile", test_selfx_at_most_stops_on_a_pile},
 };
 const mt_test_table mt_tests_self_intersections = {cases, sizeof cases / sizeof cases[0]};

@@ -63,13 +63,16 @@ typedef struct check {
     node_pair *tasks;    /* pairs of subtrees to traverse, shared by the threads */
     uint32_t num_tasks;
     uint32_t threads;   /* how many share the work */
+    size_t max_pairs;   /* more pairs than this end the search (MT_ERR_TOO_LARGE) */
     atomic_uint next;   /* the next task to take */
-    atomic_bool failed; /* a thread ran out of memory */
+    atomic_bool failed; /* a thread stopped: out of memory, or too many pairs */
+    atomic_bool too_many;
 } check;
 
 typedef struct worker {
     check *c;
-    mt__vec pairs; /* mt_face_pair, unsorted, possibly repeated */
+    mt__vec pairs;     /* mt_face_pair, unsorted, possibly repeated */
+    size_t compact_at; /* pairs.len at which repeats are dropped and the count checked */
 } worker;
 
 /* The float next to finite f towards -infinity (step -1) or +infinity
@@ -453,8 +456,43 @@ static void build_tree(check *c)
     }
 }
 
+static int compare_pairs(const void *pa, const void *pb)
+{
+    const mt_face_pair *a = pa, *b = pb;
+    if (a->a != b->a) return a->a < b->a ? -1 : 1;
+    return (a->b > b->b) - (a->b < b->b);
+}
+
+/* Sorts the pairs and drops repeats (a pair of polygons meets once per
+ * pair of their triangles that cross). */
+static void sort_unique(mt__vec *pairs)
+{
+    mt_face_pair *p = pairs->data;
+    if (pairs->len > 1) qsort(p, pairs->len, sizeof *p, compare_pairs);
+    size_t kept = 0;
+    for (size_t i = 0; i < pairs->len; i++)
+        if (kept == 0 || compare_pairs(&p[kept - 1], &p[i]) != 0) p[kept++] = p[i];
+    pairs->len = kept;
+}
+
+/* Adds a pair to a worker's list. Once the list doubles past max_pairs,
+ * its repeats are dropped: more than max_pairs left then is more than the
+ * caller takes, and the search ends, so memory stays within about twice
+ * max_pairs per thread however many faces are piled on one another. */
+static mt_status add_pair(worker *w, const mt_face_pair *p)
+{
+    mt_status s = mt__vec_push(&w->pairs, p);
+    if (s != MT_OK || w->pairs.len < w->compact_at) return s;
+    sort_unique(&w->pairs);
+    if (w->pairs.len > w->c->max_pairs) {
+        atomic_store(&w->c->too_many, true);
+        return MT_ERR_TOO_LARGE;
+    }
+    return MT_OK;
+}
+
 /* Narrow phase of triangles i and j (different faces). */
-static mt_status test_pair(const check *c, uint32_t i, uint32_t j, mt__vec *pairs)
+static mt_status test_pair(const check *c, uint32_t i, uint32_t j, worker *w)
 {
     const mt__tri *a = &c->tris[i], *b = &c->tris[j];
     const double *pos = c->m->positions;
@@ -465,7 +503,7 @@ static mt_status test_pair(const check *c, uint32_t i, uint32_t j, mt__vec *pair
     if (!mt__triangles_cross(a->v, pa, b->v, pb)) return MT_OK;
     const mt_face_pair p = {a->face < b->face ? a->face : b->face,
                             a->face < b->face ? b->face : a->face};
-    return mt__vec_push(pairs, &p);
+    return add_pair(w, &p);
 }
 
 /* The triangles of leaf node k: [*first, *end). */
@@ -511,7 +549,7 @@ static unsigned overlapping_slots(const leaf_boxes *leaf, const float lo[3], con
 /* Every triangle of leaf a against every one of leaf b (each pair once
  * when a == b) whose boxes overlap: those of different faces that share no
  * corner with a flat fan go to the narrow phase. */
-static mt_status leaf_pairs(const check *c, uint32_t a, uint32_t b, mt__vec *pairs)
+static mt_status leaf_pairs(const check *c, uint32_t a, uint32_t b, worker *w)
 {
     uint32_t a0, a1;
     leaf_range(c, a, &a0, &a1);
@@ -530,7 +568,7 @@ static mt_status leaf_pairs(const check *c, uint32_t a, uint32_t b, mt__vec *pai
         for (; hits; hits &= hits - 1) {
             const uint32_t j = b0 + (uint32_t)__builtin_ctz(hits);
             if (c->tris[i].face == c->tris[j].face || share_flat_corner(c, i, j)) continue;
-            mt_status s = test_pair(c, i, j, pairs);
+            mt_status s = test_pair(c, i, j, w);
             if (s != MT_OK) return s;
         }
     }
@@ -555,7 +593,7 @@ static int children(const check *c, node_pair p, node_pair out[4])
 }
 
 /* Depth first from one pair of nodes down to pairs of leaves. */
-static mt_status traverse(const check *c, node_pair start, mt__vec *pairs)
+static mt_status traverse(const check *c, node_pair start, worker *w)
 {
     node_pair stack[4 * 32]; /* up to 3 more per level, 31 levels at most */
     int top = 0;
@@ -563,7 +601,7 @@ static mt_status traverse(const check *c, node_pair start, mt__vec *pairs)
     while (top > 0) {
         const node_pair p = stack[--top];
         if (p.a >= c->num_leaves) {
-            mt_status s = leaf_pairs(c, p.a, p.b, pairs);
+            mt_status s = leaf_pairs(c, p.a, p.b, w);
             if (s != MT_OK) return s;
             continue;
         }
@@ -581,7 +619,7 @@ static void run_tasks(void *ctx, uint32_t t, uint32_t threads)
     for (;;) {
         const uint32_t task = atomic_fetch_add(&c->next, 1);
         if (task >= c->num_tasks || atomic_load(&c->failed)) break;
-        if (traverse(c, c->tasks[task], &w->pairs) != MT_OK) {
+        if (traverse(c, c->tasks[task], w) != MT_OK) {
             atomic_store(&c->failed, true);
             break;
         }
@@ -618,42 +656,35 @@ static mt_status make_tasks(check *c, uint32_t want)
     return MT_OK;
 }
 
-static int compare_pairs(const void *pa, const void *pb)
-{
-    const mt_face_pair *a = pa, *b = pb;
-    if (a->a != b->a) return a->a < b->a ? -1 : 1;
-    return (a->b > b->b) - (a->b < b->b);
-}
-
 /* Runs the queries on up to MT__MAX_THREADS threads and gathers their pairs,
- * sorted and without repeats, into out. */
+ * sorted and without repeats, into out (MT_ERR_TOO_LARGE past max_pairs). */
 static mt_status run_all(check *c, mt__vec *out)
 {
     const uint32_t threads = c->threads;
     mt_status made = make_tasks(c, TASKS_PER_THREAD * threads);
     if (made != MT_OK) return made;
+    const size_t compact_at = c->max_pairs < (SIZE_MAX - 64) / 2 ? 2 * c->max_pairs + 64 : SIZE_MAX;
     worker workers[MT__MAX_THREADS];
     for (uint32_t t = 0; t < threads; t++)
-        workers[t] = (worker){.c = c, .pairs = {.elem_size = sizeof(mt_face_pair)}};
+        workers[t] = (worker){
+            .c = c, .pairs = {.elem_size = sizeof(mt_face_pair)}, .compact_at = compact_at};
     mt__in_parallel(threads, run_tasks, workers);
     mt_status s = MT_OK;
     for (uint32_t t = 0; t < threads; t++) {
         if (s == MT_OK && !atomic_load(&c->failed)) s = mt__vec_append(out, &workers[t].pairs);
         mt__vec_free(&workers[t].pairs);
     }
-    if (s == MT_OK && atomic_load(&c->failed)) s = MT_ERR_NOMEM;
+    if (s == MT_OK && atomic_load(&c->failed))
+        s = atomic_load(&c->too_many) ? MT_ERR_TOO_LARGE : MT_ERR_NOMEM;
     if (s != MT_OK) return s;
-    mt_face_pair *p = out->data;
-    if (out->len > 1) qsort(p, out->len, sizeof *p, compare_pairs);
-    size_t kept = 0;
-    for (size_t i = 0; i < out->len; i++)
-        if (kept == 0 || compare_pairs(&p[kept - 1], &p[i]) != 0) p[kept++] = p[i];
-    out->len = kept;
-    return MT_OK;
+    sort_unique(out);
+    return out->len > c->max_pairs ? MT_ERR_TOO_LARGE : MT_OK;
 }
 
-/* Every intersecting pair into pairs (sorted, no repeats). */
-static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, const char *what)
+/* Every intersecting pair into pairs (sorted, no repeats), or
+ * MT_ERR_TOO_LARGE once more than max_pairs are found. */
+static mt_status find_pairs(const mt_mesh *m, size_t max_pairs, mt__vec *pairs, mt_diag *diag,
+                            const char *what)
 {
     collector parts[MT__MAX_THREADS];
     const uint32_t threads = threads_for(m->num_faces);
@@ -664,12 +695,17 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
     mt_status s = collect(m, threads, parts, flat, diag, what);
     size_t total = 0;
     for (uint32_t t = 0; t < threads; t++) total += parts[t].out.len;
-    check c = {.m = m, .num_tris = (uint32_t)total, .num_leaves = 1, .threads = threads};
+    check c = {.m = m,
+               .num_tris = (uint32_t)total,
+               .num_leaves = 1,
+               .threads = threads,
+               .max_pairs = max_pairs};
     if (s == MT_OK && total >= 2) {
         const uint64_t blocks = ((uint64_t)c.num_tris + LEAF_SIZE - 1) / LEAF_SIZE;
         while (c.num_leaves < blocks) c.num_leaves *= 2;
         atomic_init(&c.next, 0);
         atomic_init(&c.failed, false);
+        atomic_init(&c.too_many, false);
         c.tris = mt__malloc((size_t)c.num_tris * sizeof *c.tris);
         c.nodes = mt__malloc(2 * (size_t)c.num_leaves * sizeof *c.nodes);
         c.leaves = mt__malloc((size_t)c.num_leaves * sizeof *c.leaves);
@@ -686,6 +722,9 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
         if (s == MT_ERR_NOMEM)
             mt__fail(diag, s, MT_NONE, "%s: no memory for %u triangles and their pairs", what,
                      c.num_tris);
+        if (s == MT_ERR_TOO_LARGE)
+            mt__fail(diag, s, MT_NONE, "%s: more than %zu self-intersecting face pairs", what,
+                     max_pairs);
     }
     for (uint32_t t = 0; t < threads; t++) tri_set_free(&parts[t].out);
     mt__free(c.tris);
@@ -697,8 +736,9 @@ static mt_status find_pairs(const mt_mesh *m, mt__vec *pairs, mt_diag *diag, con
     return s;
 }
 
-mt_status mt_mesh_self_intersections(const mt_mesh *mesh, mt_face_pair *out, size_t capacity,
-                                     size_t *out_count, mt_diag *diag)
+mt_status mt_mesh_self_intersections_at_most(const mt_mesh *mesh, size_t max_count,
+                                             mt_face_pair *out, size_t capacity, size_t *out_count,
+                                             mt_diag *diag)
 {
     static const char what[] = "mt_mesh_self_intersections";
     mt_diag_clear(diag);
@@ -707,7 +747,7 @@ mt_status mt_mesh_self_intersections(const mt_mesh *mesh, mt_face_pair *out, siz
     mt_status s = mt__geom_ready(mesh, what, diag);
     if (s != MT_OK) return s;
     mt__vec pairs = {.elem_size = sizeof(mt_face_pair)};
-    s = find_pairs(mesh, &pairs, diag, what);
+    s = find_pairs(mesh, max_count, &pairs, diag, what);
     if (s == MT_OK) {
         *out_count = pairs.len;
         if (out && capacity > 0 && pairs.len > 0)
@@ -718,4 +758,10 @@ mt_status mt_mesh_self_intersections(const mt_mesh *mesh, mt_face_pair *out, siz
     }
     mt__vec_free(&pairs);
     return s;
+}
+
+mt_status mt_mesh_self_intersections(const mt_mesh *mesh, mt_face_pair *out, size_t capacity,
+                                     size_t *out_count, mt_diag *diag)
+{
+    return mt_mesh_self_intersections_at_most(mesh, SIZE_MAX, out, capacity, out_count, diag);
 }

@@ -159,6 +159,16 @@ typedef struct mt_face_pair {
 mt_status mt_mesh_self_intersections(const mt_mesh *mesh, mt_face_pair *out, size_t capacity,
                                      size_t *out_count, mt_diag *diag);
 
+/* As mt_mesh_self_intersections, for callers that take at most max_count
+ * pairs (a service with a reply limit): more pairs than that end the
+ * search with MT_ERR_TOO_LARGE (*out_count 0). The memory it holds stays
+ * within about twice max_count pairs per thread and it stops soon after
+ * passing max_count, however many faces are piled on one another; without
+ * the bound, n faces at one place make n^2/2 pairs. */
+mt_status mt_mesh_self_intersections_at_most(const mt_mesh *mesh, size_t max_count,
+                                             mt_face_pair *out, size_t capacity, size_t *out_count,
+                                             mt_diag *diag);
+
 /* ---- vertices ------------------------------------------------------------- */
 
 /* Angle-weighted vertex normal (Thuermer and Wuethrich 1998): the sum of the
