@@ -4,8 +4,9 @@
  * coincident corners) or on raw doubles (NaN, infinities, huge and tiny
  * values). The check must succeed; its pairs must be sorted, without
  * repeats, a < b, both valid faces; a short buffer must get the same first
- * pairs and MT_ERR_BUFFER_TOO_SMALL; and on the lattice every two triangle
- * faces sharing no vertex must be listed exactly when
+ * pairs and MT_ERR_BUFFER_TOO_SMALL; the search bounded at that count
+ * must find it, and bounded one below must stop; and on the lattice every
+ * two triangle faces sharing no vertex must be listed exactly when
  * mt_triangles_intersect says they meet. Any disagreement calls abort().
  *
  * Input layout (missing bytes read as 0, so every input is a mesh):
@@ -142,6 +143,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         REQUIRE(again == count && memcmp(short_buf, pairs, (count - 1) * sizeof *pairs) == 0);
         free(short_buf);
     }
+    /* the bounded search agrees: the count at the bound, too many below it */
+    REQUIRE(mt_mesh_self_intersections_at_most(mesh, count, NULL, 0, &again, NULL) == MT_OK);
+    REQUIRE(again == count);
+    if (count > 0)
+        REQUIRE(mt_mesh_self_intersections_at_most(mesh, count - 1, NULL, 0, &again, NULL) ==
+                MT_ERR_TOO_LARGE);
     if (!raw) check_against_pairs(mesh, positions, pairs, count);
     free(pairs);
     mt_mesh_destroy(mesh);
