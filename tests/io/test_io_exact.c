@@ -3,8 +3,8 @@
  * independent slow path: the C library, under the C locale), on tricky
  * numbers and on many random ones; one thread, several threads and any
  * window give the same arrays, the same errors and the same line numbers,
- * on generated files large enough to be split across threads and on the
- * corpus. */
+ * on generated files large enough to be split across threads (OFF, PLY
+ * and OBJ, whose arrays are known from their writing) and on the corpus. */
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
@@ -491,11 +491,218 @@ static void test_exact_mixed_face_sizes(void)
     mt_face_list_free(&list);
 }
 
+/* An OBJ text written together with the face list it holds. */
+typedef struct obj_writer {
+    char *text;
+    size_t len, cap;
+    mt_face_list want; /* arrays of fixed capacity; counts grow */
+    size_t lines;      /* '\n' written so far */
+    unsigned odd;      /* odd lines written so far */
+} obj_writer;
+
+static void obj_put(obj_writer *o, const char *s)
+{
+    size_t n = strlen(s);
+    if (o->len + n > o->cap) return; /* the capacities below are ample */
+    memcpy(o->text + o->len, s, n);
+    o->len += n;
+    for (size_t i = 0; i < n; i++) o->lines += s[i] == '\n';
+}
+
+static void obj_want_vert(obj_writer *o, double x, double y, double z)
+{
+    double *p = o->want.positions + 3 * (size_t)o->want.num_verts++;
+    p[0] = x;
+    p[1] = y;
+    p[2] = z;
+}
+
+static void obj_want_face(obj_writer *o, uint32_t size, const uint32_t *indices)
+{
+    o->want.face_sizes[o->want.num_faces++] = size;
+    memcpy(o->want.face_indices + o->want.num_indices, indices, size * sizeof *indices);
+    o->want.num_indices += size;
+}
+
+/* Lines inside a run of plain v lines, each with what it adds: the bulk
+ * parser must leave them to the general loop, or read them as it would. */
+static void obj_odd_vertex_line(obj_writer *o)
+{
+    switch (o->odd++ % 6) {
+        case 0: /* a backslash continues the line: the second v is not a vertex */
+            obj_put(o, "v 1 2 3 \\\nv 4 5 6\n");
+            obj_want_vert(o, 1, 2, 3);
+            break;
+        case 1: /* w and colours */
+            obj_put(o, "v 1 2 3 4 5 6\n");
+            obj_want_vert(o, 1, 2, 3);
+            break;
+        case 2:
+            obj_put(o, "# a comment\n\nvt 0.5 0.5\nvn 0 0 1\nv1 2 3\n"); /* no vertex */
+            break;
+        case 3:
+            obj_put(o, "v 0.5 0.25 -1 # a comment\n");
+            obj_want_vert(o, 0.5, 0.25, -1);
+            break;
+        case 4:
+            obj_put(o, "  v\t7\t8\t9  \n");
+            obj_want_vert(o, 7, 8, 9);
+            break;
+        default:
+            obj_put(o, "v 1e2 -2.5e-1 +3\r\n");
+            obj_want_vert(o, 100, -0.25, 3);
+            break;
+    }
+}
+
+/* The same inside a run of plain f lines (after at least 3 vertices). */
+static void obj_odd_face_line(obj_writer *o)
+{
+    const uint32_t nv = o->want.num_verts;
+    uint32_t f[3] = {0, 1, 2};
+    switch (o->odd++ % 7) {
+        case 0: /* relative indices */
+            obj_put(o, "f -1 -2 -3\n");
+            f[0] = nv - 1, f[1] = nv - 2, f[2] = nv - 3;
+            break;
+        case 1: /* OBJ has no vertex 0: stored as -1 */
+            obj_put(o, "f 0 1 2\n");
+            f[0] = UINT32_MAX, f[1] = 0, f[2] = 1;
+            break;
+        case 2:
+            obj_put(o, "f 1 2 3 # a comment\n");
+            break;
+        case 3:
+            obj_put(o, "f 1 2 \\\n 3\n");
+            break;
+        case 4:
+            obj_put(o, "f 1/2/3 4//6 7/8\r\n");
+            f[1] = 3, f[2] = 6;
+            break;
+        case 5:
+            obj_put(o, "f 4294967295 +1 2\n");
+            f[0] = 4294967294u, f[1] = 0, f[2] = 1;
+            break;
+        default:
+            obj_put(o, "g part\nusemtl metal\ns off\nf1 2 3\n"); /* no face */
+            return;
+    }
+    obj_want_face(o, 3, f);
+}
+
+/* OBJ files large enough to be split across threads, in blocks of v and f
+ * lines with texture and normal lines between them, entries of all four
+ * forms, tabs, CRLF, and odd lines deep inside the runs: the arrays they
+ * were written from, on one to four threads and through small windows;
+ * and a bad line inside a run is reported at its line every way. */
+static void test_exact_obj_runs(void)
+{
+    enum { BLOCKS = 4, VERTS = 10000, FACES = 25000, ODD = 7 };
+    obj_writer o = {.cap = (size_t)16 << 20};
+    o.text = malloc(o.cap);
+    CHECK(o.text != NULL);
+    const uint32_t max_verts = BLOCKS * (VERTS + ODD), max_faces = BLOCKS * (FACES + ODD);
+    CHECK_OK(mt_face_list_alloc(&o.want, max_verts, max_faces, 5 * (uint64_t)max_faces, NULL));
+    if (!o.text) return;
+    o.want.num_verts = o.want.num_faces = 0;
+    o.want.num_indices = 0;
+    obj_put(&o, "# meshtopo test\nmtllib test.mtl\no test\n");
+    size_t error_at[2] = {0, 0}, error_line[2] = {0, 0};
+    for (unsigned block = 0; block < BLOCKS; block++) {
+        const char *end = block == 2 ? "\r\n" : "\n";
+        for (uint32_t k = 0; k < VERTS; k++) {
+            if (k % (VERTS / ODD) == VERTS / ODD / 2) obj_odd_vertex_line(&o);
+            if (block == 1 && k == VERTS * 3 / 10) {
+                error_at[0] = o.len;
+                error_line[0] = o.lines + 1;
+            }
+            const uint32_t v = o.want.num_verts;
+            const double x = (v % 1000) / 8.0, y = -(double)(v % 333) * 0.001, z = v * 1e-3 + 0.5;
+            char line[128];
+            const char *sep = v % 7 == 0 ? "\t" : " ";
+            snprintf(line, sizeof line, "v%s%.17g%s%.17g%s%.17g%s%s", sep, x, sep, y, sep, z,
+                     v % 11 == 0 ? " 1.0" : "", end);
+            obj_put(&o, line);
+            obj_want_vert(&o, x, y, z);
+        }
+        obj_put(&o, "vt 0 0\nvt 1 0\nvn 0 0 1\n");
+        for (uint32_t k = 0; k < FACES; k++) {
+            if (k % (FACES / ODD) == FACES / ODD / 2) obj_odd_face_line(&o);
+            if (block == 3 && k == FACES * 7 / 10) {
+                error_at[1] = o.len;
+                error_line[1] = o.lines + 1;
+            }
+            const uint32_t f = o.want.num_faces, nv = o.want.num_verts;
+            const uint32_t size = 3 + (f % 5 == 0) + (f % 17 == 0);
+            uint32_t idx[5];
+            char line[256];
+            size_t n = (size_t)snprintf(line, sizeof line, "f");
+            for (uint32_t j = 0; j < size; j++) {
+                idx[j] = (f * 7 + j * 13) % nv;
+                const unsigned long one_based = idx[j] + 1ul;
+                static const char *const forms[] = {" %lu", " %lu/%lu", " %lu/%lu/%lu",
+                                                    " %lu//%lu"};
+                n += (size_t)snprintf(line + n, sizeof line - n, forms[(f + j) % 4], one_based,
+                                      one_based, one_based);
+            }
+            snprintf(line + n, sizeof line - n, "%s", end);
+            obj_put(&o, line);
+            obj_want_face(&o, size, idx);
+        }
+    }
+    static const struct {
+        unsigned threads;
+        size_t window;
+    } ways[] = {{1, 0}, {2, 0}, {3, 0}, {4, 0}, {2, (size_t)1 << 20}, {1, 4096}};
+    for (size_t w = 0; w < sizeof ways / sizeof ways[0]; w++) {
+        mt_read_options options;
+        memset(&options, 0, sizeof options);
+        options.threads = ways[w].threads;
+        options.window_bytes = ways[w].window;
+        mt_face_list read;
+        mt_diag diag;
+        CHECK_OK(
+            mt_read_memory_with(o.text, o.len, MT_FORMAT_AUTO, "runs.obj", &options, &read, &diag));
+        if (!same_lists(&o.want, &read))
+            mt_test_fail(__FILE__, __LINE__,
+                         "threads %u, window %zu: other arrays (%u vertices, "
+                         "%u faces; want %u, %u)",
+                         ways[w].threads, ways[w].window, read.num_verts, read.num_faces,
+                         o.want.num_verts, o.want.num_faces);
+        mt_face_list_free(&read);
+        /* a vertex short of a coordinate, then a face entry that is not a number */
+        for (int e = 0; e < 2; e++) {
+            char *bad = malloc(o.len + 16);
+            CHECK(bad != NULL);
+            if (!bad) break;
+            static const char *const lines[] = {"v 1 2\n", "f 1 2 x\n"};
+            const size_t at = error_at[e], add = strlen(lines[e]);
+            memcpy(bad, o.text, at);
+            memcpy(bad + at, lines[e], add);
+            memcpy(bad + at + add, o.text + at, o.len - at);
+            CHECK_STATUS(mt_read_memory_with(bad, o.len + add, MT_FORMAT_OBJ, "bad.obj", &options,
+                                             &read, &diag),
+                         MT_ERR_PARSE);
+            if (diag.line != error_line[e])
+                mt_test_fail(__FILE__, __LINE__,
+                             "threads %u, window %zu: '%s' at line %llu, "
+                             "reported at %llu (%s)",
+                             ways[w].threads, ways[w].window, lines[e],
+                             (unsigned long long)error_line[e], (unsigned long long)diag.line,
+                             diag.message);
+            free(bad);
+        }
+    }
+    mt_face_list_free(&o.want);
+    free(o.text);
+}
+
 static const mt_test_case cases[] = {
     {"exact_numbers_match_strtod", test_exact_numbers_match_strtod},
     {"exact_threads_errors_and_lines", test_exact_threads_errors_and_lines},
     {"exact_corpus_every_way", test_exact_corpus_every_way},
     {"exact_binary_ply_fast_paths", test_exact_binary_ply_fast_paths},
     {"exact_mixed_face_sizes", test_exact_mixed_face_sizes},
+    {"exact_obj_runs", test_exact_obj_runs},
 };
 const mt_test_table mt_tests_io_exact = {cases, sizeof cases / sizeof cases[0]};

@@ -1,6 +1,7 @@
 /* Runs of plain records, one per line, parsed ahead of a reader's general
  * loop and split across threads: an OFF or ASCII PLY vertex ("x y z") or
- * face ("3 i j k") line of numbers separated by spaces or tabs. A line that
+ * face ("3 i j k") line of numbers separated by spaces or tabs, or an OBJ
+ * "v x y z" or "f i j k" (entries i, i/t, i/t/n, i//n) line. A line that
  * is anything else (a comment, a blank line, a record over several lines, a
  * malformed number, the window's unfinished last line) stops the run before
  * it, and the reader's general loop, which owns every message and line
@@ -135,6 +136,26 @@ static inline int scan_index(const unsigned char *d, size_t n, size_t *pos, uint
     return 1;
 }
 
+/* An OBJ face entry as io_obj.c reads it: a vertex index of plain digits
+ * (1-based; 0 is stored as -1, out of range), then optionally "/[vt]" and
+ * "/[vn]" of signed digits, followed by a separator or the line's end.
+ * Negative (relative) indices are left to the general loop. */
+static inline int scan_entry(const unsigned char *d, size_t n, size_t *pos, uint32_t *out)
+{
+    size_t k = *pos;
+    uint64_t v = scan_digits(d, n, &k);
+    if (k == *pos || k - *pos > 10 || v > 0xffffffffull) return 0;
+    for (int part = 0; part < 2 && k < n && d[k] == '/'; part++) {
+        k++;
+        if (k < n && (d[k] == '-' || d[k] == '+')) k++;
+        while (k < n && (unsigned)d[k] - '0' <= 9) k++;
+    }
+    if (k >= n || !ends_token(d[k])) return 0;
+    *out = (uint32_t)(v - 1);
+    *pos = k;
+    return 1;
+}
+
 /* A token's end as the general loop finds it (any whitespace), which must
  * be a separator or the line's end here (not '\v' or '\f'); n when the
  * window ends first. */
@@ -210,6 +231,20 @@ static line_result parse_line(const mt__bulk_spec *spec, const unsigned char *d,
                 if (op == MT__BULK_INDICES) size = count;
                 break;
             }
+            case MT__BULK_KEYWORD:
+                if (d[i] != spec->keyword || i + 1 >= n || !is_hspace(d[i + 1])) return LINE_OTHER;
+                i++;
+                break;
+            case MT__BULK_ENTRIES:
+                for (;;) {
+                    if (size == MT__BULK_MAX_LIST) return LINE_OTHER;
+                    if (size == out->cap_indices - out->num_indices) return LINE_NO_ROOM;
+                    if (!scan_entry(d, n, &i, &idx[size])) return LINE_OTHER;
+                    size++;
+                    while (i < n && is_hspace(d[i])) i++;
+                    if (i >= n || d[i] == '\r' || d[i] == '\n') break;
+                }
+                break;
             case MT__BULK_REST: {
                 /* anything to the end of the line, which only '\n' or "\r\n"
                  * may end (the general loop stops at a lone '\r'); most
@@ -221,6 +256,7 @@ static line_result parse_line(const mt__bulk_spec *spec, const unsigned char *d,
                 const unsigned char *cr = memchr(d + i, '\r', e - i);
                 if (cr && cr != nl - 1) return LINE_OTHER;
                 i = cr ? e - 1 : e;
+                if (d[i - 1] == '\\') return LINE_OTHER; /* OBJ continues such a line */
                 break;
             }
             default:

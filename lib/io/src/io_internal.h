@@ -394,7 +394,9 @@ enum {
     MT__BULK_TOKEN,   /* any token, skipped */
     MT__BULK_INDICES, /* a count and that many vertex indices: the face */
     MT__BULK_LIST,    /* a count and that many tokens, skipped */
-    MT__BULK_REST     /* anything up to the end of the line (OFF's colours) */
+    MT__BULK_REST,    /* anything up to the end of the line (OFF's colours) */
+    MT__BULK_KEYWORD, /* the spec's keyword letter alone (OBJ's v, f) */
+    MT__BULK_ENTRIES  /* OBJ face entries to the line's end: v, v/vt, v/vt/vn, v//vn */
 };
 
 #define MT__BULK_MAX_OPS 16
@@ -403,11 +405,12 @@ enum {
 #define MT__BULK_MAX_THREADS 4u
 
 /* One record per line: a vertex (positions) or a face (sizes, indices; then
- * exactly one MT__BULK_INDICES). */
+ * exactly one MT__BULK_INDICES or MT__BULK_ENTRIES). */
 typedef struct mt__bulk_spec {
     unsigned char ops[MT__BULK_MAX_OPS];
     size_t num_ops;
     int faces;
+    unsigned char keyword; /* MT__BULK_KEYWORD's letter */
 } mt__bulk_spec;
 
 /* Parses the plain records of the lines at window index *pos on (the

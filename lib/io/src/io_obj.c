@@ -3,7 +3,9 @@
  * indices are 1-based, negative ones count back from the vertices defined
  * so far, 0 is stored as -1 (out of range). A backslash at the end of a
  * line continues it. All objects and groups go into one mesh in file order.
- * OBJ declares no counts: the input limit (max_input_bytes) bounds a read. */
+ * OBJ declares no counts: the input limit (max_input_bytes) bounds a read.
+ * Runs of plain v and f lines are read by io_bulk.c, which leaves every
+ * other line, and so every message, to the loop here. */
 #include <stdio.h>
 
 #include "io_internal.h"
@@ -228,10 +230,42 @@ static mt_status read_obj(mt__io_src *src, mt__builder *b, mt_diag *diag)
         !mt__builder_reserve_faces(b, (size_t)guess / 64) ||
         !mt__builder_reserve_indices(b, (size_t)guess / 16))
         return mt__builder_fail(b, src, diag);
+    /* Lines of plain v or f records: io_bulk.c reads them, on several
+     * threads when they are many. Where it reads few (relative indices,
+     * v lines between vt and vn lines), the loop here takes the next
+     * PAUSE_LINES lines before it is asked again. */
+    static const mt__bulk_spec plain_verts = {
+        .ops = {MT__BULK_KEYWORD, MT__BULK_X, MT__BULK_Y, MT__BULK_Z, MT__BULK_REST},
+        .num_ops = 5,
+        .keyword = 'v'};
+    static const mt__bulk_spec plain_faces = {
+        .ops = {MT__BULK_KEYWORD, MT__BULK_ENTRIES}, .num_ops = 2, .faces = 1, .keyword = 'f'};
+    enum { FEW_RECORDS = 64, PAUSE_LINES = 256 };
+    size_t pause = 0;
     size_t i = 0;
     for (;;) {
         const unsigned char *d = src->data;
         size_t n = src->size;
+        if (pause > 0) {
+            pause--;
+        } else if (i > 0 && i + 1 < n && d[i - 1] == '\n') {
+            size_t k = i;
+            while (k + 1 < n && (d[k] == ' ' || d[k] == '\t')) k++;
+            const mt__bulk_spec *plain = NULL;
+            if (k + 1 < n && (d[k + 1] == ' ' || d[k + 1] == '\t'))
+                plain = d[k] == 'v' ? &plain_verts : d[k] == 'f' ? &plain_faces : NULL;
+            if (plain) {
+                uint64_t got =
+                    mt__bulk_parse(src, plain, &i, plain->faces ? b->num_faces : b->num_verts,
+                                   plain->faces ? UINT32_MAX : MT__IO_MAX_VERTS, b);
+                if (plain->faces)
+                    b->num_faces += got;
+                else
+                    b->num_verts += got;
+                if (got < FEW_RECORDS) pause = PAUSE_LINES;
+                if (got) continue;
+            }
+        }
         i = skip_hspace(d, n, i);
         if (i >= n) {
             if (!mt__src_more(src, &i)) break;

@@ -217,7 +217,8 @@ static mt_status read_verts(mt__io_src *src, size_t *pos, const off_counts *c, i
     size_t n = src->size;
     size_t i = *pos, cap = 0;
     double *p = NULL;
-    mt__bulk_spec plain = {{MT__BULK_X, MT__BULK_Y, MT__BULK_Z, MT__BULK_REST}, extras ? 4 : 3, 0};
+    mt__bulk_spec plain = {.ops = {MT__BULK_X, MT__BULK_Y, MT__BULK_Z, MT__BULK_REST},
+                           .num_ops = extras ? 4 : 3};
     for (uint32_t v = 0; v < num_verts; v++) {
         if (v >= cap) {
             cap = mt__builder_ahead(v, num_verts);
@@ -285,7 +286,7 @@ static mt_status read_faces(mt__io_src *src, size_t *pos, const off_counts *c, m
 {
     uint32_t num_faces = (uint32_t)c->faces;
     size_t i = *pos, cap = 0;
-    mt__bulk_spec plain = {{MT__BULK_INDICES, MT__BULK_REST}, 2, 1};
+    mt__bulk_spec plain = {.ops = {MT__BULK_INDICES, MT__BULK_REST}, .num_ops = 2, .faces = 1};
     for (uint32_t f = 0; f < num_faces; f++) {
         if (f >= cap) {
             cap = mt__builder_ahead(f, num_faces);
