@@ -415,11 +415,12 @@ typedef struct mt__bulk_spec {
 
 /* Parses the plain records of the lines at window index *pos on (the
  * start of a line; *pos must follow a '\n' or the start of the data) into
- * b: vertex or face `first` on, `declared` in all, growing b as the reader
- * would. Stops before the first line the general loop must read (see
- * io_bulk.c), at the window's last '\n' or before record declared - 1 (the
- * last, whose end the general loop must know); on
- * several threads (src->threads) when the lines are many. Returns how many
+ * b: vertex or face `first` on, `declared` in all (a format that declares
+ * no counts passes its limit), growing b as the reader would. Stops before
+ * the first line the general loop must read (see io_bulk.c), at the
+ * window's last '\n' or before record declared - 1 (the last, whose end or
+ * refusal the general loop must know); on several threads (src->threads)
+ * when the lines are many. Returns how many
  * records it read, *pos past them: the same records, bit for bit, that the
  * general loop would have read. */
 uint64_t mt__bulk_parse(mt__io_src *src, const mt__bulk_spec *spec, size_t *pos, uint64_t first,
