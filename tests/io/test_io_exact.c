@@ -565,9 +565,9 @@ static void obj_odd_face_line(obj_writer *o)
             obj_put(o, "f -1 -2 -3\n");
             f[0] = nv - 1, f[1] = nv - 2, f[2] = nv - 3;
             break;
-        case 1: /* OBJ has no vertex 0: stored as -1 */
-            obj_put(o, "f 0 1 2\n");
-            f[0] = UINT32_MAX, f[1] = 0, f[2] = 1;
+        case 1: /* OBJ has no vertex 0, signed or not: stored as -1 */
+            obj_put(o, "f 0 -0 +1\n");
+            f[0] = UINT32_MAX, f[1] = UINT32_MAX, f[2] = 0;
             break;
         case 2:
             obj_put(o, "f 1 2 3 # a comment\n");
@@ -592,7 +592,8 @@ static void obj_odd_face_line(obj_writer *o)
 
 /* OBJ files large enough to be split across threads, in blocks of v and f
  * lines with texture and normal lines between them, entries of all four
- * forms, tabs, CRLF, and odd lines deep inside the runs: the arrays they
+ * forms (one block's relative), tabs, CRLF, and odd lines deep inside the
+ * runs: the arrays they
  * were written from, on one to four threads and through small windows;
  * and a bad line inside a run is reported at its line every way. */
 static void test_exact_obj_runs(void)
@@ -639,11 +640,12 @@ static void test_exact_obj_runs(void)
             size_t n = (size_t)snprintf(line, sizeof line, "f");
             for (uint32_t j = 0; j < size; j++) {
                 idx[j] = (f * 7 + j * 13) % nv;
-                const unsigned long one_based = idx[j] + 1ul;
-                static const char *const forms[] = {" %lu", " %lu/%lu", " %lu/%lu/%lu",
-                                                    " %lu//%lu"};
-                n += (size_t)snprintf(line + n, sizeof line - n, forms[(f + j) % 4], one_based,
-                                      one_based, one_based);
+                /* block 1 counts back from the vertices defined so far */
+                const long entry = block == 1 ? (long)idx[j] - (long)nv : (long)idx[j] + 1;
+                static const char *const forms[] = {" %ld", " %ld/%ld", " %ld/%ld/%ld",
+                                                    " %ld//%ld"};
+                n += (size_t)snprintf(line + n, sizeof line - n, forms[(f + j) % 4], entry, entry,
+                                      entry);
             }
             snprintf(line + n, sizeof line - n, "%s", end);
             obj_put(&o, line);

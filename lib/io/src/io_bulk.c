@@ -136,22 +136,29 @@ static inline int scan_index(const unsigned char *d, size_t n, size_t *pos, uint
     return 1;
 }
 
-/* An OBJ face entry as io_obj.c reads it: a vertex index of plain digits
- * (1-based; 0 is stored as -1, out of range), then optionally "/[vt]" and
- * "/[vn]" of signed digits, followed by a separator or the line's end.
- * Negative (relative) indices are left to the general loop. */
-static inline int scan_entry(const unsigned char *d, size_t n, size_t *pos, uint32_t *out)
+/* An OBJ face entry as io_obj.c reads it: a signed vertex index (1-based,
+ * negative ones counting back from the `defined` vertices before the line;
+ * 0 is stored as -1, out of range), then optionally "/[vt]" and "/[vn]" of
+ * signed digits, followed by a separator or the line's end. */
+static inline int scan_entry(const unsigned char *d, size_t n, size_t *pos, uint32_t defined,
+                             uint32_t *out)
 {
     size_t k = *pos;
+    int neg = d[k] == '-';
+    k += (size_t)(neg || d[k] == '+');
+    const size_t first = k;
     uint64_t v = scan_digits(d, n, &k);
-    if (k == *pos || k - *pos > 10 || v > 0xffffffffull) return 0;
+    if (k == first || k - first > 10 || v > (neg ? 0x80000000ull : 0xffffffffull)) return 0;
     for (int part = 0; part < 2 && k < n && d[k] == '/'; part++) {
         k++;
         if (k < n && (d[k] == '-' || d[k] == '+')) k++;
         while (k < n && (unsigned)d[k] - '0' <= 9) k++;
     }
     if (k >= n || !ends_token(d[k])) return 0;
-    *out = (uint32_t)(v - 1);
+    if (v == 0)
+        *out = UINT32_MAX;
+    else
+        *out = neg ? defined - (uint32_t)v : (uint32_t)(v - 1); /* wraps as io_obj.c's does */
     *pos = k;
     return 1;
 }
@@ -239,7 +246,7 @@ static line_result parse_line(const mt__bulk_spec *spec, const unsigned char *d,
                 for (;;) {
                     if (size == MT__BULK_MAX_LIST) return LINE_OTHER;
                     if (size == out->cap_indices - out->num_indices) return LINE_NO_ROOM;
-                    if (!scan_entry(d, n, &i, &idx[size])) return LINE_OTHER;
+                    if (!scan_entry(d, n, &i, spec->defined, &idx[size])) return LINE_OTHER;
                     size++;
                     while (i < n && is_hspace(d[i])) i++;
                     if (i >= n || d[i] == '\r' || d[i] == '\n') break;

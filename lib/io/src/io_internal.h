@@ -411,6 +411,7 @@ typedef struct mt__bulk_spec {
     size_t num_ops;
     int faces;
     unsigned char keyword; /* MT__BULK_KEYWORD's letter */
+    uint32_t defined;      /* MT__BULK_ENTRIES: vertices before the run (relative indices) */
 } mt__bulk_spec;
 
 /* Parses the plain records of the lines at window index *pos on (the

@@ -231,14 +231,14 @@ static mt_status read_obj(mt__io_src *src, mt__builder *b, mt_diag *diag)
         !mt__builder_reserve_indices(b, (size_t)guess / 16))
         return mt__builder_fail(b, src, diag);
     /* Lines of plain v or f records: io_bulk.c reads them, on several
-     * threads when they are many. Where it reads few (relative indices,
-     * v lines between vt and vn lines), the loop here takes the next
-     * PAUSE_LINES lines before it is asked again. */
+     * threads when they are many. Where it reads few (comments after
+     * records, v lines between vt and vn lines), the loop here takes the
+     * next PAUSE_LINES lines before it is asked again. */
     static const mt__bulk_spec plain_verts = {
         .ops = {MT__BULK_KEYWORD, MT__BULK_X, MT__BULK_Y, MT__BULK_Z, MT__BULK_REST},
         .num_ops = 5,
         .keyword = 'v'};
-    static const mt__bulk_spec plain_faces = {
+    mt__bulk_spec plain_faces = {
         .ops = {MT__BULK_KEYWORD, MT__BULK_ENTRIES}, .num_ops = 2, .faces = 1, .keyword = 'f'};
     enum { FEW_RECORDS = 64, PAUSE_LINES = 256 };
     size_t pause = 0;
@@ -255,6 +255,7 @@ static mt_status read_obj(mt__io_src *src, mt__builder *b, mt_diag *diag)
             if (k + 1 < n && (d[k + 1] == ' ' || d[k + 1] == '\t'))
                 plain = d[k] == 'v' ? &plain_verts : d[k] == 'f' ? &plain_faces : NULL;
             if (plain) {
+                plain_faces.defined = (uint32_t)b->num_verts; /* for relative indices */
                 uint64_t got =
                     mt__bulk_parse(src, plain, &i, plain->faces ? b->num_faces : b->num_verts,
                                    plain->faces ? UINT32_MAX : MT__IO_MAX_VERTS, b);
