@@ -175,6 +175,21 @@ static char *make_text(char **tokens, size_t n, int ply, size_t *out_len)
     return text;
 }
 
+/* A way to read a file: threads and window size (0: the defaults). */
+typedef struct read_way {
+    unsigned threads;
+    size_t window;
+} read_way;
+
+static mt_read_options options_for(read_way way)
+{
+    mt_read_options options;
+    memset(&options, 0, sizeof options);
+    options.threads = way.threads;
+    options.window_bytes = way.window;
+    return options;
+}
+
 static int same_lists(const mt_face_list *a, const mt_face_list *b)
 {
     return a->num_verts == b->num_verts && a->num_faces == b->num_faces &&
@@ -188,18 +203,13 @@ static int same_lists(const mt_face_list *a, const mt_face_list *b)
  * status, arrays, message and line each time. */
 static void expect_same_every_way(const char *text, size_t len, const char *name)
 {
-    static const struct {
-        unsigned threads;
-        size_t window;
-    } ways[] = {{1, 0}, {2, 0}, {4, 0}, {2, 4096}, {1, 7}, {2, (size_t)1 << 20}};
+    static const read_way ways[] = {{1, 0},    {2, 0}, {4, 0},
+                                    {2, 4096}, {1, 7}, {2, (size_t)1 << 20}};
     mt_face_list first, list;
     mt_diag first_diag, diag;
     mt_status first_status = MT_OK;
     for (size_t w = 0; w < sizeof ways / sizeof ways[0]; w++) {
-        mt_read_options options;
-        memset(&options, 0, sizeof options);
-        options.threads = ways[w].threads;
-        options.window_bytes = ways[w].window;
+        mt_read_options options = options_for(ways[w]);
         mt_face_list *out = w == 0 ? &first : &list;
         mt_diag *d = w == 0 ? &first_diag : &diag;
         mt_status st = mt_read_memory_with(text, len, MT_FORMAT_AUTO, name, &options, out, d);
@@ -388,10 +398,7 @@ static void test_exact_binary_ply_fast_paths(void)
     CHECK_EQ(k, list.num_indices);
     static const mt_format formats[] = {MT_FORMAT_PLY_ASCII, MT_FORMAT_PLY_BINARY_LE,
                                         MT_FORMAT_PLY_BINARY_BE};
-    static const struct {
-        unsigned threads;
-        size_t window;
-    } ways[] = {{0, 0}, {1, 0}, {2, (size_t)1 << 20}, {2, 4096}, {2, 100}};
+    static const read_way ways[] = {{0, 0}, {1, 0}, {2, (size_t)1 << 20}, {2, 4096}, {2, 100}};
     mt_face_list ascii;
     memset(&ascii, 0, sizeof ascii);
     for (size_t i = 0; i < 3; i++) {
@@ -404,10 +411,7 @@ static void test_exact_binary_ply_fast_paths(void)
         size_t size = 0;
         CHECK(io_test_slurp(path, &data, &size));
         for (size_t w = 0; w < sizeof ways / sizeof ways[0] && data; w++) {
-            mt_read_options options;
-            memset(&options, 0, sizeof options);
-            options.threads = ways[w].threads;
-            options.window_bytes = ways[w].window;
+            mt_read_options options = options_for(ways[w]);
             mt_face_list read;
             CHECK_OK(mt_read_memory_with(data, size, MT_FORMAT_AUTO, path, &options, &read, &diag));
             if (i == 0 && w == 0) {
@@ -467,19 +471,13 @@ static void test_exact_mixed_face_sizes(void)
     }
     free(sizes);
     static const mt_format formats[] = {MT_FORMAT_OFF, MT_FORMAT_PLY_ASCII};
-    static const struct {
-        unsigned threads;
-        size_t window;
-    } ways[] = {{1, 0}, {2, 0}, {3, 0}, {4, 0}, {2, (size_t)3 << 20}};
+    static const read_way ways[] = {{1, 0}, {2, 0}, {3, 0}, {4, 0}, {2, (size_t)3 << 20}};
     for (size_t i = 0; i < 2; i++) {
         const char *path = io_test_path(i == 0 ? "mixed.off" : "mixed.ply");
         mt_diag diag;
         CHECK_OK(mt_write_file(path, formats[i], &list, &diag));
         for (size_t w = 0; w < sizeof ways / sizeof ways[0]; w++) {
-            mt_read_options options;
-            memset(&options, 0, sizeof options);
-            options.threads = ways[w].threads;
-            options.window_bytes = ways[w].window;
+            mt_read_options options = options_for(ways[w]);
             mt_face_list read;
             CHECK_OK(mt_read_file_with(path, MT_FORMAT_AUTO, &options, &read, &diag));
             if (!same_lists(&list, &read))
@@ -652,15 +650,10 @@ static void test_exact_obj_runs(void)
             obj_want_face(&o, size, idx);
         }
     }
-    static const struct {
-        unsigned threads;
-        size_t window;
-    } ways[] = {{1, 0}, {2, 0}, {3, 0}, {4, 0}, {2, (size_t)1 << 20}, {1, 4096}};
+    static const read_way ways[] = {{1, 0},   {2, 0}, {3, 0}, {4, 0}, {2, (size_t)1 << 20},
+                                    {1, 4096}};
     for (size_t w = 0; w < sizeof ways / sizeof ways[0]; w++) {
-        mt_read_options options;
-        memset(&options, 0, sizeof options);
-        options.threads = ways[w].threads;
-        options.window_bytes = ways[w].window;
+        mt_read_options options = options_for(ways[w]);
         mt_face_list read;
         mt_diag diag;
         CHECK_OK(
