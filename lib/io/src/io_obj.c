@@ -256,13 +256,10 @@ static mt_status read_obj(mt__io_src *src, mt__builder *b, mt_diag *diag)
                 plain = d[k] == 'v' ? &plain_verts : d[k] == 'f' ? &plain_faces : NULL;
             if (plain) {
                 plain_faces.defined = (uint32_t)b->num_verts; /* for relative indices */
-                uint64_t got =
-                    mt__bulk_parse(src, plain, &i, plain->faces ? b->num_faces : b->num_verts,
-                                   plain->faces ? UINT32_MAX : MT__IO_MAX_VERTS, b);
-                if (plain->faces)
-                    b->num_faces += got;
-                else
-                    b->num_verts += got;
+                size_t *records = plain->faces ? &b->num_faces : &b->num_verts;
+                uint64_t got = mt__bulk_parse(src, plain, &i, *records,
+                                              plain->faces ? UINT32_MAX : MT__IO_MAX_VERTS, b);
+                *records += got;
                 if (got < FEW_RECORDS) pause = PAUSE_LINES;
                 if (got) continue;
             }
