@@ -489,6 +489,122 @@ static void test_exact_mixed_face_sizes(void)
     mt_face_list_free(&list);
 }
 
+/* OFF lines the fast path for common lines must read as the general loop
+ * does, or leave to it: vertices of three tokens (their values: strtod's)
+ * and faces with the indices they hold. */
+static const char *const odd_off_vertex_lines[] = {
+    "-.5 5. +1\n",
+    "  1 2 3\n",
+    "1\t\t2  3 \r\n",
+    "-0 0.1 1e3\n",
+    "00000000000000000001 2.50000000000000000000 3\n",
+    "9007199254740993 0.1234567890123456789 1234567890123456789\n",
+    "0.12345678901234567 -0.0000000000000000001 12345678.12345678\n",
+};
+
+typedef struct odd_face_line {
+    const char *text;
+    uint32_t size, indices[4];
+} odd_face_line;
+
+static const odd_face_line odd_off_face_lines[] = {
+    {"3 1 2 00000000002\n", 3, {1, 2, 2}}, {"3 1 2 4294967295\n", 3, {1, 2, UINT32_MAX}},
+    {"3 1 2 -1\n", 3, {1, 2, UINT32_MAX}}, {"3\t1 2 3 \r\n", 3, {1, 2, 3}},
+    {" 3 1 2 3\n", 3, {1, 2, 3}},          {"4 1 2 3 4\n", 4, {1, 2, 3, 4}},
+    {"03 1  2 3\n", 3, {1, 2, 3}},         {"0\n", 0, {0}},
+};
+
+#define ODD_EVERY 997u /* one line in this many is odd */
+
+/* Splits a vertex line into its three tokens' values by strtod. */
+static void strtod_line(const char *line, double xyz[3])
+{
+    const char *p = line;
+    for (int k = 0; k < 3; k++) {
+        char *end;
+        xyz[k] = strtod(p, &end);
+        p = end;
+    }
+}
+
+/* OFF files with odd lines deep inside their runs of vertices and faces:
+ * read as the lines say on one to four threads and through small windows;
+ * an index past 32 bits there is an error at its line every way. */
+static void test_exact_off_odd_lines(void)
+{
+    enum { VERTS = 60000, FACES = 200000 };
+    size_t cap = (size_t)16 << 20, len = 0;
+    char *text = malloc(cap);
+    mt_face_list want;
+    CHECK(text != NULL);
+    CHECK_OK(mt_face_list_alloc(&want, VERTS, FACES, 4 * (uint64_t)FACES, NULL));
+    if (!text) return;
+    len += (size_t)sprintf(text, "OFF\n%u %u 0\n", (unsigned)VERTS, (unsigned)FACES);
+    size_t lines = 2, bad_at = 0, bad_line = 0;
+    size_t num_odd_v = sizeof odd_off_vertex_lines / sizeof odd_off_vertex_lines[0];
+    size_t num_odd_f = sizeof odd_off_face_lines / sizeof odd_off_face_lines[0];
+    for (uint32_t v = 0; v < VERTS; v++, lines++) {
+        double *xyz = want.positions + 3 * (size_t)v;
+        if (v % ODD_EVERY == ODD_EVERY - 1) {
+            const char *line = odd_off_vertex_lines[v / ODD_EVERY % num_odd_v];
+            len += (size_t)sprintf(text + len, "%s", line);
+            strtod_line(line, xyz);
+        } else {
+            xyz[0] = v % 1000, xyz[1] = -(double)(v / 1000) / 8, xyz[2] = 0.25 * (v % 7);
+            len += (size_t)sprintf(text + len, "%.17g %.17g %.17g\n", xyz[0], xyz[1], xyz[2]);
+        }
+    }
+    want.num_indices = 0;
+    for (uint32_t f = 0; f < FACES; f++, lines++) {
+        uint32_t *idx = want.face_indices + want.num_indices;
+        if (f % ODD_EVERY == ODD_EVERY - 1) {
+            const odd_face_line *odd = &odd_off_face_lines[f / ODD_EVERY % num_odd_f];
+            len += (size_t)sprintf(text + len, "%s", odd->text);
+            want.face_sizes[f] = odd->size;
+            memcpy(idx, odd->indices, odd->size * sizeof *idx);
+        } else {
+            if (f == FACES / 2) {
+                bad_at = len;
+                bad_line = lines + 1;
+            }
+            want.face_sizes[f] = 3;
+            idx[0] = f % VERTS, idx[1] = (f * 7 + 1) % VERTS, idx[2] = (f * 13 + 2) % VERTS;
+            len += (size_t)sprintf(text + len, "3 %u %u %u\n", idx[0], idx[1], idx[2]);
+        }
+        want.num_indices += want.face_sizes[f];
+    }
+    mt_face_list read;
+    mt_diag diag;
+    CHECK_OK(mt_read_memory(text, len, MT_FORMAT_OFF, "odd.off", &read, &diag));
+    if (!same_lists(&want, &read)) mt_test_fail(__FILE__, __LINE__, "odd.off: other arrays");
+    mt_face_list_free(&read);
+    expect_same_every_way(text, len, "odd.off");
+    /* the middle face's last index one past 32 bits, then 11 digits */
+    static const char *const too_big[] = {"4294967296", "99999999999"};
+    for (size_t k = 0; k < 2; k++) {
+        char *nl = memchr(text + bad_at, '\n', 64);
+        char *sp = nl;
+        while (sp[-1] != ' ') sp--;
+        char *copy = malloc(len + 16);
+        CHECK(copy != NULL);
+        if (!copy) break;
+        size_t head = (size_t)(sp - text);
+        memcpy(copy, text, head);
+        size_t m = head + (size_t)sprintf(copy + head, "%s", too_big[k]);
+        memcpy(copy + m, nl, len - (size_t)(nl - text));
+        m += len - (size_t)(nl - text);
+        mt_status st = mt_read_memory(copy, m, MT_FORMAT_OFF, "big.off", &read, &diag);
+        CHECK_EQ(st, MT_ERR_PARSE);
+        CHECK_EQ(diag.line, bad_line);
+        CHECK(strstr(diag.message, "does not fit in a 32-bit integer") != NULL);
+        if (st == MT_OK) mt_face_list_free(&read);
+        expect_same_every_way(copy, m, "big.off");
+        free(copy);
+    }
+    mt_face_list_free(&want);
+    free(text);
+}
+
 /* An OBJ text written together with the face list it holds. */
 typedef struct obj_writer {
     char *text;
@@ -698,6 +814,7 @@ static const mt_test_case cases[] = {
     {"exact_corpus_every_way", test_exact_corpus_every_way},
     {"exact_binary_ply_fast_paths", test_exact_binary_ply_fast_paths},
     {"exact_mixed_face_sizes", test_exact_mixed_face_sizes},
+    {"exact_off_odd_lines", test_exact_off_odd_lines},
     {"exact_obj_runs", test_exact_obj_runs},
 };
 const mt_test_table mt_tests_io_exact = {cases, sizeof cases / sizeof cases[0]};

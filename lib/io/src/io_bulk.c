@@ -17,6 +17,7 @@
  * closed afterwards, and an index region too small stops the part there).
  * Otherwise a part parses into scratch arrays appended in order once part 0
  * ends where part 1 starts. */
+#include <float.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -87,22 +88,31 @@ static inline int ends_token(unsigned char c)
     return c == ' ' || c == '\t' || c == '\r' || c == '\n';
 }
 
+/* The digits at p when fewer than 8 are (8 bytes are read): their count,
+ * and their value in *value; 8 when there are 8 or more. No branch on the
+ * count, which varies from number to number. */
+static inline unsigned short_digits(const unsigned char *p, uint64_t *value)
+{
+    uint64_t w = mt__load8(p), nd = mt__nondigits8(w);
+    if (!nd) return 8;
+    unsigned len = (unsigned)__builtin_ctzll(nd) / 8;
+    *value = len ? mt__digits8_value((w - 0x3030303030303030ull) << (8 * (8 - len))) : 0;
+    return len;
+}
+
 /* Up to 10 digits at d[k] (8 at a time where 8 bytes are in the window):
  * their value, and k past them. More than 10 digits: *k moves past 11. */
 static inline uint64_t scan_digits(const unsigned char *d, size_t n, size_t *k)
 {
     size_t i = *k;
+    uint64_t v = 0;
     if (n - i >= 8) {
-        uint64_t w = mt__load8(d + i);
-        uint64_t nd = mt__nondigits8(w);
-        if (nd) {
-            unsigned len = (unsigned)__builtin_ctzll(nd) / 8;
-            if (len == 0) return 0;
+        unsigned len = short_digits(d + i, &v);
+        if (len < 8) {
             *k = i + len;
-            return mt__digits8_value((w - 0x3030303030303030ull) << (8 * (8 - len)));
+            return v;
         }
     }
-    uint64_t v = 0;
     size_t s = i;
     while (i < n && (unsigned)d[i] - '0' <= 9 && i - s < 11) v = v * 10 + (d[i++] - '0');
     *k = i;
@@ -184,6 +194,184 @@ static inline int scan_number(const unsigned char *d, size_t n, size_t *pos, dou
     size_t e = token_end(d, n, k);
     if (e == k || e >= n || !mt__parse_double(d + k, e - k, out)) return 0;
     *pos = e;
+    return 1;
+}
+
+/* ---- The common lines, before the general shapes ----------------------- */
+
+/* Most lines are "x y z" of short decimals or "3 i j k", optionally after a
+ * keyword letter: fast_line reads those alone, without parse_line's walk
+ * over the spec's ops, and leaves every other line to parse_line, which
+ * reads it as before. It reads only lines that start FAST_SPAN bytes or
+ * more before the part's end, and looks at most that far. */
+#define FAST_SPAN ((size_t)192)
+/* Where a line's separators must end: a number or an index after them
+ * reads at most 46 bytes (a sign, 20 digits, '.', 16 digits and 8 more
+ * read). */
+#define FAST_ITEMS_END ((size_t)128)
+
+typedef enum line_shape {
+    SHAPE_OTHER, /* parse_line alone */
+    SHAPE_XYZ,   /* [keyword] x y z: ops X Y Z, then REST or nothing */
+    SHAPE_FACE,  /* count and indices: ops INDICES, then REST or nothing */
+} line_shape;
+
+/* The shape of spec's lines fast_line reads, and *keyword: the letter
+ * before them, or 0. */
+static line_shape shape_of(const mt__bulk_spec *spec, unsigned char *keyword)
+{
+    const unsigned char *op = spec->ops;
+    size_t n = spec->num_ops;
+    *keyword = 0;
+    if (n && op[0] == MT__BULK_KEYWORD) {
+        *keyword = spec->keyword;
+        op++;
+        n--;
+    }
+    if (n && op[n - 1] == MT__BULK_REST) n--;
+    if (n == 3 && op[0] == MT__BULK_X && op[1] == MT__BULK_Y && op[2] == MT__BULK_Z)
+        return SHAPE_XYZ;
+    if (n == 1 && op[0] == MT__BULK_INDICES) return SHAPE_FACE;
+    return SHAPE_OTHER;
+}
+
+/* Past spaces and tabs at p, not beyond lim. */
+static inline const unsigned char *skip_hspace(const unsigned char *p, const unsigned char *lim)
+{
+    while (p < lim && is_hspace(*p)) p++;
+    return p;
+}
+
+/* Up to `most` digits at *q, one at a time, appended to *value; returns
+ * how many. */
+static inline size_t long_digits(const unsigned char **q, size_t most, uint64_t *value)
+{
+    const unsigned char *p = *q;
+    unsigned c;
+    while ((size_t)(p - *q) < most && (c = (unsigned)*p - '0') <= 9) {
+        *value = *value * 10 + c;
+        p++;
+    }
+    size_t n = (size_t)(p - *q);
+    *q = p;
+    return n;
+}
+
+static const uint64_t pow10_u64[8] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000};
+
+/* A number ending a token, as scan_number reads it: a plain decimal of at
+ * most 19 digits without an exponent here, as mt__scan_decimal would read
+ * it (Clinger's fast path, else Eisel-Lemire), others by mt__scan_decimal.
+ * 0 when neither reads it: parse_line then reads the line. */
+static inline int fast_number(const unsigned char **at, const unsigned char *end, double *out)
+{
+    const unsigned char *p = *at;
+#if FLT_EVAL_METHOD == 0
+    int neg = *p == '-';
+    const unsigned char *q = p + neg;
+    uint64_t mant = 0;
+    size_t digits = short_digits(q, &mant);
+    if (digits == 8)
+        digits = long_digits(&q, 20, &mant);
+    else
+        q += digits;
+    size_t frac = 0;
+    if (*q == '.') {
+        const unsigned char *f = ++q;
+        uint64_t chunk, tail = 0;
+        while (q - f < 16 && mt__is_8digits(chunk = mt__load8(q))) {
+            mant = mant * 100000000 + mt__parse_8digits(chunk);
+            q += 8;
+        }
+        size_t t = short_digits(q, &tail);
+        if (t < 8) {
+            mant = mant * pow10_u64[t] + tail;
+            q += t;
+        }
+        frac = t < 8 ? (size_t)(q - f) : 24; /* 24 or more: not read here */
+    }
+    if (digits + frac - 1 < 19 && ends_token(*q)) {
+        if (mant <= (1ull << 53)) {
+            double v = (double)mant;
+            if (frac) v /= mt__pow10_exact[frac];
+            *out = neg ? -v : v;
+            *at = q;
+            return 1;
+        }
+        if (mt__eisel_lemire(mant, -(int64_t)frac, neg, out)) {
+            *at = q;
+            return 1;
+        }
+    }
+#endif
+    size_t used = mt__scan_decimal(p, end, out);
+    if (!used || (size_t)(end - p) <= used || !ends_token(p[used])) return 0;
+    *at = p + used;
+    return 1;
+}
+
+/* An index of 1 to 10 digits ending a token, as scan_index reads it
+ * (without a sign). */
+static inline int fast_index(const unsigned char **at, uint32_t *out)
+{
+    const unsigned char *p = *at;
+    uint64_t v = 0;
+    size_t len = short_digits(p, &v);
+    if (len == 8)
+        len = long_digits(&p, 11, &v);
+    else
+        p += len;
+    if (len == 0 || len > 10 || v > 0xffffffffull || !ends_token(*p)) return 0;
+    *out = (uint32_t)v;
+    *at = p;
+    return 1;
+}
+
+/* Reads the line at *pos (at least FAST_SPAN bytes before n) into out as
+ * parse_line would, when it has the common shape: returns 1 with *pos past
+ * its '\n'. Otherwise 0, with out and *pos unchanged. */
+static int fast_line(line_shape shape, unsigned char keyword, const unsigned char *d, size_t n,
+                     size_t *pos, bulk_out *out)
+{
+    const unsigned char *p = d + *pos, *lim = p + FAST_ITEMS_END;
+    if (keyword) {
+        if (p[0] != keyword || !is_hspace(p[1])) return 0;
+        p = skip_hspace(p + 2, lim);
+    }
+    if (shape == SHAPE_XYZ) {
+        double xyz[3];
+        for (int k = 0; k < 3; k++) {
+            if (k) {
+                if (!is_hspace(*p)) return 0;
+                p = skip_hspace(p + 1, lim);
+            }
+            if (p >= lim || !fast_number(&p, d + n, &xyz[k])) return 0;
+        }
+        p = skip_hspace(p, lim);
+        if (*p == '\r') p++;
+        if (p >= lim || *p != '\n') return 0;
+        double *xyz_out = out->positions + 3 * out->num_verts++;
+        xyz_out[0] = xyz[0];
+        xyz_out[1] = xyz[1];
+        xyz_out[2] = xyz[2];
+    } else {
+        unsigned count = (unsigned)*p - '0';
+        if (count - 1 > 8 || !is_hspace(p[1]) || count > out->cap_indices - out->num_indices)
+            return 0;
+        uint32_t *idx = out->indices + out->num_indices;
+        p++;
+        for (unsigned j = 0; j < count; j++) {
+            if (!is_hspace(*p)) return 0;
+            p = skip_hspace(p + 1, lim);
+            if (p >= lim || !fast_index(&p, &idx[j])) return 0;
+        }
+        p = skip_hspace(p, lim);
+        if (*p == '\r') p++;
+        if (p >= lim || *p != '\n') return 0;
+        out->sizes[out->num_faces++] = count;
+        out->num_indices += count;
+    }
+    *pos = (size_t)(p + 1 - d);
     return 1;
 }
 
@@ -302,6 +490,8 @@ static void parse_part(bulk_part *p)
     const mt__bulk_spec *spec = p->spec;
     size_t records = spec->faces ? p->out.num_faces : p->out.num_verts;
     uint32_t lines = 0;
+    unsigned char keyword;
+    line_shape shape = shape_of(spec, &keyword);
     for (;;) {
         if (p->pos >= p->end || records >= p->max) {
             p->why = END_DONE;
@@ -315,6 +505,11 @@ static void parse_part(bulk_part *p)
             atomic_load_explicit(p->cancel, memory_order_relaxed)) {
             p->why = END_OTHER;
             return;
+        }
+        if (shape != SHAPE_OTHER && p->end - p->pos >= FAST_SPAN &&
+            fast_line(shape, keyword, p->d, p->end, &p->pos, &p->out)) {
+            records++;
+            continue;
         }
         line_result r = parse_line(spec, p->d, p->end, &p->pos, &p->out);
         if (r != LINE_READ) {

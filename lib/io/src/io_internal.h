@@ -183,6 +183,13 @@ int mt__parse_double(const unsigned char *s, size_t len, double *out);
  * roundings the Eisel-Lemire algorithm leaves open). The value is
  * bit-identical to strtod's. */
 size_t mt__scan_decimal(const unsigned char *s, const unsigned char *end, double *out);
+/* 10^0 to 10^22, each exact in a double: Clinger's fast path, where one
+ * multiplication or division by them rounds correctly. */
+extern const double mt__pow10_exact[23];
+/* The double nearest to w * 10^q (w != 0) by the Eisel-Lemire algorithm
+ * (negated when neg), as mt__scan_decimal computes it; 0 when it cannot
+ * tell the rounding cheaply or the result is subnormal, zero or infinite. */
+int mt__eisel_lemire(uint64_t w, int64_t q, int neg, double *out);
 
 /* Eight digits at a time (Lemire's SWAR): 8 bytes as a little-endian word
  * (byte 0 the first), which bytes are not ASCII digits, and the value of 8

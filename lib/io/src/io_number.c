@@ -19,9 +19,9 @@
 
 #include "io_internal.h"
 
-static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+const double mt__pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                    1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                    1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
 static int parse_with_strtod(const unsigned char *s, size_t len, double *out)
 {
@@ -76,7 +76,7 @@ static inline int leading_zeros(uint64_t x)
 /* Eisel-Lemire: the double nearest to w * 10^q (w != 0, exact), as
  * fast_float computes it; 0 when it cannot tell the rounding cheaply or the
  * result is subnormal, zero or infinite (strtod then decides). */
-static int eisel_lemire(uint64_t w, int64_t q, int neg, double *out)
+int mt__eisel_lemire(uint64_t w, int64_t q, int neg, double *out)
 {
     if (q < MT__POW5_SMALLEST || q > MT__POW5_LARGEST) return 0;
     int lz = leading_zeros(w);
@@ -219,13 +219,13 @@ size_t mt__scan_decimal(const unsigned char *s, const unsigned char *end, double
     if (mant <= (1ull << 53) && exp10 >= -22 && exp10 <= 22) {
         double v = (double)mant;
         if (exp10 < 0)
-            v /= pow10_exact[-exp10];
+            v /= mt__pow10_exact[-exp10];
         else if (exp10 > 0)
-            v *= pow10_exact[exp10];
+            v *= mt__pow10_exact[exp10];
         *out = neg ? -v : v;
         return (size_t)(p - s);
     }
-    if (eisel_lemire(mant, exp10, neg, out)) return (size_t)(p - s);
+    if (mt__eisel_lemire(mant, exp10, neg, out)) return (size_t)(p - s);
 #else
     (void)s;
     (void)end;
