@@ -781,25 +781,27 @@ static void test_exact_obj_runs(void)
                          ways[w].threads, ways[w].window, read.num_verts, read.num_faces,
                          o.want.num_verts, o.want.num_faces);
         mt_face_list_free(&read);
-        /* a vertex short of a coordinate, then a face entry that is not a number */
-        for (int e = 0; e < 2; e++) {
-            char *bad = malloc(o.len + 16);
+        /* a vertex short of a coordinate, then a face entry that is not a
+         * number and one past 32 bits, at the same place */
+        for (int e = 0; e < 3; e++) {
+            char *bad = malloc(o.len + 32);
             CHECK(bad != NULL);
             if (!bad) break;
-            static const char *const lines[] = {"v 1 2\n", "f 1 2 x\n"};
-            const size_t at = error_at[e], add = strlen(lines[e]);
+            static const char *const lines[] = {"v 1 2\n", "f 1 2 x\n", "f 1 2 4294967297\n"};
+            const int place = e == 0 ? 0 : 1;
+            const size_t at = error_at[place], add = strlen(lines[e]);
             memcpy(bad, o.text, at);
             memcpy(bad + at, lines[e], add);
             memcpy(bad + at + add, o.text + at, o.len - at);
             CHECK_STATUS(mt_read_memory_with(bad, o.len + add, MT_FORMAT_OBJ, "bad.obj", &options,
                                              &read, &diag),
                          MT_ERR_PARSE);
-            if (diag.line != error_line[e])
+            if (diag.line != error_line[place])
                 mt_test_fail(__FILE__, __LINE__,
                              "threads %u, window %zu: '%s' at line %llu, "
                              "reported at %llu (%s)",
                              ways[w].threads, ways[w].window, lines[e],
-                             (unsigned long long)error_line[e], (unsigned long long)diag.line,
+                             (unsigned long long)error_line[place], (unsigned long long)diag.line,
                              diag.message);
             free(bad);
         }

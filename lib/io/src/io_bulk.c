@@ -211,9 +211,10 @@ static inline int scan_number(const unsigned char *d, size_t n, size_t *pos, dou
 #define FAST_ITEMS_END ((size_t)128)
 
 typedef enum line_shape {
-    SHAPE_OTHER, /* parse_line alone */
-    SHAPE_XYZ,   /* [keyword] x y z: ops X Y Z, then REST or nothing */
-    SHAPE_FACE,  /* count and indices: ops INDICES, then REST or nothing */
+    SHAPE_OTHER,    /* parse_line alone */
+    SHAPE_XYZ,      /* [keyword] x y z: ops X Y Z, then REST or nothing */
+    SHAPE_FACE,     /* count and indices: ops INDICES, then REST or nothing */
+    SHAPE_OBJ_FACE, /* keyword and OBJ face entries: ops KEYWORD ENTRIES */
 } line_shape;
 
 /* The shape of spec's lines fast_line reads, and *keyword: the letter
@@ -232,6 +233,7 @@ static line_shape shape_of(const mt__bulk_spec *spec, unsigned char *keyword)
     if (n == 3 && op[0] == MT__BULK_X && op[1] == MT__BULK_Y && op[2] == MT__BULK_Z)
         return SHAPE_XYZ;
     if (n == 1 && op[0] == MT__BULK_INDICES) return SHAPE_FACE;
+    if (n == 1 && op[0] == MT__BULK_ENTRIES && *keyword) return SHAPE_OBJ_FACE;
     return SHAPE_OTHER;
 }
 
@@ -327,11 +329,34 @@ static inline int fast_index(const unsigned char **at, uint32_t *out)
     return 1;
 }
 
+/* An OBJ face entry as scan_entry reads it, when its vertex index has no
+ * sign, not looking past lim (and the few bytes of a number after it). */
+static inline int fast_entry(const unsigned char **at, const unsigned char *lim, uint32_t *out)
+{
+    const unsigned char *p = *at;
+    uint64_t v = 0;
+    size_t len = short_digits(p, &v);
+    if (len == 8)
+        len = long_digits(&p, 11, &v);
+    else
+        p += len;
+    if (len == 0 || len > 10 || v > 0xffffffffull) return 0;
+    for (int part = 0; part < 2 && *p == '/'; part++) {
+        p++;
+        if (*p == '-' || *p == '+') p++;
+        while (p < lim && (unsigned)*p - '0' <= 9) p++;
+    }
+    if (p >= lim || !ends_token(*p)) return 0;
+    *out = v ? (uint32_t)(v - 1) : UINT32_MAX;
+    *at = p;
+    return 1;
+}
+
 /* Reads the line at *pos (at least FAST_SPAN bytes before n) into out as
  * parse_line would, when it has the common shape: returns 1 with *pos past
  * its '\n'. Otherwise 0, with out and *pos unchanged. */
-static int fast_line(line_shape shape, unsigned char keyword, const unsigned char *d, size_t n,
-                     size_t *pos, bulk_out *out)
+static int fast_line(line_shape shape, const mt__bulk_spec *spec, unsigned char keyword,
+                     const unsigned char *d, size_t n, size_t *pos, bulk_out *out)
 {
     const unsigned char *p = d + *pos, *lim = p + FAST_ITEMS_END;
     if (keyword) {
@@ -354,6 +379,26 @@ static int fast_line(line_shape shape, unsigned char keyword, const unsigned cha
         xyz_out[0] = xyz[0];
         xyz_out[1] = xyz[1];
         xyz_out[2] = xyz[2];
+    } else if (shape == SHAPE_OBJ_FACE) {
+        uint32_t *idx = out->indices + out->num_indices;
+        size_t room = out->cap_indices - out->num_indices;
+        uint32_t size = 0;
+        do {
+            if (size == MT__BULK_MAX_LIST || size == room || p >= lim) return 0;
+            if (*p == '-' || *p == '+') { /* relative, or signed: scan_entry */
+                size_t i = (size_t)(p - d);
+                if (!scan_entry(d, n, &i, spec->defined, &idx[size])) return 0;
+                p = d + i;
+            } else if (!fast_entry(&p, lim, &idx[size])) {
+                return 0;
+            }
+            size++;
+            p = skip_hspace(p, lim);
+        } while (p < lim && *p != '\r' && *p != '\n');
+        if (*p == '\r') p++;
+        if (p >= lim || *p != '\n') return 0;
+        out->sizes[out->num_faces++] = size;
+        out->num_indices += size;
     } else {
         unsigned count = (unsigned)*p - '0';
         if (count - 1 > 8 || !is_hspace(p[1]) || count > out->cap_indices - out->num_indices)
@@ -507,7 +552,7 @@ static void parse_part(bulk_part *p)
             return;
         }
         if (shape != SHAPE_OTHER && p->end - p->pos >= FAST_SPAN &&
-            fast_line(shape, keyword, p->d, p->end, &p->pos, &p->out)) {
+            fast_line(shape, spec, keyword, p->d, p->end, &p->pos, &p->out)) {
             records++;
             continue;
         }
