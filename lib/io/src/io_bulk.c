@@ -312,9 +312,9 @@ static inline int fast_number(const unsigned char **at, const unsigned char *end
     return 1;
 }
 
-/* An index of 1 to 10 digits ending a token, as scan_index reads it
- * (without a sign). */
-static inline int fast_index(const unsigned char **at, uint32_t *out)
+/* 1 to 10 digits at *at of a value that fits 32 bits, as scan_digits
+ * reads them for an index (without a sign). */
+static inline int fast_u32(const unsigned char **at, uint32_t *out)
 {
     const unsigned char *p = *at;
     uint64_t v = 0;
@@ -323,7 +323,7 @@ static inline int fast_index(const unsigned char **at, uint32_t *out)
         len = long_digits(&p, 11, &v);
     else
         p += len;
-    if (len == 0 || len > 10 || v > 0xffffffffull || !ends_token(*p)) return 0;
+    if (len == 0 || len > 10 || v > 0xffffffffull) return 0;
     *out = (uint32_t)v;
     *at = p;
     return 1;
@@ -334,20 +334,15 @@ static inline int fast_index(const unsigned char **at, uint32_t *out)
 static inline int fast_entry(const unsigned char **at, const unsigned char *lim, uint32_t *out)
 {
     const unsigned char *p = *at;
-    uint64_t v = 0;
-    size_t len = short_digits(p, &v);
-    if (len == 8)
-        len = long_digits(&p, 11, &v);
-    else
-        p += len;
-    if (len == 0 || len > 10 || v > 0xffffffffull) return 0;
+    uint32_t v;
+    if (!fast_u32(&p, &v)) return 0;
     for (int part = 0; part < 2 && *p == '/'; part++) {
         p++;
         if (*p == '-' || *p == '+') p++;
         while (p < lim && (unsigned)*p - '0' <= 9) p++;
     }
     if (p >= lim || !ends_token(*p)) return 0;
-    *out = v ? (uint32_t)(v - 1) : UINT32_MAX;
+    *out = v ? v - 1 : UINT32_MAX;
     *at = p;
     return 1;
 }
@@ -408,7 +403,7 @@ static int fast_line(line_shape shape, const mt__bulk_spec *spec, unsigned char 
         for (unsigned j = 0; j < count; j++) {
             if (!is_hspace(*p)) return 0;
             p = skip_hspace(p + 1, lim);
-            if (p >= lim || !fast_index(&p, &idx[j])) return 0;
+            if (p >= lim || !fast_u32(&p, &idx[j]) || !ends_token(*p)) return 0;
         }
         p = skip_hspace(p, lim);
         if (*p == '\r') p++;
