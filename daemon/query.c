@@ -467,13 +467,23 @@ typedef struct geometry_list {
     const char *what;
 } geometry_list;
 
-/* At most the pairs a reply carries: n faces piled at one place make
- * n^2/2 pairs, which the check would otherwise gather before counting. */
+/* Exact tests of two triangles a self-intersection check may take: a
+ * surface needs a few per face (0.1 to 16 on the corpus, 2.5 on a grid of
+ * a million triangles), while n faces piled on one another need n^2/2,
+ * crossing or not, and would hold a worker and the daemon's shutdown for
+ * as long as that takes. */
+#define SELFX_TESTS_PER_FACE 32u
+#define SELFX_TESTS_BASE ((uint64_t)1 << 20)
+
+/* At most the pairs a reply carries (n faces piled at one place make n^2/2
+ * pairs, which the check would otherwise gather before counting) and the
+ * tests above. */
 static mt_status self_intersections_list(const mt_mesh *m, void *out, size_t cap, size_t *n,
                                          mt_diag *d)
 {
-    return mt_mesh_self_intersections_at_most(m, MTD_REPLY_MAX_BYTES / sizeof(mt_face_pair), out,
-                                              cap, n, d);
+    const uint64_t tests = SELFX_TESTS_BASE + (uint64_t)SELFX_TESTS_PER_FACE * mt_mesh_num_faces(m);
+    return mt_mesh_self_intersections_at_most(m, MTD_REPLY_MAX_BYTES / sizeof(mt_face_pair), tests,
+                                              out, cap, n, d);
 }
 
 static mt_status nonsimple_faces_list(const mt_mesh *m, void *out, size_t cap, size_t *n,
@@ -495,16 +505,19 @@ static void *fetch_list(answer *a, const mt_mesh *mesh, const geometry_list *lis
     const size_t most = MTD_REPLY_MAX_BYTES / list->elem_size;
     size_t cap = 256;
     void *items = malloc(cap * list->elem_size);
-    mt_status s = items ? list->query(mesh, items, cap, count, NULL) : MT_ERR_NOMEM;
+    mt_diag diag;
+    mt_status s = items ? list->query(mesh, items, cap, count, &diag) : MT_ERR_NOMEM;
     if (s == MT_ERR_BUFFER_TOO_SMALL && *count <= most) {
         void *all = realloc(items, *count * list->elem_size);
-        s = all ? list->query(mesh, all, *count, count, NULL) : MT_ERR_NOMEM;
+        s = all ? list->query(mesh, all, *count, count, &diag) : MT_ERR_NOMEM;
         items = all ? all : items;
     }
-    if (s == MT_ERR_BUFFER_TOO_SMALL || s == MT_ERR_TOO_LARGE)
+    if (s == MT_ERR_BUFFER_TOO_SMALL)
         fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE,
              "more than %zu %s: they exceed the daemon's reply limit of %u bytes", most, list->what,
              (unsigned)MTD_REPLY_MAX_BYTES);
+    else if (s == MT_ERR_TOO_LARGE) /* a bound the query was given: its message names it */
+        fail(a, MESHTOPO_STATUS_CODE_T_TOO_LARGE, "%s", diag.message);
     else if (s != MT_OK)
         fail_geometry(a, s, list->what, 0);
     if (s != MT_OK) {

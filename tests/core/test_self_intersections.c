@@ -8,7 +8,10 @@
  * and a short buffer; and, on a soup of random triangles large enough to be
  * checked on several threads, the same pairs as a check of every pair.
  * mt_mesh_self_intersections_at_most: piles of faces at one place, whose
- * pairs number n(n-1)/2, against the bound. */
+ * pairs number n(n-1)/2, against the bound on pairs; a stack of parallel
+ * triangles that do not cross, each pair of them one exact test, against
+ * the bound on tests; and the same least bound on tests for the soup
+ * however its threads share the work. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -372,14 +375,14 @@ static void test_selfx_at_most_counts_pairs_not_repeats(void)
     mt_mesh *mesh = pile_of(40, 4);
     mt_diag diag;
     size_t count = 99;
-    CHECK_OK(mt_mesh_self_intersections_at_most(mesh, 780, NULL, 0, &count, &diag));
+    CHECK_OK(mt_mesh_self_intersections_at_most(mesh, 780, UINT64_MAX, NULL, 0, &count, &diag));
     CHECK_EQ(count, 780);
     mt_face_pair *all = malloc(780 * sizeof *all);
-    CHECK_OK(mt_mesh_self_intersections_at_most(mesh, 780, all, 780, &count, &diag));
+    CHECK_OK(mt_mesh_self_intersections_at_most(mesh, 780, UINT64_MAX, all, 780, &count, &diag));
     size_t i = 0;
     for (uint32_t a = 0; a < 40; a++)
         for (uint32_t b = a + 1; b < 40; b++, i++) CHECK(all[i].a == a && all[i].b == b);
-    CHECK_STATUS(mt_mesh_self_intersections_at_most(mesh, 779, all, 780, &count, &diag),
+    CHECK_STATUS(mt_mesh_self_intersections_at_most(mesh, 779, UINT64_MAX, all, 780, &count, &diag),
                  MT_ERR_TOO_LARGE);
     CHECK_EQ(count, 0);
     CHECK(strstr(diag.message, "more than 779 self-intersecting face pairs") != NULL);
@@ -397,11 +400,93 @@ static void test_selfx_at_most_stops_on_a_pile(void)
     mt_mesh *mesh = pile_of(30000, 3);
     mt_diag diag;
     size_t count = 99;
-    CHECK_STATUS(mt_mesh_self_intersections_at_most(mesh, 1000, NULL, 0, &count, &diag),
+    CHECK_STATUS(mt_mesh_self_intersections_at_most(mesh, 1000, UINT64_MAX, NULL, 0, &count, &diag),
                  MT_ERR_TOO_LARGE);
     CHECK_EQ(count, 0);
     CHECK(strstr(diag.message, "more than 1000") != NULL);
     mt_mesh_destroy(mesh);
+}
+
+/* n triangles in parallel planes z = c + (x + y) / 2, c 10^-5
+ * apart, each on vertices of its own: every two boxes overlap and no two
+ * triangles meet, so every pair is one exact test and none is found. */
+static mt_mesh *stack_of(uint32_t n)
+{
+    double *pos = malloc(9 * (size_t)n * sizeof *pos);
+    uint32_t *indices = malloc(3 * (size_t)n * sizeof *indices);
+    for (uint32_t f = 0; f < n; f++) {
+        const double c = 0.00001 * f;
+        const double corners[3][3] = {{0, 0, c}, {1, 0, c + 0.5}, {0, 1, c + 0.5}};
+        memcpy(pos + 9 * (size_t)f, corners, sizeof corners);
+        for (uint32_t k = 0; k < 3; k++) indices[3 * f + k] = 3 * f + k;
+    }
+    mt_mesh *mesh = mesh_of(pos, 3 * n, indices, NULL, n);
+    free(pos);
+    free(indices);
+    return mesh;
+}
+
+static void test_selfx_at_most_bounds_the_tests(void)
+{
+    /* 600 triangles: exactly 600 * 599 / 2 = 179,700 tests. */
+    mt_mesh *mesh = stack_of(600);
+    mt_diag diag;
+    size_t count = 99;
+    CHECK_OK(mt_mesh_self_intersections_at_most(mesh, SIZE_MAX, 179700, NULL, 0, &count, &diag));
+    CHECK_EQ(count, 0);
+    CHECK_STATUS(mt_mesh_self_intersections_at_most(mesh, SIZE_MAX, 179699, NULL, 0, &count, &diag),
+                 MT_ERR_TOO_LARGE);
+    CHECK_EQ(count, 0);
+    CHECK(strstr(diag.message, "more than 179699 pairs of triangles whose boxes overlap") != NULL);
+    mt_mesh_destroy(mesh);
+    /* 30000 (several threads): 449,985,000 tests, minutes of work; the
+     * bound ends it after its 100,000th. */
+    mesh = stack_of(30000);
+    CHECK_STATUS(mt_mesh_self_intersections_at_most(mesh, SIZE_MAX, 100000, NULL, 0, &count, &diag),
+                 MT_ERR_TOO_LARGE);
+    CHECK(strstr(diag.message, "more than 100000 pairs of triangles") != NULL);
+    mt_mesh_destroy(mesh);
+}
+
+/* Whether the check of mesh passes with at most `tests` tests. */
+static bool passes_with(const mt_mesh *mesh, uint64_t tests)
+{
+    size_t count;
+    return mt_mesh_self_intersections_at_most(mesh, SIZE_MAX, tests, NULL, 0, &count, NULL) ==
+           MT_OK;
+}
+
+static void test_selfx_tests_do_not_depend_on_threads(void)
+{
+    /* 24000 random triangles, checked on several threads: the least bound
+     * that passes, found by bisection, passes and the one below fails
+     * again and again, whatever thread took which part. */
+    enum { N = 24000 };
+    double *pos = malloc(9 * (size_t)N * sizeof *pos);
+    uint32_t *faces = malloc(3 * (size_t)N * sizeof *faces);
+    for (uint32_t t = 0; t < N; t++) {
+        double c[3] = {uniform(), uniform(), uniform()};
+        for (uint32_t i = 0; i < 9; i++) pos[9 * (size_t)t + i] = c[i % 3] + 0.04 * uniform();
+        for (uint32_t i = 0; i < 3; i++) faces[3 * t + i] = 3 * t + i;
+    }
+    mt_mesh *mesh = mesh_of(pos, 3 * N, faces, NULL, N);
+    uint64_t fails = 0, passes = 1;
+    while (!passes_with(mesh, passes)) fails = passes, passes *= 2;
+    while (passes - fails > 1) {
+        const uint64_t mid = fails + (passes - fails) / 2;
+        if (passes_with(mesh, mid))
+            passes = mid;
+        else
+            fails = mid;
+    }
+    CHECK(passes > 10000); /* enough for many batches on each thread */
+    for (int round = 0; round < 5; round++) {
+        CHECK(passes_with(mesh, passes));
+        CHECK(!passes_with(mesh, passes - 1));
+    }
+    mt_mesh_destroy(mesh);
+    free(pos);
+    free(faces);
 }
 
 static const mt_test_case cases[] = {
@@ -417,5 +502,7 @@ static const mt_test_case cases[] = {
     {"selfx_random_soup_against_pairs", test_selfx_random_soup_against_pairs},
     {"selfx_at_most_counts_pairs_not_repeats", test_selfx_at_most_counts_pairs_not_repeats},
     {"selfx_at_most_stops_on_a_pile", test_selfx_at_most_stops_on_a_pile},
+    {"selfx_at_most_bounds_the_tests", test_selfx_at_most_bounds_the_tests},
+    {"selfx_tests_do_not_depend_on_threads", test_selfx_tests_do_not_depend_on_threads},
 };
 const mt_test_table mt_tests_self_intersections = {cases, sizeof cases / sizeof cases[0]};

@@ -11,6 +11,7 @@
  * levels down are independent tasks that threads take from a shared
  * counter. Boxes are floats rounded outwards, so they never miss a pair. */
 #include <float.h>
+#include <inttypes.h>
 #include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -24,7 +25,8 @@ enum {
     TASKS_PER_THREAD = 64, /* pairs of subtrees the threads share, per thread */
     MIN_PARALLEL = 20000,  /* fewer triangles than this are checked on one thread */
     MORTON_BITS = 10,      /* bits per axis of a cell of the Morton curve (spread3 takes 10) */
-    RADIX_BITS = 10        /* bits per pass of the sort */
+    RADIX_BITS = 10,       /* bits per pass of the sort */
+    TEST_BATCH = 1024      /* exact tests a thread counts before adding them to the total */
 };
 
 typedef struct box {
@@ -64,15 +66,19 @@ typedef struct check {
     uint32_t num_tasks;
     uint32_t threads;   /* how many share the work */
     size_t max_pairs;   /* more pairs than this end the search (MT_ERR_TOO_LARGE) */
+    uint64_t max_tests; /* more exact tests than this end it too */
     atomic_uint next;   /* the next task to take */
-    atomic_bool failed; /* a thread stopped: out of memory, or too many pairs */
+    atomic_bool failed; /* a thread stopped: out of memory, too many pairs or tests */
     atomic_bool too_many;
+    atomic_bool too_many_tests;
+    _Atomic uint64_t tests; /* exact tests counted so far by all threads */
 } check;
 
 typedef struct worker {
     check *c;
-    mt__vec pairs;     /* mt_face_pair, unsorted, possibly repeated */
-    size_t compact_at; /* pairs.len at which repeats are dropped and the count checked */
+    mt__vec pairs;      /* mt_face_pair, unsorted, possibly repeated */
+    size_t compact_at;  /* pairs.len at which repeats are dropped and the count checked */
+    uint32_t uncounted; /* exact tests not yet added to c->tests */
 } worker;
 
 /* The float next to finite f towards -infinity (step -1) or +infinity
@@ -491,9 +497,26 @@ static mt_status add_pair(worker *w, const mt_face_pair *p)
     return MT_OK;
 }
 
+/* Adds a worker's uncounted tests to the total: MT_ERR_TOO_LARGE once it
+ * passes max_tests. The total only grows, so whether it passes does not
+ * depend on how the threads shared the work. */
+static mt_status count_tests(worker *w)
+{
+    check *c = w->c;
+    const uint64_t total = atomic_fetch_add(&c->tests, w->uncounted) + w->uncounted;
+    w->uncounted = 0;
+    if (total <= c->max_tests) return MT_OK;
+    atomic_store(&c->too_many_tests, true);
+    return MT_ERR_TOO_LARGE;
+}
+
 /* Narrow phase of triangles i and j (different faces). */
 static mt_status test_pair(const check *c, uint32_t i, uint32_t j, worker *w)
 {
+    if (++w->uncounted == TEST_BATCH) {
+        mt_status s = count_tests(w);
+        if (s != MT_OK) return s;
+    }
     const mt__tri *a = &c->tris[i], *b = &c->tris[j];
     const double *pos = c->m->positions;
     const double *const pa[3] = {pos + 3 * (size_t)a->v[0], pos + 3 * (size_t)a->v[1],
@@ -621,9 +644,10 @@ static void run_tasks(void *ctx, uint32_t t, uint32_t threads)
         if (task >= c->num_tasks || atomic_load(&c->failed)) break;
         if (traverse(c, c->tasks[task], w) != MT_OK) {
             atomic_store(&c->failed, true);
-            break;
+            return;
         }
     }
+    if (count_tests(w) != MT_OK) atomic_store(&c->failed, true);
 }
 
 /* The pairs of nodes at the first depth with at least `want` of them (or
@@ -675,16 +699,18 @@ static mt_status run_all(check *c, mt__vec *out)
         mt__vec_free(&workers[t].pairs);
     }
     if (s == MT_OK && atomic_load(&c->failed))
-        s = atomic_load(&c->too_many) ? MT_ERR_TOO_LARGE : MT_ERR_NOMEM;
+        s = atomic_load(&c->too_many) || atomic_load(&c->too_many_tests) ? MT_ERR_TOO_LARGE
+                                                                         : MT_ERR_NOMEM;
     if (s != MT_OK) return s;
     sort_unique(out);
     return out->len > c->max_pairs ? MT_ERR_TOO_LARGE : MT_OK;
 }
 
 /* Every intersecting pair into pairs (sorted, no repeats), or
- * MT_ERR_TOO_LARGE once more than max_pairs are found. */
-static mt_status find_pairs(const mt_mesh *m, size_t max_pairs, mt__vec *pairs, mt_diag *diag,
-                            const char *what)
+ * MT_ERR_TOO_LARGE once more than max_pairs are found or more than
+ * max_tests exact tests are needed. */
+static mt_status find_pairs(const mt_mesh *m, size_t max_pairs, uint64_t max_tests, mt__vec *pairs,
+                            mt_diag *diag, const char *what)
 {
     collector parts[MT__MAX_THREADS];
     const uint32_t threads = threads_for(m->num_faces);
@@ -699,13 +725,16 @@ static mt_status find_pairs(const mt_mesh *m, size_t max_pairs, mt__vec *pairs, 
                .num_tris = (uint32_t)total,
                .num_leaves = 1,
                .threads = threads,
-               .max_pairs = max_pairs};
+               .max_pairs = max_pairs,
+               .max_tests = max_tests};
     if (s == MT_OK && total >= 2) {
         const uint64_t blocks = ((uint64_t)c.num_tris + LEAF_SIZE - 1) / LEAF_SIZE;
         while (c.num_leaves < blocks) c.num_leaves *= 2;
         atomic_init(&c.next, 0);
         atomic_init(&c.failed, false);
         atomic_init(&c.too_many, false);
+        atomic_init(&c.too_many_tests, false);
+        atomic_init(&c.tests, 0);
         c.tris = mt__malloc((size_t)c.num_tris * sizeof *c.tris);
         c.nodes = mt__malloc(2 * (size_t)c.num_leaves * sizeof *c.nodes);
         c.leaves = mt__malloc((size_t)c.num_leaves * sizeof *c.leaves);
@@ -722,7 +751,13 @@ static mt_status find_pairs(const mt_mesh *m, size_t max_pairs, mt__vec *pairs, 
         if (s == MT_ERR_NOMEM)
             mt__fail(diag, s, MT_NONE, "%s: no memory for %u triangles and their pairs", what,
                      c.num_tris);
-        if (s == MT_ERR_TOO_LARGE)
+        if (s == MT_ERR_TOO_LARGE && atomic_load(&c.too_many_tests))
+            mt__fail(diag, s, MT_NONE,
+                     "%s: more than %" PRIu64
+                     " pairs of triangles whose boxes overlap "
+                     "to test (faces piled on one another)",
+                     what, max_tests);
+        else if (s == MT_ERR_TOO_LARGE)
             mt__fail(diag, s, MT_NONE, "%s: more than %zu self-intersecting face pairs", what,
                      max_pairs);
     }
@@ -737,8 +772,8 @@ static mt_status find_pairs(const mt_mesh *m, size_t max_pairs, mt__vec *pairs, 
 }
 
 mt_status mt_mesh_self_intersections_at_most(const mt_mesh *mesh, size_t max_count,
-                                             mt_face_pair *out, size_t capacity, size_t *out_count,
-                                             mt_diag *diag)
+                                             uint64_t max_tests, mt_face_pair *out, size_t capacity,
+                                             size_t *out_count, mt_diag *diag)
 {
     static const char what[] = "mt_mesh_self_intersections";
     mt_diag_clear(diag);
@@ -747,7 +782,7 @@ mt_status mt_mesh_self_intersections_at_most(const mt_mesh *mesh, size_t max_cou
     mt_status s = mt__geom_ready(mesh, what, diag);
     if (s != MT_OK) return s;
     mt__vec pairs = {.elem_size = sizeof(mt_face_pair)};
-    s = find_pairs(mesh, max_count, &pairs, diag, what);
+    s = find_pairs(mesh, max_count, max_tests, &pairs, diag, what);
     if (s == MT_OK) {
         *out_count = pairs.len;
         if (out && capacity > 0 && pairs.len > 0)
@@ -763,5 +798,6 @@ mt_status mt_mesh_self_intersections_at_most(const mt_mesh *mesh, size_t max_cou
 mt_status mt_mesh_self_intersections(const mt_mesh *mesh, mt_face_pair *out, size_t capacity,
                                      size_t *out_count, mt_diag *diag)
 {
-    return mt_mesh_self_intersections_at_most(mesh, SIZE_MAX, out, capacity, out_count, diag);
+    return mt_mesh_self_intersections_at_most(mesh, SIZE_MAX, UINT64_MAX, out, capacity, out_count,
+                                              diag);
 }

@@ -1544,6 +1544,41 @@ static void test_self_intersections_one_at_a_time(void)
     fixture_free(&fx);
 }
 
+/* A sender's mesh of 2000 triangles stacked in parallel planes, none
+ * crossing another but every two to be tested exactly (1,999,000 tests):
+ * the check stops at the daemon's bound on tests (32 per face and 2^20
+ * besides) with TOO_LARGE naming it, instead of holding a worker for all
+ * of them; the daemon serves on. */
+static void test_self_intersections_of_a_stack(void)
+{
+    fixture fx;
+    fixture_with_cube(&fx);
+    enum { N = 2000 };
+    double *pos = malloc(9 * (size_t)N * sizeof *pos);
+    uint32_t *indices = malloc(3 * (size_t)N * sizeof *indices);
+    uint32_t *sizes = malloc(N * sizeof *sizes);
+    CHECK(pos && indices && sizes);
+    if (pos && indices && sizes) {
+        for (uint32_t f = 0; f < N; f++) {
+            const double c = 0.00001 * f;
+            const double corners[9] = {0, 0, c, 1, 0, c + 0.5, 0, 1, c + 0.5};
+            memcpy(pos + 9 * (size_t)f, corners, sizeof corners);
+            for (uint32_t k = 0; k < 3; k++) indices[3 * f + k] = 3 * f + k;
+            sizes[f] = 3;
+        }
+        mt_face_list stack = {3 * N, N, 3 * N, pos, sizes, indices};
+        CHECK_EQ(submit_ok(&fx, "stack", &stack), 1);
+        check_query_error(&fx, "stack", 0, MESHTOPO_QUERY_T_SELF_INTERSECTIONS, NULL, 0,
+                          MESHTOPO_STATUS_CODE_T_TOO_LARGE,
+                          "more than 1112576 pairs of triangles whose boxes overlap", __LINE__);
+        check_still_serving(&fx, "cube");
+    }
+    free(pos);
+    free(indices);
+    free(sizes);
+    fixture_free(&fx);
+}
+
 static void test_nan_positions(void)
 {
     fixture fx;
@@ -1874,6 +1909,7 @@ static const mt_test_case cases[] = {
     {"geometry_kinds", test_geometry_kinds},
     {"self_intersections_kind", test_self_intersections_kind},
     {"self_intersections_one_at_a_time", test_self_intersections_one_at_a_time},
+    {"self_intersections_of_a_stack", test_self_intersections_of_a_stack},
     {"nan_positions", test_nan_positions},
     {"duplicate_request", test_duplicate_request},
     {"request_id_shared_by_kinds", test_request_id_shared_by_kinds},

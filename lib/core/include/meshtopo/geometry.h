@@ -159,15 +159,22 @@ typedef struct mt_face_pair {
 mt_status mt_mesh_self_intersections(const mt_mesh *mesh, mt_face_pair *out, size_t capacity,
                                      size_t *out_count, mt_diag *diag);
 
-/* As mt_mesh_self_intersections, for callers that take at most max_count
- * pairs (a service with a reply limit): more pairs than that end the
- * search with MT_ERR_TOO_LARGE (*out_count 0). The memory it holds stays
- * within about twice max_count pairs per thread and it stops soon after
- * passing max_count, however many faces are piled on one another; without
- * the bound, n faces at one place make n^2/2 pairs. */
+/* As mt_mesh_self_intersections, for callers that must bound what one
+ * mesh may cost them (a service any node may send meshes to), with
+ * MT_ERR_TOO_LARGE (*out_count 0) past either bound, whichever is passed
+ * first:
+ * - max_count pairs (a reply limit). The memory held stays within about
+ *   twice max_count pairs per thread and the search stops soon after
+ *   passing it; without the bound, n faces at one place make n^2/2 pairs.
+ * - max_tests exact tests of two triangles whose boxes overlap, the work
+ *   of the search (the boxes cost O(n log n) besides). A surface needs a
+ *   few per triangle; n triangles piled closely on one another need
+ *   n^2/2 whether or not they cross. Whether the bound is passed does not
+ *   depend on the threads: the tests are counted, not timed.
+ * SIZE_MAX and UINT64_MAX leave a bound out. */
 mt_status mt_mesh_self_intersections_at_most(const mt_mesh *mesh, size_t max_count,
-                                             mt_face_pair *out, size_t capacity, size_t *out_count,
-                                             mt_diag *diag);
+                                             uint64_t max_tests, mt_face_pair *out, size_t capacity,
+                                             size_t *out_count, mt_diag *diag);
 
 /* ---- vertices ------------------------------------------------------------- */
 
