@@ -290,26 +290,31 @@ static double uniform(void)
     return (double)(rng_state >> 11) / 9007199254740992.0;
 }
 
-static void test_selfx_random_soup_against_pairs(void)
+/* n random triangles of about `size` in the unit cube, each on its own
+ * three vertices (pos: 9 n, faces: 3 n), so that every pair is decided by
+ * mt_triangles_intersect; some corners are snapped to a coarse lattice so
+ * that touching and coplanar cases occur. */
+static void random_soup(uint32_t n, double size, double *pos, uint32_t *faces)
 {
-    /* 21000 small random triangles in the unit cube, each on its own three
-     * vertices, so that every pair is decided by mt_triangles_intersect;
-     * some corners are snapped to a coarse lattice so that touching and
-     * coplanar cases occur. Enough triangles for several threads. */
-    enum { N = 21000 };
-    double *pos = malloc(9 * (size_t)N * sizeof *pos);
-    uint32_t *faces = malloc(3 * (size_t)N * sizeof *faces);
-    for (uint32_t t = 0; t < N; t++) {
+    for (uint32_t t = 0; t < n; t++) {
         double c[3] = {uniform(), uniform(), uniform()};
         for (int i = 0; i < 3; i++) {
             faces[3 * t + i] = 3 * t + (uint32_t)i;
             for (int k = 0; k < 3; k++) {
-                double x = c[k] + 0.03 * (uniform() - 0.5);
+                double x = c[k] + size * (uniform() - 0.5);
                 if (t % 4 == 0) x = round(x * 64) / 64;
                 pos[9 * (size_t)t + 3 * (size_t)i + (size_t)k] = x;
             }
         }
     }
+}
+
+static void test_selfx_random_soup_against_pairs(void)
+{
+    enum { N = 21000 }; /* enough triangles for several threads */
+    double *pos = malloc(9 * (size_t)N * sizeof *pos);
+    uint32_t *faces = malloc(3 * (size_t)N * sizeof *faces);
+    random_soup(N, 0.03, pos, faces);
     mt_mesh *mesh = mesh_of(pos, 3 * N, faces, NULL, N);
     size_t count = 0;
     mt_diag diag;
@@ -458,17 +463,13 @@ static bool passes_with(const mt_mesh *mesh, uint64_t tests)
 
 static void test_selfx_tests_do_not_depend_on_threads(void)
 {
-    /* 24000 random triangles, checked on several threads: the least bound
-     * that passes, found by bisection, passes and the one below fails
-     * again and again, whatever thread took which part. */
-    enum { N = 24000 };
+    /* A random soup checked on several threads: the least bound that
+     * passes, found by bisection, passes and the one below fails again and
+     * again, whatever thread took which part. */
+    enum { N = 21000 };
     double *pos = malloc(9 * (size_t)N * sizeof *pos);
     uint32_t *faces = malloc(3 * (size_t)N * sizeof *faces);
-    for (uint32_t t = 0; t < N; t++) {
-        double c[3] = {uniform(), uniform(), uniform()};
-        for (uint32_t i = 0; i < 9; i++) pos[9 * (size_t)t + i] = c[i % 3] + 0.04 * uniform();
-        for (uint32_t i = 0; i < 3; i++) faces[3 * t + i] = 3 * t + i;
-    }
+    random_soup(N, 0.08, pos, faces);
     mt_mesh *mesh = mesh_of(pos, 3 * N, faces, NULL, N);
     uint64_t fails = 0, passes = 1;
     while (!passes_with(mesh, passes)) fails = passes, passes *= 2;
@@ -479,7 +480,7 @@ static void test_selfx_tests_do_not_depend_on_threads(void)
         else
             fails = mid;
     }
-    CHECK(passes > 10000); /* enough for many batches on each thread */
+    CHECK(passes > 50000); /* many batches on each thread */
     for (int round = 0; round < 5; round++) {
         CHECK(passes_with(mesh, passes));
         CHECK(!passes_with(mesh, passes - 1));

@@ -244,17 +244,23 @@ static inline const unsigned char *skip_hspace(const unsigned char *p, const uns
     return p;
 }
 
-/* Up to `most` digits at *q, one at a time, appended to *value; returns
- * how many. */
-static inline size_t long_digits(const unsigned char **q, size_t most, uint64_t *value)
+/* The digits at *q, up to `most` of them (8 bytes are read): their value
+ * in *value (0 before), *q past them, and their count; fewer than 8 at
+ * once (short_digits), more one at a time. */
+static inline size_t leading_digits(const unsigned char **q, size_t most, uint64_t *value)
 {
+    size_t n = short_digits(*q, value);
+    if (n < 8) {
+        *q += n;
+        return n;
+    }
     const unsigned char *p = *q;
     unsigned c;
     while ((size_t)(p - *q) < most && (c = (unsigned)*p - '0') <= 9) {
         *value = *value * 10 + c;
         p++;
     }
-    size_t n = (size_t)(p - *q);
+    n = (size_t)(p - *q);
     *q = p;
     return n;
 }
@@ -272,11 +278,7 @@ static inline int fast_number(const unsigned char **at, const unsigned char *end
     int neg = *p == '-';
     const unsigned char *q = p + neg;
     uint64_t mant = 0;
-    size_t digits = short_digits(q, &mant);
-    if (digits == 8)
-        digits = long_digits(&q, 20, &mant);
-    else
-        q += digits;
+    size_t digits = leading_digits(&q, 20, &mant);
     size_t frac = 0;
     if (*q == '.') {
         const unsigned char *f = ++q;
@@ -318,11 +320,7 @@ static inline int fast_u32(const unsigned char **at, uint32_t *out)
 {
     const unsigned char *p = *at;
     uint64_t v = 0;
-    size_t len = short_digits(p, &v);
-    if (len == 8)
-        len = long_digits(&p, 11, &v);
-    else
-        p += len;
+    size_t len = leading_digits(&p, 11, &v);
     if (len == 0 || len > 10 || v > 0xffffffffull) return 0;
     *out = (uint32_t)v;
     *at = p;
