@@ -538,7 +538,10 @@ static void test_exact_off_odd_lines(void)
     mt_face_list want;
     CHECK(text != NULL);
     CHECK_OK(mt_face_list_alloc(&want, VERTS, FACES, 4 * (uint64_t)FACES, NULL));
-    if (!text) return;
+    if (!text) {
+        mt_face_list_free(&want);
+        return;
+    }
     len += (size_t)sprintf(text, "OFF\n%u %u 0\n", (unsigned)VERTS, (unsigned)FACES);
     size_t lines = 2, bad_at = 0, bad_line = 0;
     size_t num_odd_v = sizeof odd_off_vertex_lines / sizeof odd_off_vertex_lines[0];
