@@ -3,7 +3,8 @@
  * capacity, bad arguments, corrupted meshes (an error, never a bad read),
  * and built meshes of every generator checked against the brute-force
  * reference (oracle.c): ring sets, counter-clockwise fan order, face
- * neighbours, edge faces, components and boundary loops. */
+ * neighbours, edge faces, components and boundary loops. And the queries
+ * into buffers that grow: from empty, reused, errors passed through. */
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -643,6 +644,77 @@ static void test_query_loop_buffers(void)
     hand_mesh_free(m);
 }
 
+/* ---- queries into buffers that grow --------------------------------------- */
+
+/* From empty on a vertex of 40 faces, reused (no new allocation) on one of
+ * 2, a rejected face and a bad id passed through, a failed allocation
+ * reported; the answers equal the plain queries'. */
+static void test_query_growing(void)
+{
+    enum { RIM = 40 };
+    double pos[3 * (RIM + 1)] = {0, 0, 0};
+    uint32_t indices[3 * (RIM + 1)], sizes[RIM + 1];
+    for (uint32_t i = 1; i <= RIM; i++) {
+        pos[3 * i] = (double)(i % 7);
+        pos[3 * i + 1] = (double)i;
+        pos[3 * i + 2] = 1;
+    }
+    for (uint32_t f = 0; f < RIM; f++) {
+        indices[3 * f] = 0, indices[3 * f + 1] = f + 1, indices[3 * f + 2] = (f + 1) % RIM + 1;
+        sizes[f] = 3;
+    }
+    indices[3 * RIM] = 0, indices[3 * RIM + 1] = 1, indices[3 * RIM + 2] = 999; /* rejected */
+    sizes[RIM] = 3;
+    mt_face_list list = {RIM + 1, RIM + 1, 3 * (RIM + 1), pos, sizes, indices};
+    mt_mesh *m = NULL;
+    CHECK_OK(mt_mesh_build(&list, NULL, &m, NULL));
+    if (!m) return;
+
+    mt_ring ring;
+    memset(&ring, 0, sizeof ring);
+    CHECK_OK(mt_vert_ring_growing(m, 0, &ring));
+    CHECK(ring.num_neighbors == RIM && ring.num_faces == RIM && ring.num_fans == 1);
+    uint32_t neighbors[RIM], faces[RIM];
+    mt_fan fans[1];
+    mt_ring plain = {neighbors, RIM, faces, RIM, fans, 1, 0, 0, 0};
+    CHECK_OK(mt_vert_ring(m, 0, &plain));
+    CHECK(ring.num_neighbors == RIM && memcmp(ring.neighbors, neighbors, sizeof neighbors) == 0 &&
+          memcmp(ring.faces, faces, sizeof faces) == 0);
+    const uint32_t *kept = ring.neighbors;
+    CHECK_OK(mt_vert_ring_growing(m, 1, &ring));
+    CHECK(ring.num_neighbors == 3 && ring.num_faces == 2);
+    CHECK(ring.neighbors == kept && ring.neighbors_capacity == RIM);
+    CHECK_STATUS(mt_vert_ring_growing(m, RIM + 1, &ring), MT_ERR_OUT_OF_RANGE);
+    mt_ring_free(&ring);
+    CHECK(ring.neighbors == NULL && ring.neighbors_capacity == 0 && ring.fans == NULL);
+
+    /* face 0 = (0 1 2): across 0 -> 1 face RIM - 1, 1 -> 2 on the rim, 2 -> 0 face 1 */
+    mt_face_adjacency adj;
+    memset(&adj, 0, sizeof adj);
+    CHECK_OK(mt_face_neighbors_growing(m, 0, &adj));
+    CHECK_EQ(adj.num_edges, 3);
+    CHECK_U32S(adj.offsets, adj.num_edges + 1, 0, 1, 1, 2);
+    CHECK_U32S(adj.faces, adj.num_faces, RIM - 1, 1);
+    CHECK_STATUS(mt_face_neighbors_growing(m, RIM, &adj), MT_ERR_NOT_FOUND);
+    mt_face_adjacency_free(&adj);
+    CHECK(adj.faces == NULL && adj.offsets == NULL);
+
+    mt_face_corners corners;
+    memset(&corners, 0, sizeof corners);
+    CHECK_OK(mt_face_verts_growing(m, 5, &corners));
+    CHECK_U32S(corners.verts, corners.count, 0, 6, 7);
+    CHECK_STATUS(mt_face_verts_growing(m, RIM, &corners), MT_ERR_NOT_FOUND);
+    mt_face_corners_free(&corners);
+
+    mt__test_fail_alloc_after(0);
+    CHECK_STATUS(mt_vert_ring_growing(m, 0, &ring), MT_ERR_NOMEM);
+    CHECK_STATUS(mt_face_verts_growing(m, 5, &corners), MT_ERR_NOMEM);
+    mt__test_fail_alloc_after(-1);
+    mt_ring_free(&ring);
+    mt_face_corners_free(&corners);
+    mt_mesh_destroy(m);
+}
+
 /* ---- bad arguments ------------------------------------------------------ */
 
 static void test_query_bad_arguments(void)
@@ -1214,6 +1286,7 @@ static const mt_test_case cases[] = {
     {"query_generated_defects", test_query_generated_defects},
     {"query_grid_boundary_loop", test_query_grid_boundary_loop},
     {"query_hole_loop", test_query_hole_loop},
+    {"query_growing", test_query_growing},
 };
 
 const mt_test_table mt_tests_query = {cases, sizeof cases / sizeof cases[0]};

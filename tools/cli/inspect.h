@@ -52,29 +52,6 @@ typedef struct mt_inspect_request {
     size_t limit;                        /* items per list in the readable output, 0 = all */
 } mt_inspect_request;
 
-/* Growable buffers for mt_face_neighbors and mt_face_verts. */
-typedef struct mt_face_adjacency {
-    uint32_t *faces;
-    size_t faces_capacity;
-    uint32_t *offsets;
-    size_t offsets_capacity;
-    size_t num_faces, num_edges;
-} mt_face_adjacency;
-
-typedef struct mt_face_corners {
-    uint32_t *verts;
-    size_t capacity, count;
-} mt_face_corners;
-
-/* Query wrappers that grow the buffers until the answer fits. They return
- * the library's status (MT_ERR_NOT_FOUND for a rejected face, ...). */
-mt_status mt_inspect_ring(const mt_mesh *mesh, uint32_t vert, mt_ring *ring);
-void mt_inspect_ring_free(mt_ring *ring);
-mt_status mt_inspect_face_adjacency(const mt_mesh *mesh, uint32_t face, mt_face_adjacency *adj);
-void mt_inspect_face_adjacency_free(mt_face_adjacency *adj);
-mt_status mt_inspect_face_corners(const mt_mesh *mesh, uint32_t face, mt_face_corners *corners);
-void mt_inspect_face_corners_free(mt_face_corners *corners);
-
 /* Sorts ids ascending and drops repeats in place; returns the new count. */
 size_t mt_inspect_sort_unique(uint32_t *ids, size_t count);
 

@@ -1,100 +1,9 @@
-/* Query wrappers for `meshtopo inspect`: call a query, grow its caller-owned
- * buffers to the sizes it reports, call again. Also the per-side use of a
- * face (boundary, shared, non-manifold, same direction) that both the
- * default query choice and the readable output need. */
+/* The per-side use of a face (boundary, shared, non-manifold, same
+ * direction) that both the default query choice and the readable output of
+ * `meshtopo inspect` need, and the sorted sets of ids they print. */
 #include <stdlib.h>
-#include <string.h>
 
 #include "inspect.h"
-
-/* Grows *buf to hold `needed` elements of `size` bytes; false when out of memory. */
-static bool grow(void **buf, size_t *capacity, size_t needed, size_t size)
-{
-    if (needed <= *capacity) return true;
-    if (needed > SIZE_MAX / size) return false;
-    void *p = realloc(*buf, needed * size);
-    if (!p) return false;
-    *buf = p;
-    *capacity = needed;
-    return true;
-}
-
-/* Queries report their needed sizes either with MT_ERR_BUFFER_TOO_SMALL or,
- * when handed NULL buffers, with MT_OK and sizes above the capacities; both
- * mean "grow and ask again". Two rounds always suffice for a fixed mesh;
- * a third is allowed in case the first answered with zero capacity. */
-enum { QUERY_ROUNDS = 3 };
-
-mt_status mt_inspect_ring(const mt_mesh *mesh, uint32_t vert, mt_ring *ring)
-{
-    for (int round = 0; round < QUERY_ROUNDS; round++) {
-        mt_status st = mt_vert_ring(mesh, vert, ring);
-        if (st != MT_OK && st != MT_ERR_BUFFER_TOO_SMALL) return st;
-        bool fits = ring->num_neighbors <= ring->neighbors_capacity &&
-                    ring->num_faces <= ring->faces_capacity &&
-                    ring->num_fans <= ring->fans_capacity;
-        if (st == MT_OK && fits) return MT_OK;
-        if (!grow((void **)&ring->neighbors, &ring->neighbors_capacity, ring->num_neighbors,
-                  sizeof *ring->neighbors) ||
-            !grow((void **)&ring->faces, &ring->faces_capacity, ring->num_faces,
-                  sizeof *ring->faces) ||
-            !grow((void **)&ring->fans, &ring->fans_capacity, ring->num_fans, sizeof *ring->fans))
-            return MT_ERR_NOMEM;
-    }
-    return MT_ERR_BUFFER_TOO_SMALL;
-}
-
-void mt_inspect_ring_free(mt_ring *ring)
-{
-    free(ring->neighbors);
-    free(ring->faces);
-    free(ring->fans);
-    memset(ring, 0, sizeof *ring);
-}
-
-mt_status mt_inspect_face_adjacency(const mt_mesh *mesh, uint32_t face, mt_face_adjacency *adj)
-{
-    for (int round = 0; round < QUERY_ROUNDS; round++) {
-        mt_status st = mt_face_neighbors(mesh, face, adj->faces, adj->faces_capacity, adj->offsets,
-                                         adj->offsets_capacity, &adj->num_faces, &adj->num_edges);
-        if (st != MT_OK && st != MT_ERR_BUFFER_TOO_SMALL) return st;
-        bool fits =
-            adj->num_faces <= adj->faces_capacity && adj->num_edges + 1 <= adj->offsets_capacity;
-        if (st == MT_OK && fits) return MT_OK;
-        if (!grow((void **)&adj->faces, &adj->faces_capacity, adj->num_faces, sizeof *adj->faces) ||
-            !grow((void **)&adj->offsets, &adj->offsets_capacity, adj->num_edges + 1,
-                  sizeof *adj->offsets))
-            return MT_ERR_NOMEM;
-    }
-    return MT_ERR_BUFFER_TOO_SMALL;
-}
-
-void mt_inspect_face_adjacency_free(mt_face_adjacency *adj)
-{
-    free(adj->faces);
-    free(adj->offsets);
-    memset(adj, 0, sizeof *adj);
-}
-
-mt_status mt_inspect_face_corners(const mt_mesh *mesh, uint32_t face, mt_face_corners *corners)
-{
-    for (int round = 0; round < QUERY_ROUNDS; round++) {
-        mt_status st =
-            mt_face_verts(mesh, face, corners->verts, corners->capacity, &corners->count);
-        if (st != MT_OK && st != MT_ERR_BUFFER_TOO_SMALL) return st;
-        if (st == MT_OK && corners->count <= corners->capacity) return MT_OK;
-        if (!grow((void **)&corners->verts, &corners->capacity, corners->count,
-                  sizeof *corners->verts))
-            return MT_ERR_NOMEM;
-    }
-    return MT_ERR_BUFFER_TOO_SMALL;
-}
-
-void mt_inspect_face_corners_free(mt_face_corners *corners)
-{
-    free(corners->verts);
-    memset(corners, 0, sizeof *corners);
-}
 
 static int compare_u32(const void *a, const void *b)
 {
@@ -132,7 +41,7 @@ mt_status mt_inspect_side_use(const mt_mesh *mesh, const mt_face_corners *corner
     if (across != 1) return MT_OK;
     uint32_t a = corners->verts[side];
     uint32_t b = corners->verts[(side + 1) % corners->count];
-    mt_status st = mt_inspect_face_corners(mesh, adj->faces[adj->offsets[side]], scratch);
+    mt_status st = mt_face_verts_growing(mesh, adj->faces[adj->offsets[side]], scratch);
     if (st != MT_OK) return st;
     out->same_direction = has_directed_side(scratch, a, b);
     return MT_OK;

@@ -256,7 +256,7 @@ static const mt_defect *nonmanifold_entry(const mt_report *r, uint32_t v)
 
 static mt_status print_vertex(FILE *out, const mt_mesh *mesh, uint32_t v, mt_ring *ring)
 {
-    mt_status st = mt_inspect_ring(mesh, v, ring);
+    mt_status st = mt_vert_ring_growing(mesh, v, ring);
     if (st != MT_OK) return st;
     if (ring->num_fans == 0) {
         fprintf(out, "vertex %u: isolated (in no valid face)\n", (unsigned)v);
@@ -321,12 +321,12 @@ typedef struct face_scratch {
 
 static mt_status print_face(FILE *out, const mt_mesh *mesh, uint32_t f, face_scratch *s)
 {
-    mt_status st = mt_inspect_face_corners(mesh, f, &s->corners);
+    mt_status st = mt_face_verts_growing(mesh, f, &s->corners);
     if (st == MT_ERR_NOT_FOUND) {
         print_rejected_face(out, mt_mesh_report(mesh), f);
         return MT_OK;
     }
-    if (st == MT_OK) st = mt_inspect_face_adjacency(mesh, f, &s->adj);
+    if (st == MT_OK) st = mt_face_neighbors_growing(mesh, f, &s->adj);
     if (st != MT_OK) return st;
     fprintf(out, "face %u: %zu vertices (", (unsigned)f, s->corners.count);
     print_id_run(out, s->corners.verts, s->corners.count);
@@ -366,7 +366,7 @@ static int print_queries(FILE *out, const mt_inspect_request *req)
             failed = req->vertices.ids[i];
             st = print_vertex(out, mesh, failed, &ring);
         }
-        mt_inspect_ring_free(&ring);
+        mt_ring_free(&ring);
     }
     if (st == MT_OK && req->faces.count) {
         face_scratch s;
@@ -377,9 +377,9 @@ static int print_queries(FILE *out, const mt_inspect_request *req)
             failed = req->faces.ids[i];
             st = print_face(out, mesh, failed, &s);
         }
-        mt_inspect_face_corners_free(&s.corners);
-        mt_inspect_face_corners_free(&s.other);
-        mt_inspect_face_adjacency_free(&s.adj);
+        mt_face_corners_free(&s.corners);
+        mt_face_corners_free(&s.other);
+        mt_face_adjacency_free(&s.adj);
     }
     if (st != MT_OK) {
         mt_cli_error("inspect", "query of %s %u failed: %s", what, (unsigned)failed,

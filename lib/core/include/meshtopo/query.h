@@ -72,6 +72,37 @@ mt_status mt_face_neighbors(const mt_mesh *mesh, uint32_t face, uint32_t *out_fa
                             size_t faces_capacity, uint32_t *out_offsets, size_t offsets_capacity,
                             size_t *out_num_faces, size_t *out_num_edges);
 
+/* ---- The same into buffers that grow ------------------------------------ */
+
+/* mt_vert_ring, mt_face_neighbors and mt_face_verts for callers that ask
+ * about one element after another and do not know how large the answers
+ * are: each grows the arrays of its struct (malloc'd by the library; NULL
+ * and capacity 0 at first, reused from one call to the next) to what the
+ * answer needs and asks again. Statuses are those of the query
+ * (MT_ERR_NOT_FOUND for a rejected face, MT_ERR_OUT_OF_RANGE for a bad
+ * id), or MT_ERR_NOMEM. The _free functions free the arrays and zero the
+ * struct. */
+
+typedef struct mt_face_adjacency {
+    uint32_t *faces; /* the faces across each side, CSR by offsets */
+    size_t faces_capacity;
+    uint32_t *offsets; /* num_edges + 1 */
+    size_t offsets_capacity;
+    size_t num_faces, num_edges;
+} mt_face_adjacency;
+
+typedef struct mt_face_corners {
+    uint32_t *verts;
+    size_t capacity, count;
+} mt_face_corners;
+
+mt_status mt_vert_ring_growing(const mt_mesh *mesh, uint32_t vert, mt_ring *ring);
+void mt_ring_free(mt_ring *ring);
+mt_status mt_face_neighbors_growing(const mt_mesh *mesh, uint32_t face, mt_face_adjacency *adj);
+void mt_face_adjacency_free(mt_face_adjacency *adj);
+mt_status mt_face_verts_growing(const mt_mesh *mesh, uint32_t face, mt_face_corners *corners);
+void mt_face_corners_free(mt_face_corners *corners);
+
 /* Faces (ascending ids) that have {a, b} as a side. MT_ERR_NOT_FOUND when no
  * valid face does. */
 mt_status mt_edge_faces(const mt_mesh *mesh, uint32_t a, uint32_t b, uint32_t *out_faces,
