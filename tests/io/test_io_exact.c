@@ -608,6 +608,56 @@ static void test_exact_off_odd_lines(void)
     free(text);
 }
 
+/* COFF: colours follow x y z on every vertex line and some face lines,
+ * and the common-line path reads past them as the general loop does. Odd
+ * rests deep in the run (none, CRLF, a backslash at the end, a comment,
+ * a lone '\r' inside) read the same every way, and the coordinates and
+ * faces are those written. A lone '\r' ends a line (old Mac text): the
+ * two numbers after it and the first of the next line are the next
+ * vertex, whose line's rest is skipped. */
+static void test_exact_coff_rests(void)
+{
+    enum { VERTS = 80000, FACES = 120000 };
+    static const char *const odd_rests[] = {"", " 0.5 0.5 0.5 1\r", " 9 \\", " # c",
+                                            " 255 0\r0 255"};
+    const size_t num_odd = sizeof odd_rests / sizeof odd_rests[0];
+    size_t cap = (size_t)16 << 20, len = 0;
+    char *text = malloc(cap);
+    mt_face_list want;
+    CHECK(text != NULL);
+    CHECK_OK(mt_face_list_alloc(&want, VERTS, FACES, 3 * (uint64_t)FACES, NULL));
+    if (!text) {
+        mt_face_list_free(&want);
+        return;
+    }
+    len += (size_t)sprintf(text, "COFF\n%u %u 0\n", (unsigned)VERTS, (unsigned)FACES);
+    bool after_cr = false;
+    for (uint32_t v = 0; v < VERTS; v++) {
+        double *xyz = want.positions + 3 * (size_t)v;
+        xyz[0] = v % 1000, xyz[1] = -(double)(v / 1000) / 4, xyz[2] = 0.5 * (v % 5);
+        const char *rest =
+            v % ODD_EVERY == ODD_EVERY - 1 ? odd_rests[v / ODD_EVERY % num_odd] : " 255 128 0 255";
+        len += (size_t)sprintf(text + len, "%.17g %.17g %.17g%s\n", xyz[0], xyz[1], xyz[2], rest);
+        if (after_cr) xyz[2] = xyz[0], xyz[0] = 0, xyz[1] = 255;
+        after_cr = strstr(rest, "\r0") != NULL;
+    }
+    for (uint32_t f = 0; f < FACES; f++) {
+        uint32_t *idx = want.face_indices + 3 * (size_t)f;
+        want.face_sizes[f] = 3;
+        idx[0] = f % VERTS, idx[1] = (f * 3 + 1) % VERTS, idx[2] = (f * 11 + 5) % VERTS;
+        len += (size_t)sprintf(text + len, "3 %u %u %u%s\n", idx[0], idx[1], idx[2],
+                               f % 3 == 0 ? " 255 0 0" : "");
+    }
+    mt_face_list read;
+    mt_diag diag;
+    CHECK_OK(mt_read_memory(text, len, MT_FORMAT_OFF, "rests.off", &read, &diag));
+    if (!same_lists(&want, &read)) mt_test_fail(__FILE__, __LINE__, "rests.off: other arrays");
+    mt_face_list_free(&read);
+    expect_same_every_way(text, len, "rests.off");
+    mt_face_list_free(&want);
+    free(text);
+}
+
 /* An OBJ text written together with the face list it holds. */
 typedef struct obj_writer {
     char *text;
@@ -820,6 +870,7 @@ static const mt_test_case cases[] = {
     {"exact_binary_ply_fast_paths", test_exact_binary_ply_fast_paths},
     {"exact_mixed_face_sizes", test_exact_mixed_face_sizes},
     {"exact_off_odd_lines", test_exact_off_odd_lines},
+    {"exact_coff_rests", test_exact_coff_rests},
     {"exact_obj_runs", test_exact_obj_runs},
 };
 const mt_test_table mt_tests_io_exact = {cases, sizeof cases / sizeof cases[0]};

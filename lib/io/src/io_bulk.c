@@ -197,6 +197,23 @@ static inline int scan_number(const unsigned char *d, size_t n, size_t *pos, dou
     return 1;
 }
 
+/* The end of the rest of a line at i (i < n, after spaces and tabs): where
+ * its '\n' or "\r\n" starts. Anything may come before it, but only '\n'
+ * or "\r\n" may end it (the general loop stops at a lone '\r'); most
+ * lines have nothing left. n when the line has a lone '\r', ends in a
+ * backslash (OBJ continues such a line) or has no '\n' in the window. */
+static size_t rest_end(const unsigned char *d, size_t n, size_t i)
+{
+    if (d[i] == '\n' || d[i] == '\r') return i;
+    const unsigned char *nl = memchr(d + i, '\n', n - i);
+    if (!nl) return n;
+    size_t e = (size_t)(nl - d);
+    const unsigned char *cr = memchr(d + i, '\r', e - i);
+    if (cr && cr != nl - 1) return n;
+    i = cr ? e - 1 : e;
+    return d[i - 1] == '\\' ? n : i;
+}
+
 /* ---- The common lines, before the general shapes ----------------------- */
 
 /* Most lines are "x y z" of short decimals or "3 i j k", optionally after a
@@ -217,24 +234,32 @@ typedef enum line_shape {
     SHAPE_OBJ_FACE, /* keyword and OBJ face entries: ops KEYWORD ENTRIES */
 } line_shape;
 
-/* The shape of spec's lines fast_line reads, and *keyword: the letter
- * before them, or 0. */
-static line_shape shape_of(const mt__bulk_spec *spec, unsigned char *keyword)
+/* What fast_line reads of a spec's lines. */
+typedef struct line_form {
+    line_shape shape;
+    unsigned char keyword; /* the letter before the items, or 0 */
+    int rest;              /* anything may follow them (MT__BULK_REST) */
+} line_form;
+
+static line_form form_of(const mt__bulk_spec *spec)
 {
+    line_form form = {SHAPE_OTHER, 0, 0};
     const unsigned char *op = spec->ops;
     size_t n = spec->num_ops;
-    *keyword = 0;
     if (n && op[0] == MT__BULK_KEYWORD) {
-        *keyword = spec->keyword;
+        form.keyword = spec->keyword;
         op++;
         n--;
     }
-    if (n && op[n - 1] == MT__BULK_REST) n--;
+    form.rest = n && op[n - 1] == MT__BULK_REST;
+    n -= (size_t)form.rest;
     if (n == 3 && op[0] == MT__BULK_X && op[1] == MT__BULK_Y && op[2] == MT__BULK_Z)
-        return SHAPE_XYZ;
-    if (n == 1 && op[0] == MT__BULK_INDICES) return SHAPE_FACE;
-    if (n == 1 && op[0] == MT__BULK_ENTRIES && *keyword) return SHAPE_OBJ_FACE;
-    return SHAPE_OTHER;
+        form.shape = SHAPE_XYZ;
+    else if (n == 1 && op[0] == MT__BULK_INDICES)
+        form.shape = SHAPE_FACE;
+    else if (n == 1 && op[0] == MT__BULK_ENTRIES && form.keyword)
+        form.shape = SHAPE_OBJ_FACE;
+    return form;
 }
 
 /* Past spaces and tabs at p, not beyond lim. */
@@ -345,18 +370,36 @@ static inline int fast_entry(const unsigned char **at, const unsigned char *lim,
     return 1;
 }
 
+/* Past the end of a line's items at p (p < lim): spaces and tabs, then,
+ * where the form allows a rest, anything up to '\n' or "\r\n" (rest_end),
+ * else only '\n' or "\r\n" before lim; NULL where the line ends otherwise. */
+static inline const unsigned char *line_end(const unsigned char *d, size_t n,
+                                            const unsigned char *p, const unsigned char *lim,
+                                            int rest)
+{
+    p = skip_hspace(p, lim);
+    if (p >= lim) return NULL;
+    if (rest && *p != '\r' && *p != '\n') {
+        const size_t e = rest_end(d, n, (size_t)(p - d));
+        if (e >= n) return NULL;
+        p = d + e;
+    }
+    if (*p == '\r') p++;
+    return *p == '\n' ? p + 1 : NULL;
+}
+
 /* Reads the line at *pos (at least FAST_SPAN bytes before n) into out as
  * parse_line would, when it has the common shape: returns 1 with *pos past
  * its '\n'. Otherwise 0, with out and *pos unchanged. */
-static int fast_line(line_shape shape, const mt__bulk_spec *spec, unsigned char keyword,
-                     const unsigned char *d, size_t n, size_t *pos, bulk_out *out)
+static int fast_line(line_form form, const mt__bulk_spec *spec, const unsigned char *d, size_t n,
+                     size_t *pos, bulk_out *out)
 {
     const unsigned char *p = d + *pos, *lim = p + FAST_ITEMS_END;
-    if (keyword) {
-        if (p[0] != keyword || !is_hspace(p[1])) return 0;
+    if (form.keyword) {
+        if (p[0] != form.keyword || !is_hspace(p[1])) return 0;
         p = skip_hspace(p + 2, lim);
     }
-    if (shape == SHAPE_XYZ) {
+    if (form.shape == SHAPE_XYZ) {
         double xyz[3];
         for (int k = 0; k < 3; k++) {
             if (k) {
@@ -365,14 +408,12 @@ static int fast_line(line_shape shape, const mt__bulk_spec *spec, unsigned char 
             }
             if (p >= lim || !fast_number(&p, d + n, &xyz[k])) return 0;
         }
-        p = skip_hspace(p, lim);
-        if (*p == '\r') p++;
-        if (p >= lim || *p != '\n') return 0;
+        if (p >= lim || !(p = line_end(d, n, p, lim, form.rest))) return 0;
         double *xyz_out = out->positions + 3 * out->num_verts++;
         xyz_out[0] = xyz[0];
         xyz_out[1] = xyz[1];
         xyz_out[2] = xyz[2];
-    } else if (shape == SHAPE_OBJ_FACE) {
+    } else if (form.shape == SHAPE_OBJ_FACE) {
         uint32_t *idx = out->indices + out->num_indices;
         size_t room = out->cap_indices - out->num_indices;
         uint32_t size = 0;
@@ -388,8 +429,7 @@ static int fast_line(line_shape shape, const mt__bulk_spec *spec, unsigned char 
             size++;
             p = skip_hspace(p, lim);
         } while (p < lim && *p != '\r' && *p != '\n');
-        if (*p == '\r') p++;
-        if (p >= lim || *p != '\n') return 0;
+        if (p >= lim || !(p = line_end(d, n, p, lim, 0))) return 0;
         out->sizes[out->num_faces++] = size;
         out->num_indices += size;
     } else {
@@ -403,13 +443,11 @@ static int fast_line(line_shape shape, const mt__bulk_spec *spec, unsigned char 
             p = skip_hspace(p + 1, lim);
             if (p >= lim || !fast_u32(&p, &idx[j]) || !ends_token(*p)) return 0;
         }
-        p = skip_hspace(p, lim);
-        if (*p == '\r') p++;
-        if (p >= lim || *p != '\n') return 0;
+        if (p >= lim || !(p = line_end(d, n, p, lim, form.rest))) return 0;
         out->sizes[out->num_faces++] = count;
         out->num_indices += count;
     }
-    *pos = (size_t)(p + 1 - d);
+    *pos = (size_t)(p - d);
     return 1;
 }
 
@@ -478,20 +516,10 @@ static line_result parse_line(const mt__bulk_spec *spec, const unsigned char *d,
                     if (i >= n || d[i] == '\r' || d[i] == '\n') break;
                 }
                 break;
-            case MT__BULK_REST: {
-                /* anything to the end of the line, which only '\n' or "\r\n"
-                 * may end (the general loop stops at a lone '\r'); most
-                 * lines have nothing left */
-                if (d[i] == '\n' || d[i] == '\r') break;
-                const unsigned char *nl = memchr(d + i, '\n', n - i);
-                if (!nl) return LINE_OTHER;
-                size_t e = (size_t)(nl - d);
-                const unsigned char *cr = memchr(d + i, '\r', e - i);
-                if (cr && cr != nl - 1) return LINE_OTHER;
-                i = cr ? e - 1 : e;
-                if (d[i - 1] == '\\') return LINE_OTHER; /* OBJ continues such a line */
+            case MT__BULK_REST:
+                i = rest_end(d, n, i);
+                if (i >= n) return LINE_OTHER;
                 break;
-            }
             default:
                 return LINE_OTHER;
         }
@@ -528,8 +556,7 @@ static void parse_part(bulk_part *p)
     const mt__bulk_spec *spec = p->spec;
     size_t records = spec->faces ? p->out.num_faces : p->out.num_verts;
     uint32_t lines = 0;
-    unsigned char keyword;
-    line_shape shape = shape_of(spec, &keyword);
+    const line_form form = form_of(spec);
     for (;;) {
         if (p->pos >= p->end || records >= p->max) {
             p->why = END_DONE;
@@ -544,8 +571,8 @@ static void parse_part(bulk_part *p)
             p->why = END_OTHER;
             return;
         }
-        if (shape != SHAPE_OTHER && p->end - p->pos >= FAST_SPAN &&
-            fast_line(shape, spec, keyword, p->d, p->end, &p->pos, &p->out)) {
+        if (form.shape != SHAPE_OTHER && p->end - p->pos >= FAST_SPAN &&
+            fast_line(form, spec, p->d, p->end, &p->pos, &p->out)) {
             records++;
             continue;
         }
