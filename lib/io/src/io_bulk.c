@@ -755,6 +755,7 @@ static int place_parts(const mt__bulk_spec *spec, mt__builder *b, bulk_part *pp,
 static int append_part(const bulk_part *p, uint64_t k, mt__builder *b, uint64_t first,
                        uint64_t declared)
 {
+    if (k == 0) return 1; /* its arrays may not be there */
     if (!p->spec->faces) {
         if (first + k > b->cap_verts && !mt__builder_reserve_verts(b, (size_t)(first + k)))
             return 0;
@@ -783,7 +784,7 @@ static void take_direct(const bulk_part *p, uint64_t k, mt__builder *b)
     size_t nidx = 0;
     for (uint64_t r = 0; r < k; r++) nidx += p->out.sizes[r];
     uint32_t *at = b->indices + b->num_indices;
-    if (p->out.indices != at) memmove(at, p->out.indices, nidx * sizeof(uint32_t));
+    if (nidx && p->out.indices != at) memmove(at, p->out.indices, nidx * sizeof(uint32_t));
     b->num_indices += nidx;
 }
 
