@@ -527,22 +527,47 @@ static void strtod_line(const char *line, double xyz[3])
     }
 }
 
+/* A text buffer of 16 MiB starting with an OFF header of `kind` (OFF,
+ * COFF) and the counts, and want: a face list of those counts (and room for
+ * max_indices) for the test to fill; NULL (and want freed) when either is
+ * not there. *len: the header's length. */
+static char *off_text_begin(const char *kind, uint32_t verts, uint32_t faces, uint64_t max_indices,
+                            mt_face_list *want, size_t *len)
+{
+    char *text = malloc((size_t)16 << 20);
+    CHECK(text != NULL);
+    mt_status st = mt_face_list_alloc(want, verts, faces, max_indices, NULL);
+    CHECK_OK(st);
+    if (!text || st != MT_OK) {
+        free(text);
+        if (st == MT_OK) mt_face_list_free(want);
+        return NULL;
+    }
+    *len = (size_t)sprintf(text, "%s\n%u %u 0\n", kind, (unsigned)verts, (unsigned)faces);
+    return text;
+}
+
+/* The text read (OFF) as want holds it, and the same every way. */
+static void expect_off_as(const char *text, size_t len, const char *name, const mt_face_list *want)
+{
+    mt_face_list read;
+    mt_diag diag;
+    CHECK_OK(mt_read_memory(text, len, MT_FORMAT_OFF, name, &read, &diag));
+    if (!same_lists(want, &read)) mt_test_fail(__FILE__, __LINE__, "%s: other arrays", name);
+    mt_face_list_free(&read);
+    expect_same_every_way(text, len, name);
+}
+
 /* OFF files with odd lines deep inside their runs of vertices and faces:
  * read as the lines say on one to four threads and through small windows;
  * an index past 32 bits there is an error at its line every way. */
 static void test_exact_off_odd_lines(void)
 {
     enum { VERTS = 60000, FACES = 200000 };
-    size_t cap = (size_t)16 << 20, len = 0;
-    char *text = malloc(cap);
+    size_t len;
     mt_face_list want;
-    CHECK(text != NULL);
-    CHECK_OK(mt_face_list_alloc(&want, VERTS, FACES, 4 * (uint64_t)FACES, NULL));
-    if (!text) {
-        mt_face_list_free(&want);
-        return;
-    }
-    len += (size_t)sprintf(text, "OFF\n%u %u 0\n", (unsigned)VERTS, (unsigned)FACES);
+    char *text = off_text_begin("OFF", VERTS, FACES, 4 * (uint64_t)FACES, &want, &len);
+    if (!text) return;
     size_t lines = 2, bad_at = 0, bad_line = 0;
     size_t num_odd_v = sizeof odd_off_vertex_lines / sizeof odd_off_vertex_lines[0];
     size_t num_odd_f = sizeof odd_off_face_lines / sizeof odd_off_face_lines[0];
@@ -576,14 +601,11 @@ static void test_exact_off_odd_lines(void)
         }
         want.num_indices += want.face_sizes[f];
     }
-    mt_face_list read;
-    mt_diag diag;
-    CHECK_OK(mt_read_memory(text, len, MT_FORMAT_OFF, "odd.off", &read, &diag));
-    if (!same_lists(&want, &read)) mt_test_fail(__FILE__, __LINE__, "odd.off: other arrays");
-    mt_face_list_free(&read);
-    expect_same_every_way(text, len, "odd.off");
+    expect_off_as(text, len, "odd.off", &want);
     /* the middle face's last index one past 32 bits, then 11 digits */
     static const char *const too_big[] = {"4294967296", "99999999999"};
+    mt_face_list read;
+    mt_diag diag;
     for (size_t k = 0; k < 2; k++) {
         char *nl = memchr(text + bad_at, '\n', 64);
         char *sp = nl;
@@ -621,16 +643,10 @@ static void test_exact_coff_rests(void)
     static const char *const odd_rests[] = {"", " 0.5 0.5 0.5 1\r", " 9 \\", " # c",
                                             " 255 0\r0 255"};
     const size_t num_odd = sizeof odd_rests / sizeof odd_rests[0];
-    size_t cap = (size_t)16 << 20, len = 0;
-    char *text = malloc(cap);
+    size_t len;
     mt_face_list want;
-    CHECK(text != NULL);
-    CHECK_OK(mt_face_list_alloc(&want, VERTS, FACES, 3 * (uint64_t)FACES, NULL));
-    if (!text) {
-        mt_face_list_free(&want);
-        return;
-    }
-    len += (size_t)sprintf(text, "COFF\n%u %u 0\n", (unsigned)VERTS, (unsigned)FACES);
+    char *text = off_text_begin("COFF", VERTS, FACES, 3 * (uint64_t)FACES, &want, &len);
+    if (!text) return;
     bool after_cr = false;
     for (uint32_t v = 0; v < VERTS; v++) {
         double *xyz = want.positions + 3 * (size_t)v;
@@ -648,12 +664,7 @@ static void test_exact_coff_rests(void)
         len += (size_t)sprintf(text + len, "3 %u %u %u%s\n", idx[0], idx[1], idx[2],
                                f % 3 == 0 ? " 255 0 0" : "");
     }
-    mt_face_list read;
-    mt_diag diag;
-    CHECK_OK(mt_read_memory(text, len, MT_FORMAT_OFF, "rests.off", &read, &diag));
-    if (!same_lists(&want, &read)) mt_test_fail(__FILE__, __LINE__, "rests.off: other arrays");
-    mt_face_list_free(&read);
-    expect_same_every_way(text, len, "rests.off");
+    expect_off_as(text, len, "rests.off", &want);
     mt_face_list_free(&want);
     free(text);
 }
