@@ -468,10 +468,9 @@ typedef struct geometry_list {
 } geometry_list;
 
 /* Exact tests of two triangles a self-intersection check may take: a
- * surface needs a few per face (0.1 to 16 on the corpus, 2.5 on a grid of
- * a million triangles), while n faces piled on one another need n^2/2,
- * crossing or not, and would hold a worker and the daemon's shutdown for
- * as long as that takes. */
+ * surface needs a few per face, while n faces piled on one another need
+ * n^2/2, crossing or not, and would hold a worker and the daemon's
+ * shutdown for as long as that takes. */
 #define SELFX_TESTS_PER_FACE 32u
 #define SELFX_TESTS_BASE ((uint64_t)1 << 20)
 
