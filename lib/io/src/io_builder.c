@@ -1,6 +1,7 @@
 /* The face list a reader fills: three arrays that grow geometrically (so n
  * appends cost O(log n) reallocations, never one allocation per element)
- * and are trimmed and handed over as an mt_face_list at the end. A reader
+ * and are trimmed and handed over as an mt_face_list at the end, or that
+ * get their room at once when a header's counts fit the input. A reader
  * may have the growth past MT__IO_BLIND_BYTES confirmed first (confirm). */
 #include <stdlib.h>
 
@@ -83,6 +84,13 @@ int mt__builder_reserve_indices(mt__builder *b, size_t n)
     if (!grow(&data, &b->cap_indices, want, n, sizeof(uint32_t))) return 0;
     b->indices = data;
     return 1;
+}
+
+void mt__builder_reserve_declared(mt__builder *b, uint64_t verts, uint64_t faces, uint64_t indices)
+{
+    if (verts > SIZE_MAX || faces > SIZE_MAX || indices > SIZE_MAX) return;
+    if (mt__builder_reserve_verts(b, (size_t)verts) && mt__builder_reserve_faces(b, (size_t)faces))
+        mt__builder_reserve_indices(b, (size_t)indices);
 }
 
 mt_status mt__builder_fail(const mt__builder *b, const mt__io_src *src, mt_diag *diag)

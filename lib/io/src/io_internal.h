@@ -338,6 +338,12 @@ int mt__builder_reserve_verts(mt__builder *b, size_t n);
 int mt__builder_reserve_faces(mt__builder *b, size_t n);
 int mt__builder_reserve_indices(mt__builder *b, size_t n);
 
+/* Room at once for the counts a reader's header declares, once they were
+ * checked against the input's length (known when the header was read):
+ * memory in proportion to the input, and none of the copies growth makes.
+ * Where that room is not to be had, the arrays grow as they are read. */
+void mt__builder_reserve_declared(mt__builder *b, uint64_t verts, uint64_t faces, uint64_t indices);
+
 /* The failure a reader reports when the builder refused to grow: confirm's
  * refusal, else out of memory. */
 mt_status mt__builder_fail(const mt__builder *b, const mt__io_src *src, mt_diag *diag);
@@ -345,7 +351,8 @@ mt_status mt__builder_fail(const mt__builder *b, const mt__io_src *src, mt_diag 
 /* The element count to make room for when `done` of `declared` elements
  * are read and the arrays are full: all of them when few remain, else a
  * batch as large as what was read so far (at least 64 Ki). So arrays grow
- * with what a file holds, never with what its header declares. */
+ * with what a file holds, never with what its header declares (but for
+ * mt__builder_reserve_declared: what the input's length can hold). */
 static inline size_t mt__builder_ahead(size_t done, uint64_t declared)
 {
     size_t step = done > ((size_t)1 << 16) ? done : ((size_t)1 << 16);

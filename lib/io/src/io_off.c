@@ -402,6 +402,8 @@ static mt_status read_off(mt__io_src *src, mt__builder *b, mt_diag *diag)
     off_counts c;
     mt_status status = read_counts(src, &pos, &c, diag);
     if (status == MT_OK) status = check_counts(src, &c, diag);
+    if (status == MT_OK && mt__src_length(src) != MT__UNKNOWN)
+        mt__builder_reserve_declared(b, c.verts, c.faces, 3 * c.faces);
     off_confirm confirm = {src, &c};
     b->confirm = confirm_counts;
     b->confirm_ctx = &confirm;

@@ -922,6 +922,14 @@ static mt_status read_ply(mt__io_src *src, ply_header *h, mt__builder *b, mt_dia
         size_t keep = 0;
         mt__src_more(src, &keep);
     }
+    if (mt__src_length(src) != MT__UNKNOWN) { /* parse_header checked the counts against it */
+        uint64_t verts = 0, faces = 0;
+        for (size_t k = 0; k < h->num_elems; k++) {
+            if (h->elems[k].kind == KIND_VERTEX) verts = h->elems[k].count;
+            if (h->elems[k].kind == KIND_FACE) faces = h->elems[k].count;
+        }
+        mt__builder_reserve_declared(b, verts, faces, 3 * faces);
+    }
     size_t pos = h->data_start;
     int binary = h->encoding != ENC_ASCII;
     if (binary) mt__src_binary(src);
