@@ -2,8 +2,10 @@
  * consistent face list, or an error with a message and a zeroed list; never
  * a crash, a leak or a read out of bounds. And the ways of reading the same
  * bytes agree: read whole, on three threads, through a window of a few
- * bytes (so the window moves on at every possible place), and wrapped as gzip (stored deflate
- * blocks, so the streamed inflation runs too) must give the same result,
+ * bytes (so the window moves on at every possible place), on three threads
+ * through windows of a few hundred bytes (each next one read ahead while
+ * they parse), and wrapped as gzip (stored deflate blocks, so the streamed
+ * inflation runs too) must give the same result,
  * bar the documented differences of streamed gzip data (io.h): damage in
  * the gzip data, and the size checks of a header, may be found after
  * another error the whole read did not reach (the read fails either way). */
@@ -126,6 +128,11 @@ static inline int mt_fuzz_reader(const uint8_t *data, size_t size, mt_format for
     options.window_bytes = 1 + size % 13;
     int is_gzip = size >= 2 && data[0] == 0x1f && data[1] == 0x8b;
     mt_fuzz_compare(data, size, format, name, &options, is_gzip, status, &list, &diag);
+    /* windows that hold several parts: each next one is read ahead */
+    options.threads = 3;
+    options.window_bytes = 160 + size % 97;
+    mt_fuzz_compare(data, size, format, name, &options, is_gzip, status, &list, &diag);
+    options.threads = 0;
     if (!is_gzip) {
         size_t gz_size;
         uint8_t *gz = mt_fuzz_gzip(data, size, &gz_size);

@@ -329,6 +329,81 @@ static void test_bounded_input_limit(void)
     free(tail);
 }
 
+/* Reads text from a pipe (a length not known) as OFF. */
+static mt_status read_piped(const char *text, size_t len, const mt_read_options *options,
+                            mt_diag *diag)
+{
+    int fds[2];
+    if (pipe(fds) != 0) return MT_ERR_IO;
+    fflush(stdout);
+    fflush(stderr);
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(fds[0]);
+        size_t done = 0;
+        while (done < len) {
+            ssize_t k = write(fds[1], text + done, len - done);
+            if (k <= 0) break; /* the reader stopped */
+            done += (size_t)k;
+        }
+        _exit(0);
+    }
+    close(fds[1]);
+    mt_face_list list;
+    mt_status status =
+        pid < 0 ? MT_ERR_IO
+                : mt_read_fd_with(fds[0], "piped.off", MT_FORMAT_OFF, options, &list, diag);
+    if (status == MT_OK) mt_face_list_free(&list);
+    close(fds[0]);
+    if (pid > 0) waitpid(pid, NULL, 0);
+    return status;
+}
+
+/* The next window is read ahead while threads parse the current one; the
+ * input limit met that far ahead must not hide an error before it. Each
+ * limit after a bad face gives what one thread, which reads nothing ahead,
+ * gives: the face's error, or the limit where the window holding the face
+ * reaches it. */
+static void test_bounded_limit_read_ahead(void)
+{
+    size_t cap = 8 * MIB, len = 0;
+    char *text = malloc(cap);
+    CHECK(text != NULL);
+    if (!text) return;
+    const uint32_t verts = 1000, faces = 400000, bad = 200000;
+    len += (size_t)snprintf(text, cap, "OFF\n%u %u 0\n", verts, faces);
+    for (uint32_t v = 0; v < verts; v++)
+        len += (size_t)snprintf(text + len, cap - len, "%u 0 0\n", v);
+    size_t bad_at = 0;
+    for (uint32_t f = 0; f < faces; f++) {
+        if (f == bad) {
+            bad_at = len;
+            len += (size_t)snprintf(text + len, cap - len, "3 1 2 x\n");
+            continue;
+        }
+        len += (size_t)snprintf(text + len, cap - len, "3 %u %u %u\n", f % verts, (f + 1) % verts,
+                                (f + 2) % verts);
+    }
+    mt_read_options options;
+    memset(&options, 0, sizeof options);
+    options.window_bytes = (size_t)3 << 19;
+    int parse_errors = 0;
+    for (size_t limit = bad_at + MIB / 4; limit < len; limit += MIB / 4) {
+        options.max_input_bytes = limit;
+        mt_diag one, two;
+        options.threads = 1;
+        mt_status want = read_piped(text, len, &options, &one);
+        options.threads = 2;
+        CHECK_STATUS(read_piped(text, len, &options, &two), want);
+        if (strcmp(one.message, two.message) != 0)
+            mt_test_fail(__FILE__, __LINE__, "limit %zu: '%s' != '%s'", limit, two.message,
+                         one.message);
+        parse_errors += want == MT_ERR_PARSE;
+    }
+    CHECK(parse_errors > 0); /* some limits lie past the bad face's window */
+    free(text);
+}
+
 static void test_bounded_long_token(void)
 {
     /* In streamed input a token may widen the window up to
@@ -481,5 +556,6 @@ static const mt_test_case cases[] = {
     {"bounded_long_token", test_bounded_long_token},
     {"bounded_windows_match_whole", test_bounded_windows_match_whole},
     {"bounded_room_for_declared", test_bounded_room_for_declared},
+    {"bounded_limit_read_ahead", test_bounded_limit_read_ahead},
 };
 const mt_test_table mt_tests_io_bounded = {cases, sizeof cases / sizeof cases[0]};

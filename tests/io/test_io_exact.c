@@ -199,12 +199,19 @@ static int same_lists(const mt_face_list *a, const mt_face_list *b)
            memcmp(a->face_indices, b->face_indices, sizeof(uint32_t) * a->num_indices) == 0;
 }
 
-/* Reads with one thread, 2 and 4 threads, and small windows: the same
- * status, arrays, message and line each time. */
+/* Reads with one thread, 2 and 4 threads, small windows, and windows
+ * large enough for several threads, each next one read ahead while they
+ * parse: the same status, arrays, message and line each time. */
 static void expect_same_every_way(const char *text, size_t len, const char *name)
 {
-    static const read_way ways[] = {{1, 0},    {2, 0}, {4, 0},
-                                    {2, 4096}, {1, 7}, {2, (size_t)1 << 20}};
+    static const read_way ways[] = {{1, 0},
+                                    {2, 0},
+                                    {4, 0},
+                                    {2, 4096},
+                                    {1, 7},
+                                    {2, (size_t)1 << 20},
+                                    {2, (size_t)3 << 19},
+                                    {4, (size_t)3 << 20}};
     mt_face_list first, list;
     mt_diag first_diag, diag;
     mt_status first_status = MT_OK;
@@ -830,8 +837,8 @@ static void test_exact_obj_runs(void)
             obj_want_face(&o, size, idx);
         }
     }
-    static const read_way ways[] = {{1, 0},   {2, 0}, {3, 0}, {4, 0}, {2, (size_t)1 << 20},
-                                    {1, 4096}};
+    static const read_way ways[] = {
+        {1, 0}, {2, 0}, {3, 0}, {4, 0}, {2, (size_t)1 << 20}, {1, 4096}, {2, (size_t)3 << 19}};
     for (size_t w = 0; w < sizeof ways / sizeof ways[0]; w++) {
         mt_read_options options = options_for(ways[w]);
         mt_face_list read;

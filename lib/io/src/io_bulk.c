@@ -37,6 +37,10 @@
 #endif
 /* A worker checks whether its part is still wanted every this many lines. */
 #define CANCEL_LINES 1024u
+/* When the calling thread reads the next window ahead after its part, its
+ * part is smaller by this fraction of the run's bytes (1/12: reading a
+ * window takes about a twelfth of the time one thread parses it). */
+#define READ_AHEAD_SHARE 12
 
 /* Where a part's records go: arrays with room for cap_* elements. */
 typedef struct bulk_out {
@@ -809,12 +813,14 @@ static unsigned threads_for(unsigned wanted)
 /* Lines [start, end) in `parts` parts (parts[0] on this thread, into b
  * from record `first` on), at most `max` records. Returns the records read;
  * *at is where reading stopped. */
-static uint64_t run_parts(const mt__io_src *src, const mt__bulk_spec *spec, bulk_part *pp,
-                          unsigned parts, size_t start, size_t end, uint64_t first, uint64_t max,
-                          uint64_t declared, mt__builder *b, size_t *at)
+static uint64_t run_parts(mt__io_src *src, const mt__bulk_spec *spec, bulk_part *pp, unsigned parts,
+                          size_t start, size_t end, uint64_t first, uint64_t max, uint64_t declared,
+                          mt__builder *b, size_t *at)
 {
     const unsigned char *d = src->data;
     size_t bytes = end - start, cut = start;
+    int ahead = parts > 1 && mt__src_reads_ahead(src);
+    size_t less = ahead ? bytes / READ_AHEAD_SHARE : 0; /* taken from part 0, given to the others */
     atomic_int cancel;
     atomic_init(&cancel, 0);
     for (unsigned t = 0; t < parts; t++) {
@@ -825,7 +831,7 @@ static uint64_t run_parts(const mt__io_src *src, const mt__bulk_spec *spec, bulk
         if (t + 1 == parts) {
             cut = end; /* an unfinished last line stops the part */
         } else {
-            cut = start + bytes / parts * (t + 1);
+            cut = start + bytes / parts * (t + 1) - less * (parts - 1 - t) / (parts - 1);
             if (cut < p->pos) cut = p->pos;
             const unsigned char *nl = memchr(d + cut, '\n', end - cut);
             cut = nl ? (size_t)(nl - d) + 1 : end;
@@ -848,6 +854,7 @@ static uint64_t run_parts(const mt__io_src *src, const mt__bulk_spec *spec, bulk
     for (unsigned t = 1; t < parts; t++)
         pp[t].started = pthread_create(&pp[t].thread, NULL, worker_main, &pp[t]) == 0;
     uint64_t done = parse_first(&pp[0], b, first, declared, rec_end, index_end);
+    if (ahead) mt__src_read_ahead(src); /* while the other parts are parsed */
     int whole = pp[0].why == END_DONE && pp[0].pos == pp[0].end && done < max;
     if (!whole) atomic_store(&cancel, 1);
     *at = pp[0].pos;

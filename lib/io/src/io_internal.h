@@ -47,7 +47,7 @@ typedef struct mt__io_src {
     uint64_t mark_line; /* window moves past it, so a message can still point there */
     mt__io_stream *stream; /* NULL when data is all the input */
     unsigned threads;      /* mt_read_options.threads */
-    mt__bulk *bulk;        /* the bulk parser's scratch (io_bulk.c), freed by mt__src_close */
+    mt__bulk *bulk;        /* the bulk parser's scratch (io_bulk.c), freed with mt__bulk_free */
 } mt__io_src;
 
 /* A source over all of [data, data + size). */
@@ -502,6 +502,14 @@ mt_status mt__src_open(mt__io_src *src, const char *name, int fd, const void *da
  * way (corrupt data, the input limit) ends the input at once, as it would
  * be met later. Returns 1 when the length is known (src->total). */
 int mt__src_learn_length(mt__io_src *src);
+/* Reads the next window's input ahead, into a block of its own, while
+ * other threads parse the window (which stays as it is): the next
+ * mt__src_more takes it in, and until then a failure or the end of the
+ * input met ahead is not seen. Plain text only (inflating ahead would keep
+ * the parsing threads waiting); does nothing for other input, nor when
+ * bytes read ahead are already waiting: mt__src_reads_ahead tells. */
+int mt__src_reads_ahead(const mt__io_src *src);
+void mt__src_read_ahead(mt__io_src *src);
 /* MT_OK, or the failure met while reading the input (copied into diag). */
 mt_status mt__src_status(const mt__io_src *src, mt_diag *diag);
 /* Frees the window (NULL-safe for a buffer read whole). */

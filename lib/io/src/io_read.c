@@ -96,6 +96,8 @@ static mt_status read_source(mt__io_src *src, mt_format format, mt_face_list *ou
         if (status == MT_OK) mt_face_list_free(out);
         status = input;
     }
+    mt__bulk_free(src->bulk);
+    src->bulk = NULL;
     mt__src_close(src);
     if (status != MT_OK) memset(out, 0, sizeof *out);
     return status;

@@ -2,7 +2,9 @@
  * descriptor or a buffer (io_raw.c), inflated when they are gzip
  * (io_inflate.c), appended to a window the parser moves on (mt__src_more).
  * Holds at most the window (widened only for a token or PLY header longer
- * than it, up to MT_READ_MAX_HELD_BYTES) whatever the input's size, counts
+ * than it, up to MT_READ_MAX_HELD_BYTES) and, for a plain file parsed on
+ * several threads, one window more read ahead while the threads parse the
+ * first (mt__src_read_ahead), whatever the input's size; counts
  * the input against max_input_bytes, learns the length of gzip data on
  * demand (mt__src_learn_length), and counts the lines of the bytes it drops
  * so that messages keep exact line numbers. */
@@ -14,13 +16,31 @@
 /* Bytes of raw input read at once from a file descriptor. */
 #define RAW_CHUNK ((size_t)64 << 10)
 
+/* Room before the bytes read ahead for the bytes the window keeps (the
+ * partial line at its end), so that the two join without moving either. */
+#define AHEAD_ROOM ((size_t)64 << 10)
+
 struct mt__io_stream {
     mt__io_raw raw;
-    mt__inflater *gz; /* NULL: plain input */
-    unsigned char *buf;
-    size_t len;        /* bytes in buf: the window, then (text) a partial token */
-    size_t cap;        /* buf's size */
-    size_t max_cap;    /* largest buf allowed */
+    mt__inflater *gz;   /* NULL: plain input */
+    unsigned char *mem; /* the window's block, mem_size bytes */
+    size_t mem_size;
+    unsigned char *buf; /* the window: at mem, or inside it once bytes read ahead were taken in */
+    size_t len;         /* bytes in buf: the window, then (text) a partial token */
+    size_t cap;         /* bytes from buf to the end of mem */
+    size_t max_cap;     /* largest block allowed */
+    size_t window;      /* mt_read_options.window_bytes: the block's size until it widens */
+    /* Input read ahead (mt__src_read_ahead): `ahead` bytes at spare +
+     * AHEAD_ROOM and whether the input ended there (finished, status,
+     * diag kept aside), taken in by the next mt__src_more: until then
+     * the window's owner sees the input as it was. */
+    unsigned char *spare;
+    size_t spare_size;
+    int ahead_held;
+    size_t ahead;
+    int ahead_finished;
+    mt_status ahead_status;
+    mt_diag ahead_diag;
     int text;          /* cut the window after whitespace */
     int finished;      /* nothing more to append (end of input, or a failure) */
     int rereadable;    /* the raw input can be read again (a buffer, a regular file) */
@@ -79,14 +99,15 @@ static void fail_too_long(const mt__io_src *src, mt__io_stream *s, uint64_t comp
 
 /* ---- The window ---------------------------------------------------------- */
 
-/* Appends input to buf until it is full or the input ends: after `limit`
- * bytes, or after `total` (a plain file is read as long as it was when
- * opened; gzip data that inflates past the length learned before has
- * changed under the reader). */
-static void fill(const mt__io_src *src, mt__io_stream *s)
+/* Appends input to buf (*len bytes of cap) until it is full or the input
+ * ends: after `limit` bytes, or after `total` (a plain file is read as
+ * long as it was when opened; gzip data that inflates past the length
+ * learned before has changed under the reader). */
+static void fill_into(const mt__io_src *src, mt__io_stream *s, unsigned char *buf, size_t *len,
+                      size_t cap)
 {
-    while (!s->finished && s->len < s->cap) {
-        size_t room = s->cap - s->len;
+    while (!s->finished && *len < cap) {
+        size_t room = cap - *len;
         uint64_t left = s->limit - s->produced;
         if (left < room) room = (size_t)left + 1; /* one byte past the limit tells */
         if (src->total != MT__UNKNOWN) {
@@ -102,13 +123,13 @@ static void fill(const mt__io_src *src, mt__io_stream *s)
             int done = 0;
             mt_status status = MT_OK;
             mt_diag diag;
-            got = mt__inflate(s->gz, &s->raw, s->buf + s->len, room, src, &done, &status, &diag);
+            got = mt__inflate(s->gz, &s->raw, buf + *len, room, src, &done, &status, &diag);
             if (status != MT_OK)
                 stream_fail(s, status, &diag);
             else if (done)
                 s->finished = 1;
         } else {
-            got = mt__raw_read(&s->raw, s->buf + s->len, room);
+            got = mt__raw_read(&s->raw, buf + *len, room);
             if (got < room) {
                 if (s->raw.err)
                     fail_read_error(src, s);
@@ -116,10 +137,10 @@ static void fill(const mt__io_src *src, mt__io_stream *s)
                     s->finished = 1;
             }
         }
-        s->len += got;
+        *len += got;
         s->produced += got;
         if (s->produced > s->limit) {
-            s->len -= (size_t)(s->produced - s->limit);
+            *len -= (size_t)(s->produced - s->limit);
             s->produced = s->limit;
             fail_too_long(src, s, s->raw.offset);
         } else if (s->gz && src->total != MT__UNKNOWN && s->produced > src->total) {
@@ -129,6 +150,11 @@ static void fill(const mt__io_src *src, mt__io_stream *s)
             stream_fail(s, status, &diag);
         }
     }
+}
+
+static void fill(const mt__io_src *src, mt__io_stream *s)
+{
+    fill_into(src, s, s->buf, &s->len, s->cap);
 }
 
 /* The end of the window in a text buffer: just after its last whitespace
@@ -144,10 +170,17 @@ static size_t text_cut(const unsigned char *b, size_t from, size_t len)
     return from;
 }
 
-/* Doubles buf (up to max_cap). Returns 0 after recording the failure. */
+/* Doubles the window's block (up to max_cap). Returns 0 after recording
+ * the failure. */
 static int grow(mt__io_src *src, mt__io_stream *s)
 {
     mt_diag diag;
+    if (s->buf != s->mem) {
+        memmove(s->mem, s->buf, s->len);
+        s->buf = s->mem;
+        s->cap = s->mem_size;
+        src->data = s->mem;
+    }
     if (s->cap >= s->max_cap) {
         mt_status status = mt__io_fail(
             &diag, MT_ERR_TOO_LARGE, src, s->text ? MT__POS_LINE : MT__POS_BYTE, src->base, MT_NONE,
@@ -158,15 +191,90 @@ static int grow(mt__io_src *src, mt__io_stream *s)
         return 0;
     }
     size_t cap = s->cap > s->max_cap / 2 ? s->max_cap : 2 * s->cap;
-    unsigned char *p = realloc(s->buf, cap);
+    unsigned char *p = realloc(s->mem, cap);
     if (!p) {
         stream_fail(s, mt__io_fail_nomem(&diag, src), &diag);
         return 0;
     }
-    s->buf = p;
-    s->cap = cap;
+    s->mem = s->buf = p;
+    s->mem_size = s->cap = cap;
     src->data = p;
     return 1;
+}
+
+/* ---- Reading ahead ------------------------------------------------------- */
+
+int mt__src_reads_ahead(const mt__io_src *src)
+{
+    const mt__io_stream *s = src->stream;
+    return s && s->text && !s->gz && !s->finished && !s->ahead_held;
+}
+
+void mt__src_read_ahead(mt__io_src *src)
+{
+    mt__io_stream *s = src->stream;
+    if (!mt__src_reads_ahead(src)) return;
+    size_t size = AHEAD_ROOM + s->window;
+    if (s->spare_size < size) { /* none yet, or the window's first block */
+        free(s->spare);
+        s->spare = malloc(size);
+        s->spare_size = s->spare ? size : 0;
+        if (!s->spare) return;
+    }
+    size_t len = AHEAD_ROOM;
+    fill_into(src, s, s->spare, &len, size);
+    s->ahead = len - AHEAD_ROOM;
+    s->ahead_held = 1;
+    s->ahead_finished = s->finished;
+    s->ahead_status = s->status;
+    if (s->status != MT_OK) s->ahead_diag = s->diag;
+    s->finished = 0;
+    s->status = MT_OK;
+}
+
+/* The bytes read ahead are all in the window: the input is now where the
+ * read ahead left it. */
+static void end_ahead(mt__io_stream *s)
+{
+    s->ahead_held = 0;
+    s->ahead = 0;
+    if (s->ahead_status != MT_OK)
+        stream_fail(s, s->ahead_status, &s->ahead_diag);
+    else if (s->ahead_finished)
+        s->finished = 1;
+}
+
+/* Drops the window's first `drop` bytes and takes in the bytes read ahead
+ * without moving them: the kept bytes (at most AHEAD_ROOM) go just before
+ * them, and the two blocks change places. */
+static void swap_in_ahead(mt__io_stream *s, size_t drop)
+{
+    size_t kept = s->len - drop;
+    unsigned char *start = s->spare + AHEAD_ROOM - kept;
+    memcpy(start, s->buf + drop, kept);
+    unsigned char *mem = s->mem;
+    size_t mem_size = s->mem_size;
+    s->mem = s->spare;
+    s->mem_size = s->spare_size;
+    s->spare = mem;
+    s->spare_size = mem_size;
+    s->buf = start;
+    s->cap = s->mem_size - (size_t)(start - s->mem);
+    s->len = kept + s->ahead;
+    end_ahead(s);
+}
+
+/* Appends what fits of the bytes read ahead to the window. */
+static void copy_in_ahead(mt__io_stream *s)
+{
+    size_t n = s->cap - s->len < s->ahead ? s->cap - s->len : s->ahead;
+    memcpy(s->buf + s->len, s->spare + AHEAD_ROOM, n);
+    s->len += n;
+    s->ahead -= n;
+    if (s->ahead)
+        memmove(s->spare + AHEAD_ROOM, s->spare + AHEAD_ROOM + n, s->ahead);
+    else
+        end_ahead(s);
 }
 
 int mt__src_more(mt__io_src *src, size_t *pos)
@@ -174,21 +282,30 @@ int mt__src_more(mt__io_src *src, size_t *pos)
     mt__io_stream *s = src->stream;
     if (!s || src->eof) return 0;
     size_t drop = *pos;
-    if (drop) {
-        if (s->text) {
-            if (src->mark >= src->base && src->mark - src->base < drop)
-                src->mark_line =
-                    1 + src->lines + mt__count_newlines(s->buf, (size_t)(src->mark - src->base));
-            src->lines += mt__count_newlines(s->buf, drop);
-        }
-        memmove(s->buf, s->buf + drop, s->len - drop);
-        s->len -= drop;
-        src->base += drop;
-        *pos = 0;
+    if (drop && s->text) {
+        if (src->mark >= src->base && src->mark - src->base < drop)
+            src->mark_line =
+                1 + src->lines + mt__count_newlines(s->buf, (size_t)(src->mark - src->base));
+        src->lines += mt__count_newlines(s->buf, drop);
     }
+    if (s->ahead_held && s->len - drop <= AHEAD_ROOM) {
+        swap_in_ahead(s, drop);
+    } else if (drop) {
+        memmove(s->mem, s->buf + drop, s->len - drop);
+        s->buf = s->mem;
+        s->cap = s->mem_size;
+        s->len -= drop;
+    }
+    src->base += drop;
+    *pos = 0;
     size_t old = src->size - drop; /* bytes shown before, still shown */
     for (;;) {
-        fill(src, s);
+        if (!s->ahead_held)
+            fill(src, s);
+        else if (s->finished) /* widening the window failed: the input ends there */
+            s->ahead_held = 0;
+        else
+            copy_in_ahead(s);
         size_t end = s->text && !s->finished ? text_cut(s->buf, old, s->len) : s->len;
         if (end > old || s->finished) {
             src->data = s->buf;
@@ -207,7 +324,7 @@ void mt__src_binary(mt__io_src *src)
     if (!s) return;
     s->text = 0;
     src->size = s->len;
-    src->eof = s->finished;
+    src->eof = s->finished && !s->ahead_held;
 }
 
 mt__trail mt__src_skip_trailer(mt__io_src *src, size_t *pos, int comments)
@@ -311,7 +428,8 @@ static void stream_free(mt__io_stream *s)
     if (!s) return;
     mt__inflater_free(s->gz);
     free(s->raw.chunk);
-    free(s->buf);
+    free(s->mem);
+    free(s->spare);
     free(s);
 }
 
@@ -319,8 +437,6 @@ void mt__src_close(mt__io_src *src)
 {
     stream_free(src->stream);
     src->stream = NULL;
-    mt__bulk_free(src->bulk);
-    src->bulk = NULL;
     src->data = NULL;
     src->size = 0;
 }
@@ -337,7 +453,7 @@ mt_status mt__src_open(mt__io_src *src, const char *name, int fd, const void *da
     size_t window =
         options && options->window_bytes ? options->window_bytes : MT_READ_DEFAULT_WINDOW_BYTES;
     s->max_cap = window > MT_READ_MAX_HELD_BYTES ? window : MT_READ_MAX_HELD_BYTES;
-    s->cap = window;
+    s->cap = s->window = window;
     s->limit = options && options->max_input_bytes ? options->max_input_bytes
                                                    : MT_READ_DEFAULT_MAX_INPUT_BYTES;
     s->text = 1;
@@ -352,7 +468,8 @@ mt_status mt__src_open(mt__io_src *src, const char *name, int fd, const void *da
         s->raw.end = s->raw.p + size;
         s->raw.at_end = 1;
     }
-    s->buf = malloc(s->cap);
+    s->mem = s->buf = malloc(s->cap);
+    s->mem_size = s->cap;
     if (!s->buf || (fd >= 0 && !s->raw.chunk)) {
         stream_free(s);
         return mt__io_fail_nomem(diag, src);

@@ -49,7 +49,9 @@ typedef struct mt_read_options {
     uint64_t max_input_bytes;
     /* Bytes of input held at once while a file or gzip data is parsed
      * (0: MT_READ_DEFAULT_WINDOW_BYTES); a token or PLY header longer than
-     * the window widens it, up to MT_READ_MAX_HELD_BYTES. Nonzero also makes
+     * the window widens it, up to MT_READ_MAX_HELD_BYTES. Plain text parsed
+     * on several threads holds one window more: the next one, read while
+     * the threads parse. Nonzero also makes
      * mt_read_memory_with parse a plain buffer through such a window, as a
      * file is (for tests: the result is the same). */
     size_t window_bytes;
@@ -97,15 +99,18 @@ typedef struct mt_read_options {
  *
  * Memory. The file is parsed as it is read (and inflated), through a window
  * of mt_read_options.window_bytes, and the face list grows as elements are
- * read, never by the counts a header declares: a read holds the mesh read
- * so far and a fixed window, whatever the file's size or what it inflates
- * to. OFF and PLY stop at the counts their header declares (see
- * MT_READ_MAX_TRAILING_BYTES). Those counts are checked against the bytes
- * that follow them: at once for a plain file or buffer; gzip data tells
- * its length only at its end, so before the face list grows past 64 MiB
- * the rest of the data is inflated once, not kept, to learn it (for gzip
- * from a buffer or a regular file; from a pipe, max_input_bytes is the
- * bound). A gzip file that inflates to gigabytes of plausible data under a
+ * read, never by the counts a header declares beyond what the input can
+ * hold: a read holds the mesh read so far and a fixed window (or two),
+ * whatever the file's size or what it inflates to. Where the input's
+ * length is known from the start (a plain file, a buffer), the face list
+ * gets room at once for the counts a header declares, once they are
+ * checked against it (below). OFF and PLY stop at the counts their
+ * header declares (see MT_READ_MAX_TRAILING_BYTES). Those counts are
+ * checked against the bytes that follow them: at once for a plain file or
+ * buffer; gzip data tells its length only at its end, so before the face
+ * list grows past 64 MiB the rest of the data is inflated once, not kept,
+ * to learn it (for gzip from a buffer or a regular file; from a pipe,
+ * max_input_bytes is the bound). A gzip file that inflates to gigabytes of plausible data under a
  * header declaring more is so refused before memory is spent on it.
  *
  * Order of errors in gzip data: damage in the data (a bad checksum,
