@@ -16,9 +16,13 @@
  * before (exact for meshes of one face size; a gap left by a wrong guess is
  * closed afterwards, and an index region too small stops the part there).
  * Otherwise a part parses into scratch arrays appended in order once part 0
- * ends where part 1 starts. */
+ * ends where part 1 starts. A part's thread starts on another CPU than the
+ * calling thread's, as core's parallel.c starts its parts and for the same
+ * reason (said there). */
+#define _GNU_SOURCE /* cpu_set_t, sched_getcpu, pthread_attr_setaffinity_np */
 #include <float.h>
 #include <pthread.h>
+#include <sched.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -73,6 +77,7 @@ typedef struct bulk_part {
     atomic_int *cancel;
     pthread_t thread;
     int started;
+    const cpu_set_t *allowed; /* where its thread may go once it runs; NULL: anywhere */
 } bulk_part;
 
 struct mt__bulk {
@@ -636,6 +641,47 @@ static void *worker_main(void *arg)
     return NULL;
 }
 
+/* A part on a thread of its own, started elsewhere than the calling thread. */
+static void *part_thread(void *arg)
+{
+    bulk_part *p = arg;
+    if (p->allowed) pthread_setaffinity_np(pthread_self(), sizeof *p->allowed, p->allowed);
+    return worker_main(p);
+}
+
+/* The CPUs the calling thread may use (*allowed) and those of them it is
+ * not on (*elsewhere); 0 when there is no other, or they are not known.
+ * (Core's parallel.c has its own: io does not reach into core's insides.) */
+static int cpus_elsewhere(cpu_set_t *allowed, cpu_set_t *elsewhere)
+{
+    if (sched_getaffinity(0, sizeof *allowed, allowed) != 0) return 0;
+    int here = sched_getcpu();
+    if (here < 0 || here >= CPU_SETSIZE || !CPU_ISSET(here, allowed)) return 0;
+    *elsewhere = *allowed;
+    CPU_CLR(here, elsewhere);
+    return CPU_COUNT(elsewhere) > 0;
+}
+
+/* Starts parts 1 and later on threads of their own (kept off this thread's
+ * CPU until they run); returns whether they were so kept. */
+static int start_parts(bulk_part *pp, unsigned parts, cpu_set_t *allowed)
+{
+    cpu_set_t elsewhere;
+    pthread_attr_t attr;
+    int spread = cpus_elsewhere(allowed, &elsewhere) && pthread_attr_init(&attr) == 0;
+    if (spread && pthread_attr_setaffinity_np(&attr, sizeof elsewhere, &elsewhere) != 0) {
+        pthread_attr_destroy(&attr);
+        spread = 0;
+    }
+    for (unsigned t = 1; t < parts; t++) {
+        pp[t].allowed = spread ? allowed : NULL;
+        pp[t].started =
+            pthread_create(&pp[t].thread, spread ? &attr : NULL, part_thread, &pp[t]) == 0;
+    }
+    if (spread) pthread_attr_destroy(&attr);
+    return spread;
+}
+
 /* ---- Part 0: into the face list ----------------------------------------- */
 
 /* out as a view of the builder's arrays from record `rec` and index `index`
@@ -851,8 +897,8 @@ static uint64_t run_parts(mt__io_src *src, const mt__bulk_spec *spec, bulk_part 
             pp[t].out.num_verts = pp[t].out.num_faces = pp[t].out.num_indices = 0;
         }
     }
-    for (unsigned t = 1; t < parts; t++)
-        pp[t].started = pthread_create(&pp[t].thread, NULL, worker_main, &pp[t]) == 0;
+    cpu_set_t allowed;
+    int spread = parts > 1 && start_parts(pp, parts, &allowed);
     uint64_t done = parse_first(&pp[0], b, first, declared, rec_end, index_end);
     if (ahead) mt__src_read_ahead(src); /* while the other parts are parsed */
     int whole = pp[0].why == END_DONE && pp[0].pos == pp[0].end && done < max;
@@ -860,6 +906,8 @@ static uint64_t run_parts(mt__io_src *src, const mt__bulk_spec *spec, bulk_part 
     *at = pp[0].pos;
     for (unsigned t = 1; t < parts; t++) {
         bulk_part *p = &pp[t];
+        if (p->started && spread) /* one not running yet may now run anywhere (parallel.c) */
+            pthread_setaffinity_np(p->thread, sizeof allowed, &allowed);
         if (p->started)
             pthread_join(p->thread, NULL);
         else if (whole)
