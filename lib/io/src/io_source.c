@@ -2,7 +2,7 @@
  * descriptor or a buffer (io_raw.c), inflated when they are gzip
  * (io_inflate.c), appended to a window the parser moves on (mt__src_more).
  * Holds at most the window (widened only for a token or PLY header longer
- * than it, up to MT_READ_MAX_HELD_BYTES) and, for a plain file parsed on
+ * than it, up to MT_READ_MAX_HELD_BYTES) and, for plain text parsed on
  * several threads, one window more read ahead while the threads parse the
  * first (mt__src_read_ahead), whatever the input's size; counts
  * the input against max_input_bytes, learns the length of gzip data on
@@ -214,15 +214,18 @@ void mt__src_read_ahead(mt__io_src *src)
 {
     mt__io_stream *s = src->stream;
     if (!mt__src_reads_ahead(src)) return;
-    size_t size = AHEAD_ROOM + s->window;
-    if (s->spare_size < size) { /* none yet, or the window's first block */
+    /* A window's size at most; after the first swap the spare block is the
+     * window's first, which holds a little less than that after the room
+     * (a window too small even for the room gets a block of its own). */
+    size_t most = AHEAD_ROOM + s->window;
+    if (s->spare_size <= AHEAD_ROOM) {
         free(s->spare);
-        s->spare = malloc(size);
-        s->spare_size = s->spare ? size : 0;
+        s->spare = malloc(most);
+        s->spare_size = s->spare ? most : 0;
         if (!s->spare) return;
     }
     size_t len = AHEAD_ROOM;
-    fill_into(src, s, s->spare, &len, size);
+    fill_into(src, s, s->spare, &len, s->spare_size < most ? s->spare_size : most);
     s->ahead = len - AHEAD_ROOM;
     s->ahead_held = 1;
     s->ahead_finished = s->finished;
