@@ -14,6 +14,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/utsname.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "bench.h"
@@ -69,6 +70,8 @@ static void usage(FILE *out)
             "  --svg FILE       also write the build-time plot\n"
             "  --quick          small meshes (grid %u, torus %u triangles), %u repetitions\n"
             "  --no-reserve     OpenMesh and CGAL do not reserve() the counts before a build\n"
+            "  --idle-ms N      idle N ms before each timed repetition, as a long-lived\n"
+            "                   program between two builds (default 0)\n"
             "  --peer-dir DIR   where the peer programs are (default: next to this program)\n"
             "  --tmpdir DIR     where the input files for the peers go ($TMPDIR or /tmp)\n"
             "  --help           this text\n",
@@ -121,6 +124,8 @@ static int parse_options(int argc, char **argv, mt__bench_options *o)
         } else if (strcmp(a, "--threads") == 0 && mt__bench_parse_u64(next, 0, 1024, &v)) {
             o->threads = (uint32_t)v;
             o->threads_given = true;
+        } else if (strcmp(a, "--idle-ms") == 0 && mt__bench_parse_u64(next, 0, 60000, &v)) {
+            o->idle_ms = (uint32_t)v;
         } else if (strcmp(a, "--seed") == 0 && mt__bench_parse_u64(next, 0, UINT64_MAX, &v)) {
             o->seed = v;
         } else if (strcmp(a, "--csv") == 0) {
@@ -358,6 +363,10 @@ static void case_run(const mt__bench_options *o, mt__bench_case *bench_case,
             uint32_t k = (j + rep) % num_runners;
             mt__bench_result *result = &results[k];
             if (result->state != MT__BENCH_OK) continue;
+            if (o->idle_ms) {
+                struct timespec idle = {o->idle_ms / 1000, (long)(o->idle_ms % 1000) * 1000000L};
+                nanosleep(&idle, NULL);
+            }
             if (!runners[k].rep(&runners[k], &result->samples[result->num_samples], result)) {
                 result_fail(&runners[k], result);
                 continue;

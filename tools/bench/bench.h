@@ -35,6 +35,7 @@ typedef struct mt__bench_options {
     uint64_t seed;          /* seed of the permuted copies */
     bool quick;             /* small meshes, few repetitions (smoke test) */
     bool peer_no_reserve;   /* peers time the plain add loop, without reserve() */
+    uint32_t idle_ms;       /* this process idles that long before each repetition */
     const char *csv_path;   /* NULL: no CSV (all: out_dir/bench.csv) */
     const char *md_path;    /* NULL: no Markdown (all: out_dir/bench.md) */
     const char *svg_path;   /* NULL: no plot (all: out_dir/build-time.svg) */
