@@ -167,10 +167,10 @@ static mt_status read_binary(mt__io_src *src, mt__builder *b, mt_diag *diag)
         return mt__io_fail(diag, MT_ERR_TOO_LARGE, src, MT__POS_BYTE, 80, MT_NONE,
                            "%u triangles: more than meshtopo's limit of %u vertices", count,
                            MT__IO_MAX_VERTS);
-    /* The builder asks confirm_count, with the count, before growing large;
-     * the pointer to this frame's confirmation is taken back before return. */
     if (mt__src_length(src) != MT__UNKNOWN) /* check_length held the count to it */
         mt__builder_reserve_declared(b, 3 * (uint64_t)count, count, 3 * (uint64_t)count);
+    /* The builder asks confirm_count, with the count, before growing large;
+     * the pointer to this frame's confirmation is taken back before return. */
     stl_confirm confirm = {src, count};
     b->confirm = confirm_count;
     b->confirm_ctx = &confirm;
