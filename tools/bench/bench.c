@@ -70,8 +70,8 @@ static void usage(FILE *out)
             "  --svg FILE       also write the build-time plot\n"
             "  --quick          small meshes (grid %u, torus %u triangles), %u repetitions\n"
             "  --no-reserve     OpenMesh and CGAL do not reserve() the counts before a build\n"
-            "  --idle-ms N      idle N ms before each timed repetition, as a long-lived\n"
-            "                   program between two builds (default 0)\n"
+            "  --idle-ms N      idle N ms (at most 10000) before each timed repetition, as a\n"
+            "                   long-lived program between two builds (default 0)\n"
             "  --peer-dir DIR   where the peer programs are (default: next to this program)\n"
             "  --tmpdir DIR     where the input files for the peers go ($TMPDIR or /tmp)\n"
             "  --help           this text\n",
@@ -124,7 +124,7 @@ static int parse_options(int argc, char **argv, mt__bench_options *o)
         } else if (strcmp(a, "--threads") == 0 && mt__bench_parse_u64(next, 0, 1024, &v)) {
             o->threads = (uint32_t)v;
             o->threads_given = true;
-        } else if (strcmp(a, "--idle-ms") == 0 && mt__bench_parse_u64(next, 0, 60000, &v)) {
+        } else if (strcmp(a, "--idle-ms") == 0 && mt__bench_parse_u64(next, 0, 10000, &v)) {
             o->idle_ms = (uint32_t)v;
         } else if (strcmp(a, "--seed") == 0 && mt__bench_parse_u64(next, 0, UINT64_MAX, &v)) {
             o->seed = v;
