@@ -42,8 +42,8 @@
 /* A worker checks whether its part is still wanted every this many lines. */
 #define CANCEL_LINES 1024u
 /* When the calling thread reads the next window ahead after its part, its
- * part is smaller by this fraction of the run's bytes (1/12: reading a
- * window takes about a twelfth of the time one thread parses it). */
+ * part is smaller by 1/READ_AHEAD_SHARE of the run's bytes, so that it
+ * ends with the others': it reads while they finish. */
 #define READ_AHEAD_SHARE 12
 
 /* Where a part's records go: arrays with room for cap_* elements. */
