@@ -63,9 +63,10 @@ typedef struct mt_read_options {
 
 /* 16 GiB: the default of mt_read_options.max_input_bytes. */
 #define MT_READ_DEFAULT_MAX_INPUT_BYTES ((uint64_t)16 << 30)
-/* 4 MiB: the default of mt_read_options.window_bytes (large enough that
- * text in it is worth parsing on several threads). */
-#define MT_READ_DEFAULT_WINDOW_BYTES ((size_t)4 << 20)
+/* 3 MiB: the default of mt_read_options.window_bytes: large enough that
+ * text in it is worth parsing on several threads, and chosen against 2 and
+ * 4 MiB by measurement (docs/performance/inspect.md, "Window size"). */
+#define MT_READ_DEFAULT_WINDOW_BYTES ((size_t)3 << 20)
 /* 4 MiB: the longest token (or PLY header) read from a file or gzip data;
  * a longer one fails with MT_ERR_TOO_LARGE. */
 #define MT_READ_MAX_HELD_BYTES ((size_t)4 << 20)
