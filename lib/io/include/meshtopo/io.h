@@ -64,8 +64,8 @@ typedef struct mt_read_options {
 /* 16 GiB: the default of mt_read_options.max_input_bytes. */
 #define MT_READ_DEFAULT_MAX_INPUT_BYTES ((uint64_t)16 << 30)
 /* 3 MiB: the default of mt_read_options.window_bytes: large enough that
- * text in it is worth parsing on several threads, and chosen against 2 and
- * 4 MiB by measurement (docs/performance/inspect.md, "Window size"). */
+ * text in it is worth parsing on several threads, and chosen against 4 MiB
+ * by measurement (docs/performance/inspect.md, "Window size"). */
 #define MT_READ_DEFAULT_WINDOW_BYTES ((size_t)3 << 20)
 /* 4 MiB: the longest token (or PLY header) read from a file or gzip data;
  * a longer one fails with MT_ERR_TOO_LARGE. */
@@ -111,8 +111,9 @@ typedef struct mt_read_options {
  * buffer; gzip data tells its length only at its end, so before the face
  * list grows past 64 MiB the rest of the data is inflated once, not kept,
  * to learn it (for gzip from a buffer or a regular file; from a pipe,
- * max_input_bytes is the bound). A gzip file that inflates to gigabytes of plausible data under a
- * header declaring more is so refused before memory is spent on it.
+ * max_input_bytes is the bound). A gzip file that inflates to gigabytes of
+ * plausible data under a header declaring more is so refused before memory
+ * is spent on it.
  *
  * Order of errors in gzip data: damage in the data (a bad checksum,
  * truncation) is found when the parser reaches it, and a size check when
