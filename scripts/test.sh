@@ -134,23 +134,30 @@ step_fuzz() {
     local crashes=$dir/crashes logs=$dir/logs
     rm -rf "$crashes"
     mkdir -p "$crashes" "$logs"
-    # Run the targets $jobs at a time; each is single-threaded.
-    local pids=() names=() bin name i
+    # Run the targets $jobs at a time; each is single-threaded. Each job
+    # writes its exit status to a file: `wait PID` for a job that ended long
+    # before can answer "not a child of this shell" once bash has dropped
+    # the job's saved status.
+    local names=() bin name
     for bin in "${targets[@]}"; do
         name=$(basename "$bin")
         seed_corpus "$name" "$dir/corpus/$name"
         mkdir -p "$crashes/$name"
-        "$bin" -max_total_time="$fuzz_seconds" -timeout=10 -rss_limit_mb=2048 \
+        rm -f "$logs/$name.status"
+        if "$bin" -max_total_time="$fuzz_seconds" -timeout=10 -rss_limit_mb=2048 \
             -print_final_stats=1 -artifact_prefix="$crashes/$name/" "$dir/corpus/$name" \
-            >"$logs/$name.log" 2>&1 &
-        pids+=($!)
+            >"$logs/$name.log" 2>&1; then
+            echo 0
+        else
+            echo $?
+        fi >"$logs/$name.status" &
         names+=("$name")
         while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do sleep 1; done
     done
+    wait
     local failed=0
-    for i in "${!pids[@]}"; do
-        name=${names[$i]}
-        if wait "${pids[$i]}"; then
+    for name in "${names[@]}"; do
+        if [ "$(cat "$logs/$name.status" 2>/dev/null)" = 0 ]; then
             printf '%-24s ok   %s\n' "$name" "$(grep -m1 -o 'stat::number_of_executed_units: *[0-9]*' \
                 "$logs/$name.log" | sed 's/.*: */runs: /')"
         else
