@@ -3,7 +3,7 @@
 # one prefix, sharing a temporary archive directory.
 #  1. Three members, 300 mesh ids submitted once each: every id acknowledged
 #     once, as version 1, by the member that built it, each id built by one
-#     member, each member's share within 25 % of even; the archive holds the
+#     member, each member's share within 40 % of even; the archive holds the
 #     300 versions and verifies; the heartbeats say 3 members and a third
 #     of the ids each; `meshtopo list` merges the members' listings.
 #  2. Two members whose views disagree (one ignores the other's heartbeats,
@@ -55,11 +55,15 @@ grep -ho "built mesh_id=spread-[0-9]*" "$dir"/m[123].log | sort >"$dir/built.txt
 [ "$(wc -l <"$dir/built.txt")" -eq 300 ] ||
     fail "$(wc -l <"$dir/built.txt") builds for 300 submissions"
 [ -z "$(uniq -d "$dir/built.txt")" ] || fail "ids built twice: $(uniq -d "$dir/built.txt" | head)"
+# Members' instances differ from run to run, so the split is random: 300
+# draws of one in three, a standard deviation of 8.2 ids. An even split
+# leaves 60..140 (about five of them) for some member once in 440,000 runs;
+# it left 75..125 once in 190, and did in CI (m1 built 126).
 shares=""
 for m in 1 2 3; do
     n=$(grep -c "built mesh_id=spread-" "$dir/m$m.log")
     shares="$shares m$m=$n"
-    [ "$n" -ge 75 ] && [ "$n" -le 125 ] || fail "member m$m built $n of 300 ids (75..125 expected)"
+    [ "$n" -ge 60 ] && [ "$n" -le 140 ] || fail "member m$m built $n of 300 ids (60..140 expected)"
 done
 echo "three members, 300 ids, each built once and acknowledged once; builds per member:$shares"
 files=$(find "$dir/spread" -name 'spread-*.hdf' | wc -l)
