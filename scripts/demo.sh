@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# meshtopo demo: builds the CLI and the daemon (Release, in build/release) if
+# meshtopo demo: builds the CLI and the daemon (Release, in build/demo) if
 # needed, inspects three corpus meshes, a clean one, one with holes and a
 # non-manifold one, prints one report as JSON, then runs the LCM service in a
 # private network namespace (scripts/demo-network.sh): meshtopod started,
@@ -7,18 +7,16 @@
 # stopped, restarted on its archive and a reloaded mesh queried.
 #   scripts/demo.sh
 # MESHTOPO_BUILD_DIR=DIR uses an existing build instead (DIR/tools/meshtopo,
-# DIR/daemon/meshtopod);
-# MESHTOPO_CORPUS=DIR reads the meshes from DIR (default ../shared/corpus
-# relative to the repository root).
+# DIR/daemon/meshtopod). The meshes come from the repository's tests/corpus.
 set -euo pipefail
 
 repo=$(cd "$(dirname "$0")/.." && pwd)
-corpus=${MESHTOPO_CORPUS:-$repo/../shared/corpus}
+corpus=$repo/tests/corpus
 
 if [ -n "${MESHTOPO_BUILD_DIR:-}" ]; then
     build=$MESHTOPO_BUILD_DIR
 else
-    build=$repo/build/release
+    build=$repo/build/demo
     if [ ! -f "$build/CMakeCache.txt" ]; then
         echo "== Configuring a Release build in $build"
         cmake -S "$repo" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
@@ -29,7 +27,7 @@ else
 fi
 meshtopo=$build/tools/meshtopo
 [ -x "$meshtopo" ] || { echo "demo: $meshtopo was not built" >&2; exit 1; }
-[ -d "$corpus" ] || { echo "demo: no corpus at $corpus (set MESHTOPO_CORPUS)" >&2; exit 1; }
+[ -d "$corpus" ] || { echo "demo: no corpus at $corpus" >&2; exit 1; }
 meshtopo=$(cd "$(dirname "$meshtopo")" && pwd)/meshtopo
 
 # Runs the tool from inside the corpus folder, so the commands read as typed.

@@ -50,10 +50,15 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 export DEBIAN_FRONTEND=noninteractive
 apt-get update
-if $with_tests; then
-    # python3-vtk9 (asked for above) and python3-paraview conflict: ask for
-    # the list without it, and apt replaces an installed python3-vtk9.
+# python3-vtk9 (asked for above) and python3-paraview conflict. With
+# --tests, ask for the list without it, and apt replaces an installed
+# python3-vtk9; without, keep an installed python3-paraview (its VTK serves
+# meshtopo render), so running this again never takes ParaView away.
+if $with_tests || dpkg-query -W -f='${Status}' python3-paraview 2>/dev/null |
+    grep -q 'ok installed'; then
     mapfile -t packages < <(printf '%s\n' "${packages[@]}" | grep -vx python3-vtk9)
+fi
+if $with_tests; then
     packages+=("${test_packages[@]}")
 fi
 apt-get install -y --no-install-recommends "${packages[@]}"

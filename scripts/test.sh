@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # meshtopo's full test suite (the README's test command; .ci/run calls it):
-#   normal  RelWithDebInfo build with -Werror, every ctest, then the demo
+#   normal  in a copy of the checkout with nothing beside it (what `git clone`
+#           gives, uncommitted changes included): the README's two commands
+#           (scripts/install-deps.sh when run as root, scripts/demo.sh), then
+#           a RelWithDebInfo build with -Werror and every ctest
 #   asan    clang ASan+UBSan build (shared libraries), every ctest
 #   tsan    clang ThreadSanitizer build: the core library's tests (builds run
 #           on two threads), the readers' (large files are parsed on two
@@ -10,16 +13,17 @@
 #   format  clang-format check of the C sources
 # usage: scripts/test.sh [normal] [asan] [tsan] [fuzz] [format]   (default: all)
 # environment: FUZZ_SECONDS (default 60), MESHTOPO_BUILD_ROOT (default build/test),
-#              MESHTOPO_CORPUS (default ../shared/corpus).
+#              MESHTOPO_CORPUS (a directory of more corpus meshes, added to
+#              tests/corpus: cmake/MeshtopoCorpus.cmake).
 # Every step runs even after one fails; the exit status is 1 if any failed.
 set -euo pipefail
 
 repo=$(cd "$(dirname "$0")/.." && pwd)
 build_root=${MESHTOPO_BUILD_ROOT:-$repo/build/test}
 fuzz_seconds=${FUZZ_SECONDS:-60}
-corpus=${MESHTOPO_CORPUS:-$repo/../shared/corpus}
+extra_corpus=${MESHTOPO_CORPUS:-}
+unset MESHTOPO_CORPUS
 jobs=$(nproc 2>/dev/null || echo 2)
-export MESHTOPO_CORPUS="$corpus"
 
 header() {
     printf '\n'
@@ -29,11 +33,39 @@ header() {
     printf '\n'
 }
 
+# configure_and_build DIR [SOURCE] -- CMAKE_ARGS...: SOURCE defaults to the checkout.
 configure_and_build() {
-    local dir=$1
+    local dir=$1 source=$repo
     shift
-    cmake -S "$repo" -B "$dir" -G Ninja "$@"
+    if [ "${1:-}" != -- ]; then
+        source=$1
+        shift
+    fi
+    shift
+    # A tree configured from another source directory is laid anew.
+    if [ -f "$dir/CMakeCache.txt" ] &&
+        ! grep -qxF "CMAKE_HOME_DIRECTORY:INTERNAL=$source" "$dir/CMakeCache.txt"; then
+        rm -rf "$dir"
+    fi
+    cmake -S "$source" -B "$dir" -G Ninja -DMESHTOPO_EXTRA_CORPUS="$extra_corpus" "$@"
     cmake --build "$dir" -j "$jobs"
+}
+
+# Lays into DIR the files a clone of this checkout would hold (the tracked
+# ones and the new ones git does not ignore, as they are in the working
+# tree), with nothing beside them. DIR/build (the demo's build) is kept.
+lay_clone() {
+    local dest=$1
+    git -C "$repo" rev-parse --is-inside-work-tree >/dev/null 2>&1 ||
+        { echo "$repo is not a git checkout: nothing to copy" >&2; return 1; }
+    mkdir -p "$dest"
+    find "$dest" -mindepth 1 -maxdepth 1 ! -name build -exec rm -rf {} +
+    (
+        cd "$repo"
+        git ls-files -z --cached --others --exclude-standard --deduplicate |
+            while IFS= read -r -d '' f; do [ -e "$f" ] && printf '%s\0' "$f"; done |
+            tar --null -T - -cf -
+    ) | tar -xf - -C "$dest"
 }
 
 run_ctest() {
@@ -41,17 +73,31 @@ run_ctest() {
 }
 
 step_normal() {
-    local dir=$build_root/normal
-    configure_and_build "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHTOPO_WERROR=ON
-    run_ctest "$dir"
-    echo
-    echo "-- demo (scripts/demo.sh with this build)"
-    MESHTOPO_BUILD_DIR=$dir bash "$repo/scripts/demo.sh" >"$dir/demo.log" 2>&1 || {
-        cat "$dir/demo.log"
+    local clone=$build_root/clone/meshtopo dir=$build_root/normal
+    lay_clone "$clone"
+    echo "-- a copy of the checkout alone in $clone ($(find "$clone" -type f | wc -l) files)"
+    [ ! -e "$clone/../shared" ] || { echo "$clone/../shared exists" >&2; return 1; }
+    if [ "$(id -u)" -eq 0 ]; then
+        echo "-- scripts/install-deps.sh (the README's first command)"
+        bash "$clone/scripts/install-deps.sh" </dev/null >"$build_root/clone/install-deps.log" 2>&1 || {
+            tail -n 40 "$build_root/clone/install-deps.log"
+            echo "install-deps.sh failed" >&2
+            return 1
+        }
+    else
+        echo "-- scripts/install-deps.sh left out: not root"
+    fi
+    echo "-- scripts/demo.sh (the README's second command, building its own tree)"
+    bash "$clone/scripts/demo.sh" >"$build_root/clone/demo.log" 2>&1 || {
+        cat "$build_root/clone/demo.log"
         echo "demo failed" >&2
         return 1
     }
-    echo "demo ran: $(grep -c '^\$ meshtopo' "$dir/demo.log") commands, output in $dir/demo.log"
+    echo "demo ran: $(grep -c '^\$ meshtopo' "$build_root/clone/demo.log") commands," \
+        "output in $build_root/clone/demo.log"
+    echo "-- the test suite, built from the copy"
+    configure_and_build "$dir" "$clone" -- -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHTOPO_WERROR=ON
+    run_ctest "$dir"
 }
 
 step_asan() {
@@ -61,7 +107,7 @@ step_asan() {
     # clang: its UBSan also catches pointer arithmetic on NULL, and its -Werror
     # warnings complement gcc's from the normal build. -O1 keeps asserts (no
     # NDEBUG) and stays fast enough for the corpus tests.
-    configure_and_build "$dir" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+    configure_and_build "$dir" -- -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
         -DCMAKE_BUILD_TYPE=RelWithDebInfo \
         -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
         -DMESHTOPO_SANITIZE=ON -DMESHTOPO_WERROR=ON -DBUILD_SHARED_LIBS=ON
@@ -83,7 +129,7 @@ step_tsan() {
     local dir=$build_root/tsan
     command -v clang >/dev/null ||
         { echo "clang is not installed: run sudo scripts/install-deps.sh" >&2; return 1; }
-    configure_and_build "$dir" -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    configure_and_build "$dir" -- -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
         -DCMAKE_C_FLAGS="-fsanitize=thread" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" \
         -DMESHTOPO_BUILD_BENCH=OFF -DMESHTOPO_WERROR=ON
     # tests/tsan.supp: reports raised inside LCM and GLib, which are not
@@ -94,8 +140,8 @@ step_tsan() {
 }
 
 # Seeds for one fuzz target: its committed regressions, tests/fuzz/seeds/<target>/
-# if present, and for fuzz_read_<ext> the small corpus meshes of that format
-# (one gzip-compressed too).
+# if present, and for fuzz_read_<ext> the small meshes of tests/corpus of that
+# format (one gzip-compressed too).
 seed_corpus() {
     local target=$1 dir=$2 src
     mkdir -p "$dir"
@@ -105,7 +151,7 @@ seed_corpus() {
     case $target in
     fuzz_read_*)
         local ext=${target#fuzz_read_} first=""
-        [ -d "$corpus" ] || return 0
+        local corpus=$repo/tests/corpus
         while IFS= read -r src; do
             cp "$src" "$dir/"
             [ -n "$first" ] || first=$src
@@ -119,7 +165,7 @@ step_fuzz() {
     local dir=$build_root/fuzz
     command -v clang >/dev/null ||
         { echo "clang is not installed: run sudo scripts/install-deps.sh" >&2; return 1; }
-    configure_and_build "$dir" -DCMAKE_C_COMPILER=clang \
+    configure_and_build "$dir" -- -DCMAKE_C_COMPILER=clang \
         -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" \
         -DMESHTOPO_BUILD_FUZZERS=ON -DMESHTOPO_BUILD_TESTS=OFF -DMESHTOPO_BUILD_BENCH=OFF \
         -DMESHTOPO_WERROR=ON
@@ -203,7 +249,7 @@ for s in "${steps[@]}"; do
 done
 
 declare -A titles=(
-    [normal]="normal build (RelWithDebInfo, -Werror) + ctest + demo"
+    [normal]="a copy alone: install-deps + demo, then RelWithDebInfo (-Werror) build + ctest"
     [asan]="clang ASan+UBSan build (shared libraries) + ctest"
     [tsan]="clang ThreadSanitizer build + core, daemon (parts and in process) and client ctests"
     [fuzz]="libFuzzer build + ${fuzz_seconds}s per fuzz target"

@@ -35,11 +35,22 @@ void mt_test_fail(const char *file, int line, const char *fmt, ...)
 #endif
     ;
 
+/* Marks the running test skipped, printing why (for example a corpus mesh
+ * that is not there). A test that skips returns at once; failures it
+ * recorded before still count. A run whose tests all skipped exits 77,
+ * which ctest counts as skipped. */
+void mt_test_skip(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
 /* Number of failures recorded so far in this test. */
 int mt_test_failures(void);
 
-/* Directory of the shared corpus (env MESHTOPO_CORPUS or ../shared/corpus
- * relative to the source tree). */
+/* Directory of the build's corpus: tests/corpus and the meshes
+ * MESHTOPO_EXTRA_CORPUS added when the build tree was configured
+ * (cmake/MeshtopoCorpus.cmake). */
 const char *mt_test_corpus_dir(void);
 
 /* Resident memory of this process in kB, from /proc/self/status; -1 when

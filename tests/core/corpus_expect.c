@@ -1,5 +1,5 @@
 /* Comparing a topology report with a corpus reference file
- * (NAME.expected.json, shared/corpus/DEFINITIONS.md), shared by test_core's
+ * (NAME.expected.json, tests/corpus/DEFINITIONS.md), shared by test_core's
  * corpus tests and daemon.corpus.* (tests/daemon/lcm): reading the file,
  * checking its keys against corpus_keys.h, and every report-level key
  * against an mt_report. Failures name the mesh and the key path. */

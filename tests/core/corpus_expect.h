@@ -1,5 +1,5 @@
 /* Comparing a topology report with a corpus reference file
- * (NAME.expected.json, shared/corpus/DEFINITIONS.md), shared by the tests
+ * (NAME.expected.json, tests/corpus/DEFINITIONS.md), shared by the tests
  * that check the corpus: test_core's corpus tests (the library itself) and
  * daemon.corpus.* (meshtopod's answers over LCM, turned back into an
  * mt_report). Every mismatch is recorded with mt_test_fail, naming the mesh

@@ -1,4 +1,4 @@
-/* The keys of the corpus reference files (shared/corpus/DEFINITIONS.md). */
+/* The keys of the corpus reference files (tests/corpus/DEFINITIONS.md). */
 #include "corpus_keys.h"
 
 const char *const mt_test_corpus_keys[] = {

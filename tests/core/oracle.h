@@ -1,5 +1,5 @@
 /* A brute-force reference for the topology report, for tests only: every
- * quantity of shared/corpus/DEFINITIONS.md computed straight from the face
+ * quantity of tests/corpus/DEFINITIONS.md computed straight from the face
  * list by sorting and union-find, written for obvious correctness rather than
  * speed, and sharing no code with the library's builder. It also gives the
  * per-element sets (edge faces, vertex neighbours and faces, face adjacency,

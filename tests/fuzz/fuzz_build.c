@@ -3,7 +3,7 @@
  * and infinities), built leniently and strictly. The lenient build must
  * succeed and validate, the strict one must succeed exactly when the report
  * lists no defect, and the report and every query must agree with a direct
- * reading of the face list (shared/corpus/DEFINITIONS.md), whatever the
+ * reading of the face list (tests/corpus/DEFINITIONS.md), whatever the
  * number of build threads. Any disagreement
  * calls abort() so the fuzzer keeps the input.
  *

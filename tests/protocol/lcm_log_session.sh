@@ -5,7 +5,7 @@
 # reply_part_t pieces) and has LogDecode decode every event of the log with
 # its channel's one type. Processes are stopped by their PIDs only.
 # usage: lcm_log_session.sh MESHTOPOD MESHTOPO JAVA CLASSPATH WORKDIR
-#   corpus: $MESHTOPO_CORPUS, else ../shared/corpus beside the repository
+#   corpus: $MESHTOPO_CORPUS (ctest sets the build's), else the repository's tests/corpus
 # Exit status: LogDecode's (0 every event decoded and every channel seen), 1 a
 # step failed, 2 usage, 77 skipped (lcm-logger missing: Debian liblcm-bin).
 set -uo pipefail
@@ -16,7 +16,7 @@ fi
 meshtopod=$1 meshtopo=$2 java=$3 classpath=$4 work=$5
 [ "${MESHTOPO_NETNS:-}" = 1 ] || { echo "run me through netns-run" >&2; exit 2; }
 here=$(cd "$(dirname "$0")" && pwd)
-corpus=${MESHTOPO_CORPUS:-$here/../../../shared/corpus}
+corpus=${MESHTOPO_CORPUS:-$here/../corpus}
 for f in cgal_tetrahedron.off npm_bunny.off vcg_nonmanifold.off; do
     [ -r "$corpus/$f" ] || { echo "no corpus file $corpus/$f (set MESHTOPO_CORPUS)" >&2; exit 2; }
 done

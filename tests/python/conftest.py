@@ -3,7 +3,7 @@ package, its shared object, the corpus and the programs are.
 
 CTest (tests/python/CMakeLists.txt) sets MESHTOPO_PYTHON_LIBRARY (the build's
 libmeshtopo-python.so), MESHTOPO_CLI (its meshtopo), MESHTOPOD and
-MESHTOPO_CORPUS_DEFAULT (MESHTOPO_CORPUS overrides it); the package is
+MESHTOPO_CORPUS (the build's corpus, tests/corpus and what was added); the package is
 imported from lib/python of this tree unless MESHTOPO_PYTHON_PATH names
 another directory (an installed one)."""
 import os
@@ -16,10 +16,9 @@ sys.path.insert(0, os.environ.get("MESHTOPO_PYTHON_PATH", os.path.join(REPO, "li
 
 
 def corpus_dir():
-    """MESHTOPO_CORPUS, else the build's corpus (MESHTOPO_CORPUS_DEFAULT, set by
-    ctest), else ../shared/corpus next to the repository."""
-    return (os.environ.get("MESHTOPO_CORPUS") or os.environ.get("MESHTOPO_CORPUS_DEFAULT")
-            or os.path.join(REPO, "..", "shared", "corpus"))
+    """MESHTOPO_CORPUS (ctest sets it to the build's corpus), else the
+    repository's tests/corpus."""
+    return os.environ.get("MESHTOPO_CORPUS") or os.path.join(REPO, "tests", "corpus")
 
 
 def corpus_meshes():

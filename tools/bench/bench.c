@@ -30,7 +30,7 @@
 #define MT__BENCH_SEED 0x6d657368746f706full
 #define MT__BENCH_DEFAULT_OUT "bench-results"
 #ifndef MESHTOPO_BENCH_CORPUS_DIR
-#define MESHTOPO_BENCH_CORPUS_DIR "../shared/corpus"
+#define MESHTOPO_BENCH_CORPUS_DIR "tests/corpus"
 #endif
 
 /* The peers: row name, executable name, extra argument. */

@@ -1,7 +1,8 @@
 /* The benchmark inputs, each in its natural order and with vertex ids and
  * face order shuffled (mt_face_list_permute, fixed seed): a triangulated
  * grid with boundary; for `all` also the bunny and a closed genus-4 mesh of
- * the corpus (read with meshtopo::io) and a closed torus. Each case is also
+ * the corpus (read with meshtopo::io; left out, saying so, when the corpus
+ * lacks one) and a closed torus. Each case is also
  * written to a raw file so the peer programs read byte-identical input.
  *
  * Raw file layout (native byte order, read back only on the same machine):
@@ -20,6 +21,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "bench.h"
 #include "meshtopo/generate.h"
@@ -106,6 +108,12 @@ uint64_t mt__bench_case_input_bytes(const mt__bench_case *bench_case)
     return (l->positions ? 24ull * l->num_verts : 0) + 4ull * l->num_faces + 4ull * l->num_indices;
 }
 
+/* The corpus file (without .off) of mesh 2 (the bunny) or 3 (fertility). */
+static const char *corpus_mesh_name(uint32_t which)
+{
+    return which == 2 ? "npm_bunny" : "igl_fertility";
+}
+
 /* Makes the ordered case of one mesh into *ordered (mesh name set). */
 static bool mesh_make(const mt__bench_options *options, uint32_t which, mt__bench_case *ordered,
                       char *err, size_t err_size)
@@ -132,11 +140,8 @@ static bool mesh_make(const mt__bench_options *options, uint32_t which, mt__benc
             }
             snprintf(ordered->mesh, sizeof ordered->mesh, "torus %ux%u", a, b);
             return true;
-        case 2:
-            corpus_name = "npm_bunny";
-            break;
         default:
-            corpus_name = "igl_fertility";
+            corpus_name = corpus_mesh_name(which);
             break;
     }
     char path[PATH_MAX];
@@ -159,9 +164,41 @@ static bool mesh_make(const mt__bench_options *options, uint32_t which, mt__benc
 /* Meshes by size: bunny, fertility, grid, torus for all; else the grid. */
 static const uint32_t all_meshes[] = {2, 3, 0, 1};
 
+/* Whether mesh `which` can be made: the generated ones always, a corpus
+ * mesh when its file is in the corpus directory. */
+static bool mesh_available(const mt__bench_options *options, uint32_t which)
+{
+    if (which < 2) return true;
+    char path[PATH_MAX];
+    int n = snprintf(path, sizeof path, "%s/%s.off", options->corpus_dir, corpus_mesh_name(which));
+    return n >= 0 && (size_t)n < sizeof path && access(path, R_OK) == 0;
+}
+
+/* The m-th mesh of `all` that can be made. */
+static uint32_t available_mesh(const mt__bench_options *options, uint32_t m)
+{
+    for (size_t i = 0; i < sizeof all_meshes / sizeof all_meshes[0]; i++) {
+        if (!mesh_available(options, all_meshes[i])) continue;
+        if (m-- == 0) return all_meshes[i];
+    }
+    return 0;
+}
+
 uint32_t mt__bench_num_meshes(const mt__bench_options *options)
 {
-    return options->all ? (uint32_t)(sizeof all_meshes / sizeof all_meshes[0]) : 1;
+    if (!options->all) return 1;
+    uint32_t count = 0;
+    for (size_t i = 0; i < sizeof all_meshes / sizeof all_meshes[0]; i++) {
+        if (mesh_available(options, all_meshes[i])) {
+            count++;
+        } else {
+            fprintf(stderr,
+                    "meshtopo-bench: %s.off is not in the corpus %s: its rows are left out "
+                    "(--corpus DIR names a corpus that has it)\n",
+                    corpus_mesh_name(all_meshes[i]), options->corpus_dir);
+        }
+    }
+    return count;
 }
 
 bool mt__bench_mesh_cases_make(const mt__bench_options *options, const char *dir, uint32_t m,
@@ -170,7 +207,8 @@ bool mt__bench_mesh_cases_make(const mt__bench_options *options, const char *dir
     mt__bench_case *ordered = &cases[0];
     mt__bench_case *permuted = &cases[1];
     memset(cases, 0, 2 * sizeof *cases);
-    if (!mesh_make(options, options->all ? all_meshes[m] : 0, ordered, err, err_size)) return false;
+    if (!mesh_make(options, options->all ? available_mesh(options, m) : 0, ordered, err, err_size))
+        return false;
     snprintf(ordered->order, sizeof ordered->order, "ordered");
     if (!face_list_copy(&ordered->list, &permuted->list, err, err_size)) return false;
     mt_diag diag;

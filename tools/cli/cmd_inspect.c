@@ -165,7 +165,7 @@ const mt_cli_command mt_cli_cmd_inspect = {
         "\n"
         "--vertices prints each vertex's one-ring fan by fan; --faces prints each face's\n"
         "neighbours edge by edge. With --json the output is one JSON object with the keys\n"
-        "of the corpus reference answers (shared/corpus/DEFINITIONS.md); vertices and faces\n"
+        "of the corpus reference answers (tests/corpus/DEFINITIONS.md); vertices and faces\n"
         "not named with --vertices/--faces are then chosen as DEFINITIONS.md \"Queries\"\n"
         "says. A queried face that was left out of the mesh has \"adjacent_faces\": null.\n"
         "\n"

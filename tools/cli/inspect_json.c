@@ -1,5 +1,5 @@
 /* `meshtopo inspect --json`: one JSON object with exactly the keys of the
- * corpus answers (shared/corpus/DEFINITIONS.md) in their order, so it diffs
+ * corpus answers (tests/corpus/DEFINITIONS.md) in their order, so it diffs
  * cleanly against NAME.expected.json (which adds only "oracle_version"):
  * meshtopo::json writes them (the same document the Python binding reads);
  * --weld appends "weld", --self-intersections the geometry, --json-defects

@@ -1,7 +1,7 @@
 /* Build phase "faces": one pass over the face records, split by face range
  * across the parts. Classifies each record (valid, out-of-range index,
  * degenerate: fewer than 3 entries or a vertex repeated anywhere in it, as
- * ../shared/corpus/DEFINITIONS.md counts them), records the defects and the
+ * tests/corpus/DEFINITIONS.md counts them), records the defects and the
  * size histogram, and counts per part the corners leaving each vertex (for
  * the fans) and the sides filed in each block (for the matching in
  * build_edges.c). Positions are copied and checked to be finite, split by

@@ -1,5 +1,5 @@
 /* The summary of a topology report as JSON members (report_json.h): the
- * corpus answers' keys in their order (shared/corpus/DEFINITIONS.md), for
+ * corpus answers' keys in their order (tests/corpus/DEFINITIONS.md), for
  * `inspect --json`, the Python binding and the CLI's reports from
  * meshtopod, where each form adds its own few keys; undefined genera are
  * null. */

@@ -180,7 +180,7 @@ class Mesh:
 
     def report(self):
         """The topology report as a dict with the keys of `meshtopo inspect FILE
-        --json` (the corpus answers' keys, shared/corpus/DEFINITIONS.md), written
+        --json` (the corpus answers' keys, tests/corpus/DEFINITIONS.md), written
         by the same C code: counts, histograms, boundary loops, flags, genus,
         components, the default vertex_queries and face_queries, and "file"
         (the file's name for Mesh.read, else None)."""

@@ -2,7 +2,7 @@
  * next to a real meshtopod. It waits for the daemon, submits the corpus mesh
  * NAME through meshtopo::client and checks that the ack's report, the REPORT
  * query's and the VERTEX_RING, VALENCE, FACE_NEIGHBORS, EDGE_FACES, COMPONENTS
- * and BOUNDARY_LOOPS answers equal NAME.expected.json (shared/corpus/
+ * and BOUNDARY_LOOPS answers equal NAME.expected.json (tests/corpus/
  * DEFINITIONS.md), key by key as test_core does (corpus_expect.c). */
 #include <inttypes.h>
 #include <stdio.h>

@@ -1,6 +1,6 @@
 /* The topology report every build produces: counts, flags, per-component
  * figures and every defect with its element ids. Quantities follow the corpus
- * definitions (shared/corpus/DEFINITIONS.md): topology uses valid faces only,
+ * definitions (tests/corpus/DEFINITIONS.md): topology uses valid faces only,
  * edges are unordered vertex pairs in the caller's ids, manifoldness of a
  * vertex is judged on its link. */
 #ifndef MESHTOPO_REPORT_H

@@ -1,5 +1,5 @@
 /* meshtopo::json: a built mesh's topology report as JSON, with the keys of
- * the corpus reference answers (shared/corpus/DEFINITIONS.md) in their
+ * the corpus reference answers (tests/corpus/DEFINITIONS.md) in their
  * order. `meshtopo inspect --json` prints this document and the Python
  * binding reads it, so the two can never disagree on a key; the CLI's
  * reports from meshtopod share the summary. Depends on meshtopo::core only. */
