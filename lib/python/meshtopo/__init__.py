@@ -2,8 +2,9 @@
 
 Builds half-edge meshes from numpy face lists with meshtopo's C library
 (through ctypes; no compiler needed), reports every defect, answers
-adjacency queries with numpy arrays, and talks to a running meshtopod
-through the C client library.
+adjacency queries with numpy arrays, talks to a running meshtopod
+through the C client library, and decodes meshtopo's LCM messages received
+by other means safely (decode_message, through the C decoder).
 
     import numpy as np, meshtopo
     mesh = meshtopo.Mesh(positions, faces)      # (V, 3) float64, (F, 3) int32
@@ -15,6 +16,7 @@ from .client import Ack, Client, Reply
 from .errors import STATUS, Error
 from .face_list import FaceList, read_face_list
 from .mesh import Mesh, Ring, read
+from .messages import answer_hash, channel_type, decode_message, message_type
 
 __version__ = "0.1.0"
 
@@ -40,4 +42,5 @@ for _name, _dtype in (("mt_defect", COMPACT_DEFECT_DTYPE), ("mt_defect_record", 
 
 __all__ = ["Mesh", "FaceList", "Ring", "Client", "Ack", "Reply", "Error", "read",
            "read_face_list", "STATUS", "NONE", "DEFECT_KINDS", "DEFECT_DTYPE",
-           "COMPONENT_DTYPE", "FAN_DTYPE"]
+           "COMPONENT_DTYPE", "FAN_DTYPE", "decode_message", "message_type", "channel_type",
+           "answer_hash"]

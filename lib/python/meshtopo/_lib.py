@@ -1,6 +1,6 @@
 """Loading libmeshtopo-python.so with ctypes and declaring the C functions and
-structs the package calls (meshtopo/core.h, io.h, report_json.h, client.h and
-lib/python/src/python_api.h). Nothing is compiled at import time.
+structs the package calls (meshtopo/core.h, io.h, report_json.h, client.h,
+msgs.h and lib/python/src/python_api.h). Nothing is compiled at import time.
 
 The shared object is looked up, in order: the path in the environment variable
 MESHTOPO_PYTHON_LIBRARY (a build tree's lib/python/libmeshtopo-python.so);
@@ -108,6 +108,14 @@ class ReportStruct(ctypes.Structure):
         ("num_defects", c_size), ("defects", c_ptr)]
 
 
+class LcmField(ctypes.Structure):
+    """lcm_field_t (lcm/lcm_coretypes.h): one field of a generated message
+    struct, as lcm-gen's typeinfo describes it."""
+    _fields_ = [("name", c_char_p), ("type", c_int), ("typestr", c_char_p), ("num_dim", c_int),
+                ("dim_size", c_i32 * 50), ("dim_is_variable", ctypes.c_int8 * 50),
+                ("data", c_ptr)]
+
+
 def _declare(name, restype, *argtypes):
     fn = getattr(lib, name)
     fn.restype = restype
@@ -165,6 +173,19 @@ mt_py_reply_listed = _declare("mt_py_reply_listed", None, c_ptr, c_size, P(c_cha
                               P(c_char_p), P(c_i32), P(c_i64), P(c_i32), P(c_i32), P(c_i64),
                               P(c_i64))
 
+# Messages (python_msgs.c, meshtopo/msgs.h, meshtopo/answer_hash.h); buffers as bytes.
+mt_msgs_type_of = _declare("mt_msgs_type_of", c_ptr, c_char_p, c_size)
+mt_msgs_answer_hash = _declare("mt_msgs_answer_hash", c_u64, c_char_p, c_size)
+mt_py_msgs_type = _declare("mt_py_msgs_type", c_ptr, c_char_p)
+mt_py_msgs_type_name = _declare("mt_py_msgs_type_name", c_char_p, c_ptr)
+mt_py_msgs_struct_size = _declare("mt_py_msgs_struct_size", c_size, c_ptr)
+mt_py_msgs_num_fields = _declare("mt_py_msgs_num_fields", c_int, c_ptr)
+mt_py_msgs_field = _declare("mt_py_msgs_field", c_int, c_ptr, c_ptr, c_int, P(LcmField))
+mt_py_msgs_channel_type = _declare("mt_py_msgs_channel_type", c_ptr, c_char_p, c_char_p)
+mt_py_msgs_decode = _declare("mt_py_msgs_decode", c_int, c_ptr, c_char_p, c_size, P(c_ptr),
+                             P(Diag))
+mt_py_msgs_free = _declare("mt_py_msgs_free", None, c_ptr, c_ptr)
+
 
 def check_layout(name, size):
     """Raises ImportError when a mirrored struct's size differs from the C one."""
@@ -177,5 +198,6 @@ def check_layout(name, size):
 
 for _name, _struct in (("mt_diag", Diag), ("mt_face_list", FaceListStruct),
                        ("mt_build_options", BuildOptions), ("mt_ring", RingStruct),
-                       ("mt_mesh_view", MeshView), ("mt_report", ReportStruct)):
+                       ("mt_mesh_view", MeshView), ("mt_report", ReportStruct),
+                       ("lcm_field_t", LcmField)):
     check_layout(_name, ctypes.sizeof(_struct))

@@ -3,7 +3,8 @@
  * meshtopo/io.h, meshtopo/report_json.h), for what ctypes cannot reach
  * well: status names from the status table, whole-mesh loops that would
  * cost one foreign call per element, and the client's LCM-typed replies
- * read into plain arrays. They add no algorithm: each calls the libraries. */
+ * read into plain arrays, received messages decoded safely. They add no
+ * algorithm: each calls the libraries. */
 #ifndef MESHTOPO_PYTHON_API_H
 #define MESHTOPO_PYTHON_API_H
 
@@ -12,6 +13,7 @@
 
 #include "meshtopo/client.h"
 #include "meshtopo/mesh.h"
+#include "meshtopo/msgs.h"
 #include "meshtopo/status.h"
 
 /* ---- Meshes (python_mesh.c) -------------------------------------------- */
@@ -82,5 +84,39 @@ void mt_py_reply_listed(const mt_py_reply *reply, size_t index, const char **out
                         const char **out_source, int32_t *out_version, int64_t *out_utime,
                         int32_t *out_num_verts, int32_t *out_num_faces, int64_t *out_num_defects,
                         int64_t *out_content_hash);
+
+/* ---- Messages (python_msgs.c) ------------------------------------------ */
+
+/* The meshtopo message type named `name` ("reply_t" or "meshtopo.reply_t"),
+ * NULL for none. mt_msgs_type_of (meshtopo/msgs.h) finds one by fingerprint. */
+const mt_msgs_type *mt_py_msgs_type(const char *name);
+
+/* The type's name ("reply_t"), sizeof its struct, its number of fields. */
+const char *mt_py_msgs_type_name(const mt_msgs_type *type);
+size_t mt_py_msgs_struct_size(const mt_msgs_type *type);
+int mt_py_msgs_num_fields(const mt_msgs_type *type);
+
+/* Field `index` of msg (a struct of `type`) as lcm-gen's typeinfo describes
+ * it (the generated get_field): 0, or nonzero past the last field. */
+int mt_py_msgs_field(const mt_msgs_type *type, const void *msg, int index, lcm_field_t *out_field);
+
+/* The one type `channel` carries (meshtopo/channels.h): PREFIX + a daemon
+ * channel's suffix, or a reply channel + an answer type's suffix ("_ACK",
+ * "_REPLY", "_PART", "_TRANSFER"); NULL for none. */
+const mt_msgs_type *mt_py_msgs_channel_type(const char *prefix, const char *channel);
+
+/* Decodes received bytes: mt_msgs_decode (every length checked against the
+ * bytes before anything is allocated), then the rules of the type that the
+ * client library applies after decoding: reply_t offsets
+ * (mt_client_reply_check), topology_t counts and lists, own or in an ack_t or
+ * reply_t (mt_client_report_from_topology), the layout of a reply_part_t
+ * (msgs/reply_part_t.lcm) and mesh_transfer_t's MISSING_MAX. MT_OK with a
+ * heap struct of `type` in *out_msg (release it with mt_py_msgs_free), or
+ * MT_ERR_CORRUPT (MT_ERR_NOMEM) with diag naming the field and the sizes. */
+mt_status mt_py_msgs_decode(const mt_msgs_type *type, const void *buf, size_t size, void **out_msg,
+                            mt_diag *diag);
+
+/* Releases a struct of mt_py_msgs_decode (its arrays too). NULL-safe. */
+void mt_py_msgs_free(const mt_msgs_type *type, void *msg);
 
 #endif

@@ -1,5 +1,6 @@
 /* Mesh helpers of the Python package (python_api.h): status names from the
- * status table, record sizes for the package's layout check, and every
+ * status table, record sizes for the package's layout check (LCM's
+ * lcm_field_t too), and every
  * face's component in one call. */
 #include <string.h>
 
@@ -38,6 +39,7 @@ size_t mt_py_sizeof(const char *type_name)
         {"mt_mesh_view", sizeof(mt_mesh_view)},
         {"mt_report", sizeof(mt_report)},
         {"mt_ring", sizeof(mt_ring)},
+        {"lcm_field_t", sizeof(lcm_field_t)},
     };
     if (!type_name) return 0;
     for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++)
