@@ -7,7 +7,8 @@ file, the report). Then the topology arrays of /VTKHDF (format 6) of
 corpus meshes against answers worked out here from the OFF file alone
 (boundary, orientation, components, non-manifold edges) and against the
 corpus's reference answers (non-manifold and isolated vertices), with their
-types and attributes. Run with Debian's /usr/bin/python3; exit 77 without
+types and attributes, and (format 8) the per-kind arrays defect_<key> against
+the bits of the defects bitmasks. Run with Debian's /usr/bin/python3; exit 77 without
 h5py.
 
 usage: archive_h5py_check.py --fixture PATH --corpus DIR
@@ -154,6 +155,16 @@ def check_topology(fixture, corpus, tmp, name):
                f"{name}: non_manifold points are the reference's {ref['nonmanifold_vertices']}")
         isolated = int(np.count_nonzero(pd["defects"][()] & (1 << 6)))
         expect(isolated == ref["isolated_vertices"], f"{name}: {isolated} isolated vertices")
+        # Format 8: one 0/1 array per kind beside each bitmask, named by the
+        # bits attribute, attribute bit its index.
+        for group, rows, where in ((cd, len(kept), "CellData"), (pd, nv, "PointData")):
+            mask = group["defects"][()]
+            for k, key in enumerate(bits):
+                a = group.get("defect_" + key)
+                expect(a is not None and a.dtype == np.uint8 and a.shape == (rows,) and
+                       int(a.attrs["bit"]) == k and key in text(a.attrs["description"]) and
+                       np.array_equal(a[()], ((mask >> k) & 1).astype(np.uint8)),
+                       f"{name}: {where}/defect_{key} is bit {k} of defects")
 
 
 # The members of a defect record, in order (README.md "Defect records").
@@ -251,7 +262,7 @@ def main():
             # The half-edge arrays (format 2) read without meshtopo: the ring of
             # each kept face, from face_halfedge along next, passes through the
             # face's vertices in order (tail of h = head of its twin h ^ 1).
-            expect(int(m.attrs["format_version"]) == 7, "format_version 7")
+            expect(int(m.attrs["format_version"]) == 8, "format_version 8")
             h = m["halfedge"]
             for key in ("head", "next", "face", "face_halfedge", "vertex_halfedge",
                         "copy_original", "copies_sorted", "bundle_offsets", "bundle_edges",

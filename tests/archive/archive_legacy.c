@@ -1,10 +1,12 @@
 /* Earlier archive formats made from files this meshtopo wrote
  * (archive_legacy.h): the defect records of format 7 turned back into the
- * {kind, a, b, c} rows of formats 1 to 6 with mt_defect_from_record. */
+ * {kind, a, b, c} rows of formats 1 to 6 with mt_defect_from_record, and
+ * below format 8 the per-kind arrays defect_<key> removed. */
 #include "archive_legacy.h"
 
 #include <hdf5.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "archive_test_util.h"
@@ -135,8 +137,27 @@ static bool has_records(const char *path)
     return records;
 }
 
+/* Deletes /VTKHDF/CellData/defect_<key> and PointData/defect_<key> (those
+ * there). */
+static bool remove_kind_arrays(const char *path)
+{
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    hid_t f = H5Fopen(path, H5F_ACC_RDWR, H5P_DEFAULT);
+    bool ok = f >= 0;
+    static const char *const groups[] = {"CellData", "PointData"};
+    for (int g = 0; ok && g < 2; g++)
+        for (uint32_t k = 0; ok && k < MT_DEFECT_KIND_COUNT; k++) {
+            char link[96];
+            snprintf(link, sizeof link, "/VTKHDF/%s/defect_%s", groups[g],
+                     mt_defect_key((mt_defect_kind)k));
+            if (H5Lexists(f, link, H5P_DEFAULT) > 0) ok = H5Ldelete(f, link, H5P_DEFAULT) >= 0;
+        }
+    return f >= 0 && H5Fclose(f) >= 0 && ok;
+}
+
 bool al_set_format(const char *path, int64_t version)
 {
+    if (version < MT_ARCHIVE_FORMAT_VERSION_DEFECT_KINDS && !remove_kind_arrays(path)) return false;
     if (version < MT_ARCHIVE_FORMAT_VERSION_DEFECT_RECORDS && has_records(path)) {
         uint32_t(*rows)[4] = NULL;
         uint64_t count = 0;

@@ -1,6 +1,7 @@
 /* Files of earlier archive formats made from files this meshtopo wrote: the
- * format_version attribute lowered and, below format 7, the defects dataset
- * rewritten in the {kind, a, b, c} rows those formats stored. The other
+ * format_version attribute lowered, below format 8 the per-kind arrays
+ * (/VTKHDF/.../defect_<key>) removed and, below format 7, the defects
+ * dataset rewritten in the {kind, a, b, c} rows those formats stored. The other
  * differences between formats (no half-edge arrays, no digest) are for each
  * test to make. */
 #ifndef MESHTOPO_TESTS_ARCHIVE_LEGACY_H
@@ -9,8 +10,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-/* Sets /meshtopo's format_version to `version` and gives
- * /meshtopo/report/defects that version's layout. false on failure. */
+/* Sets /meshtopo's format_version to `version` and gives /VTKHDF's arrays
+ * and /meshtopo/report/defects that version's layout. false on failure. */
 bool al_set_format(const char *path, int64_t version);
 
 /* The HDF5 compound of a defect record as format 7 writes it (close with

@@ -9,7 +9,14 @@ clean mesh; an archive file (.hdf, and .vtkhdf as earlier versions named
 them) renders too; bad options and missing files exit 2 and 3. Run with
 /usr/bin/python3 (python3-vtk9); exit 77 without the vtk module.
 
-usage: render_check.py --meshtopo PATH --fixture PATH --corpus DIR [--keep DIR]
+--markers (ctest cli.render_markers) checks instead that the defect markers
+are drawn over the red boundary lines in every view: vcg_nonmanifold from
+each of the seven directions shows magenta, and from the front, where its
+non-manifold edge lies edge-on behind a boundary edge on the same line of
+sight, the magenta line is drawn at its full width. Hidden under the
+(narrower) red line it left a magenta fringe one pixel high.
+
+usage: render_check.py --meshtopo PATH --fixture PATH --corpus DIR [--keep DIR] [--markers]
 """
 import argparse
 import os
@@ -78,6 +85,59 @@ def picture(path):
     return w, h, counts
 
 
+def is_magenta_at(scalars, comps, i):
+    px = scalars.GetTuple(i)
+    return comps >= 3 and is_magenta(px[0], px[1], px[2])
+
+
+def thick_magenta_columns(path, least=3):
+    """Columns of a PNG holding `least` or more magenta pixels one above the
+    other: a horizontal magenta line drawn at full width (3.5 px times the
+    picture's scale) rather than a fringe showing beside a line over it."""
+    reader = vtk.vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    w, h, _ = image.GetDimensions()
+    scalars = image.GetPointData().GetScalars()
+    comps = scalars.GetNumberOfComponents()
+    columns = 0
+    for x in range(w):
+        run = best = 0
+        for y in range(h):
+            run = run + 1 if is_magenta_at(scalars, comps, y * w + x) else 0
+            best = max(best, run)
+        columns += best >= least
+    return columns
+
+
+def check_markers(args, tmp):
+    """The markers over the boundary lines: magenta in every view of
+    vcg_nonmanifold; from the front, its non-manifold edge (vertices 7-8,
+    in the plane y = 1 seen edge-on, behind the boundary edge 8-10 at
+    z = 2) a full-width magenta line about 130 px long at 600x600, its
+    two vertices' squares about 14 px each."""
+    mesh = os.path.join(args.corpus, "vcg_nonmanifold.off")
+    for view in ("iso", "front", "back", "left", "right", "top", "bottom"):
+        out = os.path.join(tmp, f"markers-{view}.png")
+        p = render(args.meshtopo, mesh, out, "--view", view, "--size", "600x600")
+        expect(p.returncode == 0 and os.path.exists(out),
+               f"{view}: rendered (exit {p.returncode}, {p.stderr.strip()})")
+        if p.returncode != 0 or not os.path.exists(out):
+            continue
+        _, _, counts = picture(out)
+        expect(counts["magenta"] >= 300 and counts["red"] >= 300,
+               f"{view}: {counts['magenta']} magenta pixels over {counts['red']} red, at least "
+               "300 of each")
+        if view == "front":
+            columns = thick_magenta_columns(out)
+            expect(columns >= 100, f"front: the non-manifold edge drawn over the boundary line "
+                                   f"({columns} columns of full-width magenta, at least 100)")
+        if args.keep:
+            os.makedirs(args.keep, exist_ok=True)
+            shutil.copy(out, os.path.join(args.keep, f"vcg_nonmanifold-{view}.png"))
+
+
 def render(meshtopo, source, out, *options):
     env = dict(os.environ)
     env.pop("DISPLAY", None)
@@ -92,7 +152,16 @@ def main():
     ap.add_argument("--fixture", required=True)
     ap.add_argument("--corpus", required=True)
     ap.add_argument("--keep", help="copy the pictures into this directory")
+    ap.add_argument("--markers", action="store_true",
+                    help="only check that markers are drawn over the boundary lines")
     args = ap.parse_args()
+    if args.markers:
+        with tempfile.TemporaryDirectory(prefix="meshtopo-render-markers-") as tmp:
+            check_markers(args, tmp)
+        if failures:
+            print(f"{len(failures)} check(s) failed")
+            return 1
+        return 0
     # mesh, view, size, markers that must be there (at least n pixels),
     # markers that must not (the mesh has no such defect).
     cases = [

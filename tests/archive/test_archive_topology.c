@@ -130,6 +130,43 @@ static void check_array(const char *file, int line, const char *path, const char
     free(got);
 }
 
+/* An integer attribute of object obj as int64 (-1 when missing). */
+static int64_t read_int_attr(const char *path, const char *obj, const char *name)
+{
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    int64_t value = -1;
+    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t o = f < 0 ? -1 : H5Oopen(f, obj, H5P_DEFAULT);
+    hid_t a = o >= 0 && H5Aexists(o, name) > 0 ? H5Aopen(o, name, H5P_DEFAULT) : -1;
+    if (a >= 0 && H5Aread(a, H5T_NATIVE_INT64, &value) < 0) value = -1;
+    if (a >= 0) H5Aclose(a);
+    if (o >= 0) H5Oclose(o);
+    if (f >= 0) H5Fclose(f);
+    return value;
+}
+
+/* Format 8: every per-kind array of group (defect_<key>, uint8) holds bit
+ * k of the bitmask `defects` (n rows). */
+#define CHECK_KIND_ARRAYS(path, group, defects, n) \
+    check_kind_arrays(__FILE__, __LINE__, path, group, defects, n)
+
+static void check_kind_arrays(const char *file, int line, const char *path, const char *group,
+                              const int64_t *defects, size_t n)
+{
+    int64_t *want = malloc((n + 1) * sizeof *want);
+    if (!want) {
+        mt_test_fail(file, line, "out of memory");
+        return;
+    }
+    for (int k = 0; k < MT_DEFECT_KIND_COUNT; k++) {
+        char name[64];
+        snprintf(name, sizeof name, "defect_%s", mt_defect_key((mt_defect_kind)k));
+        for (size_t i = 0; i < n; i++) want[i] = (defects[i] >> k) & 1;
+        check_array(file, line, path, group, name, "uint8", want, n);
+    }
+    free(want);
+}
+
 /* ---- writing ---------------------------------------------------------- */
 
 typedef struct fixture {
@@ -276,6 +313,16 @@ static void test_topology_fin(void)
     CHECK_ARRAY(fx.path, "CellData", "touches_boundary", "uint8", ones, 3);
     CHECK_ARRAY(fx.path, "CellData", "orientation_consistent", "uint8", ones, 3);
     CHECK_ARRAY(fx.path, "CellData", "component", "int32", zeros, 3);
+    /* The per-kind arrays (format 8): the bits again, by name; a kind the
+     * mesh lacks is never written. */
+    CHECK_KIND_ARRAYS(fx.path, "CellData", cell_defects, 3);
+    CHECK_KIND_ARRAYS(fx.path, "PointData", point_defects, 5);
+    const int64_t nme_cells[] = {1, 1, 1}, sde_cells[] = {1, 0, 1};
+    CHECK_ARRAY(fx.path, "CellData", "defect_nonmanifold_edge", "uint8", nme_cells, 3);
+    CHECK_ARRAY(fx.path, "CellData", "defect_same_direction_edge", "uint8", sde_cells, 3);
+    CHECK(storage_bytes(fx.path, "/VTKHDF/CellData/defect_same_direction_edge") > 0);
+    CHECK_EQ(storage_bytes(fx.path, "/VTKHDF/CellData/defect_duplicate_face"), 0);
+    CHECK_EQ(storage_bytes(fx.path, "/VTKHDF/PointData/defect_isolated_vertex"), 0);
     mt_face_list_free(&list);
     fixture_close(&fx);
 }
@@ -531,6 +578,15 @@ static void test_topology_attributes(void)
         }
         CHECK(!read_text(fx.path, bitmasks[b], "bits", MT_DEFECT_KIND_COUNT, text, sizeof text));
     }
+    /* The per-kind arrays name their kind and bit. */
+    for (int g = 0; g < 2; g++)
+        for (int k = 0; k < MT_DEFECT_KIND_COUNT; k++) {
+            const char *key = mt_defect_key((mt_defect_kind)k);
+            snprintf(obj, sizeof obj, "/VTKHDF/%s/defect_%s", g ? "PointData" : "CellData", key);
+            CHECK_EQ(read_int_attr(fx.path, obj, "bit"), k);
+            CHECK(read_text(fx.path, obj, "description", 0, text, sizeof text));
+            CHECK(strstr(text, key) != NULL && strstr(text, "defects") != NULL);
+        }
     CHECK(read_text(fx.path, "/meshtopo", "description", 0, text, sizeof text));
     CHECK(strstr(text, "topology") != NULL);
     mt_face_list_free(&list);
@@ -645,6 +701,8 @@ static void check_corpus_mesh(const char *name, const mt_face_list *list, void *
         CHECK_EQ(wrong, 0);
         free(on_boundary);
         check_with_queries(name, mesh, ids, touch, orient, cells);
+        CHECK_KIND_ARRAYS(fx->path, "CellData", cdef, cells);
+        CHECK_KIND_ARRAYS(fx->path, "PointData", pdef, points);
     }
     free(ids);
     free(comp);
@@ -669,7 +727,7 @@ static void test_topology_corpus(void)
 
 /* Verification reports damage to the arrays as a VTK fault; a load never
  * reads them. A file of format 5 (before the arrays) verifies without
- * them. */
+ * them, one of format 7 without the per-kind arrays. */
 static void expect_vtk_fault(fixture *fx, const char *name, const char *what)
 {
     mt_diag diag;
@@ -707,7 +765,8 @@ static void test_topology_damaged(void)
     if (!fixture_open(&fx)) return;
     mt_face_list list;
     CHECK_OK(mt_gen_fin(&list));
-    const char *cases[] = {"value", "constant", "missing", "length", "type", "self", "old"};
+    const char *cases[] = {"value", "constant", "missing", "length",   "type", "self",
+                           "old",   "kind",     "nokind",  "kindfill", "seven"};
     char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         mt_archive_write_options options = {.self_intersections =
@@ -745,6 +804,32 @@ static void test_topology_damaged(void)
                 CHECK(al_set_format(fx.path, 5));
                 mt_diag diag;
                 CHECK_OK(mt_archive_verify_file(fx.archive, name, at_hash, NULL, &diag));
+                break;
+            }
+            case 7: /* a per-kind value that disagrees with the bitmask */
+                CHECK(at_poke_u32(fx.path, "/VTKHDF/CellData/defect_same_direction_edge", 1, 1));
+                expect_vtk_fault(&fx, name, "defect_same_direction_edge[1] is 1");
+                break;
+            case 8:
+                CHECK(at_delete(fx.path, "/VTKHDF/PointData/defect_nonmanifold_vertex"));
+                expect_vtk_fault(&fx, name, "defect_nonmanifold_vertex is missing");
+                break;
+            case 9: /* a value of a never-written per-kind array */
+                CHECK(at_poke_u32(fx.path, "/VTKHDF/PointData/defect_isolated_vertex", 4, 1));
+                expect_vtk_fault(&fx, name, "defect_isolated_vertex[4] is 1");
+                break;
+            case 10: { /* format 7 had no per-kind arrays: none is looked for */
+                CHECK(al_set_format(fx.path, 7));
+                size_t n = 0;
+                char type[8];
+                CHECK(read_array(fx.path, "CellData", "defect_nonmanifold_edge", &n, type) == NULL);
+                mt_diag diag;
+                CHECK_OK(mt_archive_verify_file(fx.archive, name, at_hash, NULL, &diag));
+                mt_mesh *mesh = NULL;
+                CHECK_OK(
+                    mt_archive_load_mesh_file(fx.archive, name, false, NULL, &mesh, NULL, &diag));
+                CHECK(mesh != NULL);
+                mt_mesh_destroy(mesh);
                 break;
             }
         }

@@ -13,7 +13,13 @@ help render`):
   self-intersecting faces                     yellow   faces    255,220,0 (lit)
   faces oriented against a neighbour          blue     faces    70,130,255 (lit)
 Lines and points are drawn unlit, in exactly these colours, over the
-surface; the faces are shaded.
+surface; the faces are shaded. The defect markers (every line and point
+but the red boundary edges) are drawn in a second layer over the picture,
+so no boundary line and no face hides one: a boundary edge seen along the
+same line of sight (the front view of a fin of faces edge-on, where the
+boundary runs in front of the non-manifold edge) or a marker behind the
+surface would otherwise leave the legend announcing a marker the picture
+does not show.
 
 Debian 12's VTK 9.1 renders through GLX only (no EGL or OSMesa build), so
 without a display (DISPLAY unset) the script starts a private Xvfb server
@@ -308,6 +314,14 @@ def main():
     renderer = vtk.vtkRenderer()
     renderer.SetBackground(*BACKGROUND)
     renderer.AddActor(surface_actor(vtk, surface, surface_colours))
+    # Layer 1 keeps layer 0's colours and starts with a cleared depth buffer:
+    # its markers land on top of the surface and the boundary lines, tested
+    # for depth only against one another.
+    markers = vtk.vtkRenderer()
+    markers.SetLayer(1)
+    markers.SetPreserveColorBuffer(1)
+    markers.SetPreserveDepthBuffer(0)
+    markers.InteractiveOff()
     scale = max(1.0, min(width, height) / 400)
     boundary = feature_edges(vtk, surface, True)
     non_manifold_edges = feature_edges(vtk, surface, False)
@@ -318,13 +332,13 @@ def main():
         renderer.AddActor(overlay_actor(vtk, boundary, RED, line_width=2.5 * scale))
         legend.append("red: " + counted(boundary.GetNumberOfCells(), "boundary edge"))
     if non_manifold_edges.GetNumberOfCells():
-        renderer.AddActor(overlay_actor(vtk, non_manifold_edges, MAGENTA, line_width=3.5 * scale))
+        markers.AddActor(overlay_actor(vtk, non_manifold_edges, MAGENTA, line_width=3.5 * scale))
         legend.append("magenta: " + counted(non_manifold_edges.GetNumberOfCells(), "non-manifold edge"))
     if n_nm_points:
-        renderer.AddActor(overlay_actor(vtk, nm_points, MAGENTA, point_size=9 * scale))
+        markers.AddActor(overlay_actor(vtk, nm_points, MAGENTA, point_size=9 * scale))
         legend.append("magenta points: " + counted(n_nm_points, "non-manifold vertex", "non-manifold vertices"))
     if n_rejected:
-        renderer.AddActor(overlay_actor(vtk, rejected_points, ORANGE, point_size=9 * scale))
+        markers.AddActor(overlay_actor(vtk, rejected_points, ORANGE, point_size=9 * scale))
         legend.append("orange points: " + counted(n_rejected, "corner") + " of rejected faces")
     if any(selfx):
         legend.append("yellow: " + counted(sum(selfx), "self-intersecting face"))
@@ -347,13 +361,17 @@ def main():
 
     bounds = surface.GetBounds() if surface.GetNumberOfPoints() else (-1, 1, -1, 1, -1, 1)
     place_camera(renderer, bounds, args.view)
+    # The markers are seen through the mesh's camera (its clipping range too).
+    markers.SetActiveCamera(renderer.GetActiveCamera())
 
     display = VirtualDisplay(width, height)
     window = vtk.vtkRenderWindow()
     try:
         window.SetOffScreenRendering(1)
         window.SetMultiSamples(0)
+        window.SetNumberOfLayers(2)
         window.AddRenderer(renderer)
+        window.AddRenderer(markers)
         window.SetSize(width, height)
         window.Render()
         grab = vtk.vtkWindowToImageFilter()

@@ -407,6 +407,15 @@ extern const mt__topo_info mt__topo_arrays[MT__TOPO_COUNT];
 /* Bytes of one element of a topology array. */
 size_t mt__topo_type_size(mt__topo_type type);
 
+/* Size of a per-kind array's name with its NUL ("defect_" and the longest
+ * defect key, with room to spare). */
+#define MT__TOPO_KIND_NAME_MAX 48
+
+/* The name of the 0/1 array of defect kind `kind` written beside each
+ * defects bitmask (format 8): "defect_" and the kind's key, for example
+ * defect_nonmanifold_edge. */
+void mt__topo_kind_name(mt_defect_kind kind, char *buf, size_t size);
+
 /* A mesh's topology arrays. values[id] holds rows[id] elements of the
  * array's type, or is NULL when every element is the array's fill value;
  * present[id] is false only for self_intersecting when it was not worked
@@ -445,12 +454,13 @@ mt_status mt__topology_write(hid_t cell_data, hid_t point_data, const mt__topolo
 
 /* Compares the topology arrays of /VTKHDF in file with the ones mesh
  * gives (mesh built from or restored with faces): every array but
- * self_intersecting must be there with the same values;
+ * self_intersecting must be there with the same values (the per-kind
+ * defect_<key> arrays from format_version 8 on);
  * self_intersecting, when there, must have a row per cell and values 0 or
  * 1. MT_ERR_PARSE naming the dataset and the first difference,
  * MT_ERR_NOMEM, MT_ERR_IO when HDF5 fails a read. */
 mt_status mt__topology_check(hid_t file, const mt_face_list *faces, const mt_mesh *mesh,
-                             const char *file_name, mt_diag *diag);
+                             uint32_t format_version, const char *file_name, mt_diag *diag);
 
 /* Writes a 1-D attribute of `count` fixed-length strings (as long as the
  * longest; NUL-padded ASCII). */

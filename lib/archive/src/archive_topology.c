@@ -7,6 +7,7 @@
  * the boundary, plus, on a mesh with defects, a look-up per defect and one
  * sweep over the face list; nothing is allocated for an array with nothing
  * to show. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -59,6 +60,18 @@ const mt__topo_info mt__topo_arrays[MT__TOPO_COUNT] = {
 size_t mt__topo_type_size(mt__topo_type type)
 {
     return type == MT__TOPO_UINT8 ? 1 : 4;
+}
+
+/* Every per-kind array's name fits MT__TOPO_KIND_NAME_MAX. */
+#define MT__KIND_NAME_FITS(name, key, text)                         \
+    _Static_assert(sizeof("defect_" key) <= MT__TOPO_KIND_NAME_MAX, \
+                   "defect_" key " fits MT__TOPO_KIND_NAME_MAX");
+MT_DEFECT_TABLE(MT__KIND_NAME_FITS)
+#undef MT__KIND_NAME_FITS
+
+void mt__topo_kind_name(mt_defect_kind kind, char *buf, size_t size)
+{
+    snprintf(buf, size, "defect_%s", mt_defect_key(kind));
 }
 
 /* Defect kinds by what they name. */

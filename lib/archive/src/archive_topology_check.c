@@ -1,10 +1,12 @@
 /* Verification of a file's topology arrays (format 6): each one read back
  * (its type and length checked before anything is compared) must equal
- * what the mesh gives (archive_topology.c). self_intersecting, present only
- * when the writer was asked for it, is checked for its length and its
- * values 0 or 1: finding the intersections again would cost about ten
- * builds. Loads never call this: the arrays are derived data, and damaged
- * ones are a VTK fault of verification only. */
+ * what the mesh gives (archive_topology.c), and from format 8 on each
+ * per-kind array defect_<key> must hold its kind's bit of the bitmask.
+ * self_intersecting, present only when the writer was asked for it, is
+ * checked for its length and its values 0 or 1: finding the intersections
+ * again would cost about ten builds. Loads never call this: the arrays
+ * are derived data, and damaged ones are a VTK fault of verification
+ * only. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -72,6 +74,34 @@ static mt_status check_array(hid_t file, const mt__topology *t, mt__topo_id id,
     return st;
 }
 
+/* The per-kind arrays beside bitmask `id` (format 8): defect_<key>[i] is
+ * bit k of the mesh's bitmask at i. */
+static mt_status check_kind_arrays(hid_t file, const mt__topology *t, mt__topo_id id,
+                                   const char *file_name, mt_diag *diag)
+{
+    const mt__topo_info *bitmask = &mt__topo_arrays[id];
+    const uint64_t rows = bitmask->cell ? t->cells : t->points;
+    mt_status st = MT_OK;
+    for (uint32_t k = 0; st == MT_OK && k < MT_DEFECT_KIND_COUNT; k++) {
+        char name[MT__TOPO_KIND_NAME_MAX];
+        mt__topo_kind_name((mt_defect_kind)k, name, sizeof name);
+        const mt__topo_info info = {name, bitmask->cell, MT__TOPO_UINT8, 0, false, ""};
+        uint8_t *stored = NULL;
+        st = read_array(file, &info, rows, (void **)&stored, file_name, diag);
+        for (uint64_t i = 0; st == MT_OK && i < rows; i++) {
+            const unsigned want = (unsigned)((mt__topology_value(t, id, i) >> k) & 1);
+            if (stored[i] != want)
+                st = mt__archive_fail(diag, MT_ERR_PARSE,
+                                      "%s: /VTKHDF/%s/%s[%llu] is %u, the mesh gives %u (bit %u "
+                                      "of defects)",
+                                      file_name, group_of(bitmask), name, (unsigned long long)i,
+                                      stored[i], want, k);
+        }
+        free(stored);
+    }
+    return st;
+}
+
 /* self_intersecting, when there: one row per cell, values 0 or 1. */
 static mt_status check_self_intersecting(hid_t file, const mt__topology *t, const char *file_name,
                                          mt_diag *diag)
@@ -90,7 +120,7 @@ static mt_status check_self_intersecting(hid_t file, const mt__topology *t, cons
 }
 
 mt_status mt__topology_check(hid_t file, const mt_face_list *faces, const mt_mesh *mesh,
-                             const char *file_name, mt_diag *diag)
+                             uint32_t format_version, const char *file_name, mt_diag *diag)
 {
     mt__topology t;
     mt_status st =
@@ -103,6 +133,11 @@ mt_status mt__topology_check(hid_t file, const mt_face_list *faces, const mt_mes
     for (int id = 0; st == MT_OK && id < MT__TOPO_COUNT; id++)
         if (id != MT__TOPO_CELL_SELF_INTERSECTING)
             st = check_array(file, &t, (mt__topo_id)id, file_name, diag);
+    for (int id = 0; st == MT_OK && format_version >= MT_ARCHIVE_FORMAT_VERSION_DEFECT_KINDS &&
+                     id < MT__TOPO_COUNT;
+         id++)
+        if (mt__topo_arrays[id].bitmask)
+            st = check_kind_arrays(file, &t, (mt__topo_id)id, file_name, diag);
     if (st == MT_OK) st = check_self_intersecting(file, &t, file_name, diag);
     mt__topology_free(&t);
     return st;

@@ -170,7 +170,8 @@ mt_status mt_archive_verify_file_with(const mt_archive *archive, const char *fil
             st = mt_archive_check_vtk(&v.arrays, &c.record.faces, kept, file_name, diag);
         }
         if (st == MT_OK && c.record.format_version >= MT_ARCHIVE_FORMAT_VERSION_TOPOLOGY)
-            st = mt__topology_check(file, &c.record.faces, c.mesh, file_name, diag);
+            st = mt__topology_check(file, &c.record.faces, c.mesh, c.record.format_version,
+                                    file_name, diag);
         free(kept);
         vtk_read_free(&v);
         if (st != MT_OK)

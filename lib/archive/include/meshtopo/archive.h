@@ -52,8 +52,13 @@ extern "C" {
  * load and verify as before. 7 stores /meshtopo/report/defects as defect
  * records (meshtopo/defect_record.h: members kind, vertices, faces, edge,
  * face_count, index, ...) with a description attribute; earlier versions
- * store {kind, a, b, c} (mt_defect), which loads read as before. */
-#define MT_ARCHIVE_FORMAT_VERSION 7
+ * store {kind, a, b, c} (mt_defect), which loads read as before. 8 adds
+ * the per-kind arrays CellData/defect_<key> and PointData/defect_<key> (one
+ * uint8 0/1 array per defect kind beside each defects bitmask, see
+ * "Topology as VTK arrays"): verification checks them in files of format 8
+ * and later only, so files of formats 6 and 7, which lack them, verify as
+ * before; loads never read them. */
+#define MT_ARCHIVE_FORMAT_VERSION 8
 
 /* Oldest format version whose content_hash verification checks. */
 #define MT_ARCHIVE_FORMAT_VERSION_HASHED 3
@@ -66,6 +71,9 @@ extern "C" {
 
 /* Oldest format version whose defects are defect records. */
 #define MT_ARCHIVE_FORMAT_VERSION_DEFECT_RECORDS 7
+
+/* Oldest format version with a 0/1 array per defect kind (defect_<key>). */
+#define MT_ARCHIVE_FORMAT_VERSION_DEFECT_KINDS 8
 
 /* Oldest format version read. */
 #define MT_ARCHIVE_FORMAT_VERSION_MIN 1
@@ -203,6 +211,24 @@ typedef struct mt_archive_write_stats {
  *                                           of a non-manifold edge)
  *   PointData/defects                uint32 defect kinds involving the vertex,
  *                                           the bits of CellData/defects
+ *   CellData/defect_<key>,           uint8  (format 8) one array per defect
+ *   PointData/defect_<key>                  kind, named by its key
+ *                                           (defect_nonmanifold_edge, ...):
+ *                                           1 where the defects bitmask
+ *                                           beside it has that kind's bit,
+ *                                           else 0; attribute "bit" is k
+ *
+ * The bitmask arrays stay for the programs that read them; the per-kind
+ * arrays are what a viewer shows by name. VTKHDF has no place for a lookup
+ * table or its annotations, and vtkHDFReader (VTK 9.1, ParaView 5.11's VTK
+ * 9.2) turns only datasets, not HDF5 attributes, into VTK arrays, so the
+ * "bits" attribute never reaches ParaView: coloured by defects, ParaView
+ * shows a continuous scale over the bitmask values (0 .. 56 for kinds 3, 4
+ * and 5) that names no kind. An array per kind is listed by its name in
+ * ParaView's colouring menu and titles its scalar bar, with no script and
+ * in every VTK reader. A categorical legend of the bitmask itself (a name
+ * per value) needs a lookup table set up by a script:
+ * tools/vtk/paraview_defects.py (installed in share/meshtopo).
  *
  * A defect involves the faces and vertices it names: a face defect
  * (out_of_range_index, degenerate_face, duplicate_face: its face a) involves
@@ -216,12 +242,13 @@ typedef struct mt_archive_write_stats {
  * numbers.
  *
  * Every dataset has a string attribute "description"; the bitmasks have
- * "bits", one string per bit (bit k's key at index k). An array whose
- * values are all the same (a mesh with one component, no defect, no
- * boundary) is stored as an HDF5 dataset that was never written: readers
- * get its fill value (0, or 1 for orientation_consistent), and it costs no
- * space or time. On a 1M-triangle grid (meshtopo-bench archive) the arrays
- * add about 1.5 MB to the 111 MB file. */
+ * "bits", one string per bit (bit k's key at index k), the per-kind arrays
+ * "bit" (uint32 k). An array whose values are all the same (a mesh with
+ * one component, no defect, no boundary) is stored as an HDF5 dataset
+ * that was never written: readers get its fill value (0, or 1 for
+ * orientation_consistent), and it costs no space or time. On a
+ * 1M-triangle grid (meshtopo-bench archive) the arrays add about 1.5 MB to
+ * the 111 MB file. */
 
 /* Whether mt_archive_write_with stores CellData/self_intersecting. */
 typedef enum mt_archive_self_intersections {
