@@ -8,6 +8,7 @@
 #include "meshtopo/face_list.h"
 #include "meshtopo/generate.h"
 #include "meshtopo/geometry.h"
+#include "meshtopo/map.h"
 #include "meshtopo/mesh.h"
 #include "meshtopo/mesh_parts.h"
 #include "meshtopo/predicates.h"
