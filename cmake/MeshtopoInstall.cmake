@@ -10,7 +10,8 @@
 # turns into a Debian package: runtime (the programs, their data and
 # documentation: meshtopo), libs (the shared libraries of a shared build),
 # dev (headers, static libraries and link names, CMake and pkg-config
-# files: libmeshtopo-dev) and python (lib/python: python3-meshtopo).
+# files: libmeshtopo-dev) and python (lib/python: python3-meshtopo); license
+# (the LICENSE file) is for `cmake --install` only.
 include(CMakePackageConfigHelpers)
 
 set(MESHTOPO_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/meshtopo)
@@ -25,7 +26,7 @@ set_target_properties(meshtopo_io PROPERTIES EXPORT_NAME io)
 set_target_properties(meshtopo_msgs PROPERTIES EXPORT_NAME msgs)
 set_target_properties(meshtopo_client PROPERTIES EXPORT_NAME client)
 set_target_properties(meshtopo_archive PROPERTIES EXPORT_NAME archive)
-foreach(lib meshtopo_core meshtopo_io meshtopo_client meshtopo_archive meshtopo_json)
+foreach(lib meshtopo_core meshtopo_io meshtopo_client meshtopo_archive)
   set_target_properties(${lib} PROPERTIES VERSION ${PROJECT_VERSION}
                         SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
 endforeach()
@@ -46,12 +47,21 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/core/include/meshtopo
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev
   FILES_MATCHING PATTERN "*.h")
 
-# The LCM message definitions, for lcm-gen in other languages, and the README.
+# The LCM message definitions, for lcm-gen in other languages, and the
+# READMEs: the project's, and msgs/README.md (the channels and the message
+# types) as msgs.md beside it, as the daemon's is meshtopod.md.
 file(GLOB MESHTOPO_LCM_DEFINITIONS ${PROJECT_SOURCE_DIR}/msgs/*.lcm)
 install(FILES ${MESHTOPO_LCM_DEFINITIONS} DESTINATION ${CMAKE_INSTALL_DATADIR}/meshtopo/lcm
         COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR}
         COMPONENT runtime)
+install(FILES ${PROJECT_SOURCE_DIR}/msgs/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR}
+        RENAME msgs.md COMPONENT runtime)
+# The licence, for `cmake --install`. Its own component, which no Debian
+# package holds: each package has it in its copyright file instead
+# (cmake/MeshtopoPackage.cmake), where Debian wants it.
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR}
+        COMPONENT license)
 
 # --- CMake package ----------------------------------------------------------
 # A static install carries its private dependencies in the exported link
@@ -143,3 +153,8 @@ foreach(pc meshtopo-core meshtopo-io meshtopo-client meshtopo-archive meshtopo)
   install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/${pc}.pc
           DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT dev)
 endforeach()
+
+# --- Manual pages -------------------------------------------------------------
+# meshtopo(1), meshtopo-COMMAND(1), meshtopod(1), meshtopo-bench(1), written by
+# help2man at build time (component runtime).
+include(${CMAKE_CURRENT_LIST_DIR}/MeshtopoManPages.cmake)

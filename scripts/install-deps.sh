@@ -39,6 +39,8 @@ packages=(
     nftables iproute2                              # tests/netns: private network, packet loss
     xvfb xauth                                     # meshtopo render (VTK 9.1 draws through X: its own
                                                    # Xvfb without a display); tests/cli: meshtopo spy
+    help2man man-db lintian                        # man pages from --help; tests/install: man -w,
+                                                   # the Debian packages' policy check
 )
 # --tests: archive.paraview opens every archived corpus mesh in ParaView's
 # pvbatch (large; meshtopo itself never needs ParaView).

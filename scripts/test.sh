@@ -9,9 +9,13 @@
 #           on two threads), the readers' (large files are parsed on two
 #           threads), the daemon's parts, the whole daemon in process
 #           over memq:// (test_meshtopod*) and the client library
+#   package the Debian packages of a static and of a shared build: lintian
+#           clean, man pages and control fields (tests/install/package_check.sh),
+#           then, as root with CI=true, installed with apt and checked in use,
+#           then purged (tests/install/apt_install_check.sh)
 #   fuzz    clang libFuzzer build, each fuzz target for FUZZ_SECONDS seconds
 #   format  clang-format check of the C sources
-# usage: scripts/test.sh [normal] [asan] [tsan] [fuzz] [format]   (default: all)
+# usage: scripts/test.sh [normal] [asan] [tsan] [package] [fuzz] [format]   (default: all)
 # environment: FUZZ_SECONDS (default 60), MESHTOPO_BUILD_ROOT (default build/test),
 #              MESHTOPO_CORPUS (a directory of more corpus meshes, added to
 #              tests/corpus: cmake/MeshtopoCorpus.cmake).
@@ -139,6 +143,32 @@ step_tsan() {
         -R '^test_(core|io|daemon|client|meshtopod[a-z_]*)\.'
 }
 
+# Packages of one Release build (CMAKE_ARGS...) in DIR, checked, then
+# installed with apt, checked and purged where apt_install_check.sh may
+# (root and CI=true; it says why when it skips).
+check_packages() {
+    local dir=$1 rc=0
+    shift
+    configure_and_build "$dir" -- -DCMAKE_BUILD_TYPE=Release -DMESHTOPO_BUILD_TESTS=OFF "$@"
+    rm -f "$dir"/*.deb
+    cmake --build "$dir" -j "$jobs" --target package
+    bash "$repo/tests/install/package_check.sh" "$dir"
+    bash "$repo/tests/install/apt_install_check.sh" "$dir" || rc=$?
+    if [ "$rc" -eq 77 ]; then
+        echo "(apt install check skipped, as it says above)"
+    elif [ "$rc" -ne 0 ]; then
+        return "$rc"
+    fi
+}
+
+step_package() {
+    echo "-- static libraries: meshtopo, libmeshtopo-dev, python3-meshtopo"
+    check_packages "$build_root/pkg"
+    echo
+    echo "-- shared libraries: the same and the shared-library package"
+    check_packages "$build_root/pkg-shared" -DBUILD_SHARED_LIBS=ON
+}
+
 # Seeds for one fuzz target: its committed regressions, tests/fuzz/seeds/<target>/
 # if present, and for fuzz_read_<ext> the small meshes of tests/corpus of that
 # format (one gzip-compressed too).
@@ -237,12 +267,12 @@ step_format() {
 }
 
 steps=("$@")
-[ ${#steps[@]} -gt 0 ] || steps=(normal asan tsan fuzz format)
+[ ${#steps[@]} -gt 0 ] || steps=(normal asan tsan package fuzz format)
 for s in "${steps[@]}"; do
     case $s in
-    normal | asan | tsan | fuzz | format) ;;
+    normal | asan | tsan | package | fuzz | format) ;;
     *)
-        echo "usage: $0 [normal] [asan] [tsan] [fuzz] [format]" >&2
+        echo "usage: $0 [normal] [asan] [tsan] [package] [fuzz] [format]" >&2
         exit 2
         ;;
     esac
@@ -252,6 +282,7 @@ declare -A titles=(
     [normal]="a copy alone: install-deps + demo, then RelWithDebInfo (-Werror) build + ctest"
     [asan]="clang ASan+UBSan build (shared libraries) + ctest"
     [tsan]="clang ThreadSanitizer build + core, daemon (parts and in process) and client ctests"
+    [package]="Debian packages (static and shared): lintian, then apt install, use, purge"
     [fuzz]="libFuzzer build + ${fuzz_seconds}s per fuzz target"
     [format]="clang-format check"
 )
