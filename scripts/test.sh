@@ -145,7 +145,9 @@ step_tsan() {
 
 # Packages of one Release build (CMAKE_ARGS...) in DIR, checked, then
 # installed with apt, checked and purged where apt_install_check.sh may
-# (root and CI=true; it says why when it skips).
+# (root and CI=true; it says why when it skips). The build tree is moved
+# aside meanwhile, so nothing installed can fall back on a program or file
+# of the build.
 check_packages() {
     local dir=$1 rc=0
     shift
@@ -153,7 +155,12 @@ check_packages() {
     rm -f "$dir"/*.deb
     cmake --build "$dir" -j "$jobs" --target package
     bash "$repo/tests/install/package_check.sh" "$dir"
-    bash "$repo/tests/install/apt_install_check.sh" "$dir" || rc=$?
+    rm -rf "$dir.debs" "$dir.aside"
+    mkdir -p "$dir.debs"
+    cp "$dir"/*.deb "$dir.debs/"
+    mv "$dir" "$dir.aside"
+    bash "$repo/tests/install/apt_install_check.sh" "$dir.debs" || rc=$?
+    mv "$dir.aside" "$dir"
     if [ "$rc" -eq 77 ]; then
         echo "(apt install check skipped, as it says above)"
     elif [ "$rc" -ne 0 ]; then
