@@ -215,69 +215,14 @@ void map_union_welded(const mt_face_list *const *lists, size_t n, mt_face_list *
     }
 }
 
-static int check_hist(const char *what, const char *name, const mt_histogram_bin *a, size_t na,
-                      const mt_histogram_bin *b, size_t nb)
+/* Records a failure with mt_map_compare_report's message when the map
+ * differs from the report; returns 1 then, else 0. */
+static int map_check_report(const mt_map *map, const mt_report *r, const char *what)
 {
-    int bad = na != nb;
-    for (size_t i = 0; i < na && i < nb; i++)
-        bad |= a[i].key != b[i].key || a[i].count != b[i].count;
-    if (bad) {
-        char text[512];
-        size_t len = 0;
-        for (size_t i = 0; i < na && len < 200; i++)
-            len += (size_t)snprintf(text + len, sizeof text - len, " %u:%llu", a[i].key,
-                                    (unsigned long long)a[i].count);
-        len += (size_t)snprintf(text + len, sizeof text - len, " | build");
-        for (size_t i = 0; i < nb && len < 400; i++)
-            len += (size_t)snprintf(text + len, sizeof text - len, " %u:%llu", b[i].key,
-                                    (unsigned long long)b[i].count);
-        mt_test_fail(__FILE__, __LINE__, "%s: %s histogram differs: map%s", what, name, text);
-    }
-    return bad;
-}
-
-int map_check_counts(const mt_map *map, const mt_map_counts *c, const mt_report *r,
-                     const char *what)
-{
-    int bad = 0;
-#define MAP_SAME(field)                                                                        \
-    do {                                                                                       \
-        if ((long long)c->field != (long long)r->field) {                                      \
-            mt_test_fail(__FILE__, __LINE__, "%s: map " #field " %lld, full build %lld", what, \
-                         (long long)c->field, (long long)r->field);                            \
-            bad++;                                                                             \
-        }                                                                                      \
-    } while (0)
-    MAP_SAME(num_verts);
-    MAP_SAME(num_faces);
-    MAP_SAME(num_faces_valid);
-    MAP_SAME(num_edges);
-    MAP_SAME(num_half_edges);
-    MAP_SAME(boundary_edges);
-    MAP_SAME(nonmanifold_edges);
-    MAP_SAME(inconsistent_orientation_edges);
-    MAP_SAME(duplicate_directed_edges);
-    MAP_SAME(nonmanifold_vertices);
-    MAP_SAME(bowtie_vertices);
-    MAP_SAME(isolated_vertices);
-    MAP_SAME(unreferenced_vertices);
-    MAP_SAME(degenerate_faces);
-    MAP_SAME(duplicate_faces);
-    MAP_SAME(out_of_range_indices);
-    MAP_SAME(faces_with_out_of_range_indices);
-    MAP_SAME(nonfinite_vertices);
-    MAP_SAME(euler_characteristic);
-    MAP_SAME(closed);
-    MAP_SAME(manifold);
-    MAP_SAME(consistently_oriented);
-#undef MAP_SAME
-    mt_histogram_bin bins[256];
-    size_t n = 0;
-    if (mt_map_face_size_histogram(map, bins, 256, &n) != MT_OK) n = 0;
-    bad += check_hist(what, "face size", bins, n, r->face_size_histogram, r->num_face_size_bins);
-    if (mt_map_edge_use_histogram(map, bins, 256, &n) != MT_OK) n = 0;
-    bad += check_hist(what, "edge use", bins, n, r->edge_use_histogram, r->num_edge_use_bins);
-    return bad;
+    mt_diag d;
+    if (mt_map_compare_report(map, r, &d) == MT_OK) return 0;
+    mt_test_fail(__FILE__, __LINE__, "%s: map differs from the full build: %s", what, d.message);
+    return 1;
 }
 
 int map_check_against_list(const mt_map *map, const mt_face_list *list, const char *what)
@@ -295,9 +240,7 @@ int map_check_against_list(const mt_map *map, const mt_face_list *list, const ch
         mt_test_fail(__FILE__, __LINE__, "%s: validate: %s", what, d.message);
         bad++;
     }
-    mt_map_counts c;
-    mt_map_get_counts(map, &c);
-    bad += map_check_counts(map, &c, mt_mesh_report(mesh), what);
+    bad += map_check_report(map, mt_mesh_report(mesh), what);
     mt_mesh_destroy(mesh);
     return bad;
 }

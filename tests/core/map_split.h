@@ -41,14 +41,9 @@ void map_list_copy(const mt_face_list *src, mt_face_list *dst);
  * MT_NONE - r), welded with mt_face_list_weld(eps 0). */
 void map_union_welded(const mt_face_list *const *lists, size_t n, mt_face_list *out);
 
-/* Records a failure for every count of c (and the map's histograms) that
- * differs from the report r; `what` names the situation. Returns the
- * number of differences. */
-int map_check_counts(const mt_map *map, const mt_map_counts *c, const mt_report *r,
-                     const char *what);
-
-/* Builds `list`, validates the mesh and checks the map's counts against
- * its report. Returns the number of differences. */
+/* Builds `list`, validates the mesh and checks the map's counts and
+ * histograms against its report (mt_map_compare_report); `what` names the
+ * situation in the failures recorded. Returns the number of failures. */
 int map_check_against_list(const mt_map *map, const mt_face_list *list, const char *what);
 
 /* mt_map_face_list of the map, built and compared (plus id arrays checked

@@ -4,7 +4,8 @@
  * id stability and translation both ways, compaction's maps, clear, bad
  * face records counted as the full build counts them, and fail-after-N
  * allocation runs in which every failing operation must return
- * MT_ERR_NOMEM and leave the map exactly as it was. */
+ * MT_ERR_NOMEM and leave the map exactly as it was; the comparison with a
+ * full build's report (mt_map_compare_report) failing as it should. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,8 +52,8 @@ static void test_map_create_errors(void)
 {
     mt_map *map = (mt_map *)&map;
     mt_diag d;
-    mt_map_options eps = {MT_MAP_WELD_EPS, 1e-6};
-    CHECK_STATUS(mt_map_create(&eps, &map, &d), MT_ERR_UNSUPPORTED);
+    mt_map_options eps = {MT_MAP_WELD_EPS, 0.0}; /* eps mode needs eps > 0 (test_map_eps.c) */
+    CHECK_STATUS(mt_map_create(&eps, &map, &d), MT_ERR_INVALID_ARG);
     CHECK(map == NULL);
     CHECK(strstr(d.message, "MT_MAP_WELD_EPS") != NULL);
     mt_map_options bad = {(mt_map_weld)7, 0.0};
@@ -586,6 +587,90 @@ static void test_map_fail_after_n(void)
     mt_face_list_free(&grid);
 }
 
+/* The same in eps mode (test_map_eps.c has the rest): the spatial hash's
+ * allocations fail cleanly too. */
+static void test_map_eps_fail_after_n(void)
+{
+    mt_face_list grid;
+    CHECK_OK(mt_gen_grid(8, 8, true, &grid));
+    map_block_set set;
+    map_split(&grid, 3.0, true, &set); /* a vertex per corner: copies weld within the put */
+    mt_map_options opts = {MT_MAP_WELD_EPS, 0.25};
+    mt_map *map = NULL;
+    CHECK_OK(mt_map_create(&opts, &map, NULL));
+    int failures = 0;
+    for (size_t b = 0; b < set.count; b++)
+        fail_until_done(map, OP_PUT, set.blocks[b].key, &set.blocks[b].list, &failures);
+    CHECK_EQ(map_check_against_list(map, &grid, "eps fail-after-N puts"), 0);
+    fail_until_done(map, OP_PUT, set.blocks[1].key, &set.blocks[0].list, &failures);
+    fail_until_done(map, OP_REMOVE, set.blocks[2].key, NULL, &failures);
+    fail_until_done(map, OP_COMPACT, set.blocks[0].key, NULL, &failures);
+    fail_until_done(map, OP_PUT, set.blocks[2].key, &set.blocks[2].list, &failures);
+    CHECK(failures > 20);
+    CHECK_EQ(map_check_full(map, "after eps fail-after-N"), 0);
+    mt_map_destroy(map);
+    map_block_set_free(&set);
+    mt_face_list_free(&grid);
+}
+
+/* mt_map_compare_report: equal to the report of its own union, and every
+ * difference named with both values against another mesh's report or an
+ * altered one, the message cut safely when it runs long. */
+static void test_map_compare_report(void)
+{
+    mt_face_list tris, quads;
+    CHECK_OK(mt_gen_grid(3, 2, true, &tris));
+    CHECK_OK(mt_gen_grid(3, 2, false, &quads));
+    mt_map *map = new_map(MT_MAP_WELD_EXACT);
+    CHECK_OK(mt_map_put(map, key3(0, 0, 0), &tris, NULL, NULL, NULL));
+    mt_build_options opts;
+    memset(&opts, 0, sizeof opts);
+    mt_mesh *same = NULL, *other = NULL;
+    CHECK_OK(mt_mesh_build(&tris, &opts, &same, NULL));
+    CHECK_OK(mt_mesh_build(&quads, &opts, &other, NULL));
+    if (!same || !other) goto done;
+    mt_diag d;
+    CHECK_OK(mt_map_compare_report(map, mt_mesh_report(same), &d));
+    CHECK_EQ(d.message[0], '\0');
+
+    /* The same vertices as quads: fewer faces and edges, other histograms. */
+    CHECK_STATUS(mt_map_compare_report(map, mt_mesh_report(other), &d), MT_ERR_CORRUPT);
+    CHECK_EQ(d.status, MT_ERR_CORRUPT);
+    CHECK(strstr(d.message, "num_faces map 12, build 6") != NULL);
+    CHECK(strstr(d.message, "num_edges map 23, build 17") != NULL);
+    CHECK(strstr(d.message, "face_size_histogram map {3:12}, build {4:6}") != NULL);
+    CHECK(strstr(d.message, "num_verts") == NULL); /* only what differs */
+    CHECK_STATUS(mt_map_compare_report(map, mt_mesh_report(other), NULL), MT_ERR_CORRUPT);
+
+    /* One count and one flag altered: exactly those two, in counts order. */
+    mt_report r = *mt_mesh_report(same);
+    r.nonmanifold_edges = 1;
+    r.manifold = false;
+    CHECK_STATUS(mt_map_compare_report(map, &r, &d), MT_ERR_CORRUPT);
+    CHECK(strcmp(d.message, "nonmanifold_edges map 0, build 1; manifold map 1, build 0") == 0);
+
+    /* A histogram too long for the message: cut, NUL-terminated, "...". */
+    mt_histogram_bin bins[300];
+    for (uint32_t i = 0; i < 300; i++) bins[i].key = 3 + i, bins[i].count = 1000000 + i;
+    r = *mt_mesh_report(same);
+    r.face_size_histogram = bins;
+    r.num_face_size_bins = 300;
+    CHECK_STATUS(mt_map_compare_report(map, &r, &d), MT_ERR_CORRUPT);
+    const size_t len = strlen(d.message);
+    CHECK_EQ(len, sizeof d.message - 1);
+    CHECK(strncmp(d.message, "face_size_histogram map {3:12}, build {3:1000000 4:", 51) == 0);
+    CHECK(len >= 3 && strcmp(d.message + len - 3, "...") == 0);
+
+    CHECK_STATUS(mt_map_compare_report(NULL, &r, &d), MT_ERR_INVALID_ARG);
+    CHECK_STATUS(mt_map_compare_report(map, NULL, &d), MT_ERR_INVALID_ARG);
+done:
+    mt_mesh_destroy(same);
+    mt_mesh_destroy(other);
+    mt_map_destroy(map);
+    mt_face_list_free(&tris);
+    mt_face_list_free(&quads);
+}
+
 static const mt_test_case cases[] = {
     {"map_create_errors", test_map_create_errors},
     {"map_put_errors", test_map_put_errors},
@@ -594,5 +679,7 @@ static const mt_test_case cases[] = {
     {"map_ids", test_map_ids},
     {"map_none_mode", test_map_none_mode},
     {"map_fail_after_n", test_map_fail_after_n},
+    {"map_eps_fail_after_n", test_map_eps_fail_after_n},
+    {"map_compare_report", test_map_compare_report},
 };
 const mt_test_table mt_tests_map = {cases, sizeof cases / sizeof cases[0]};

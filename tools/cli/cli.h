@@ -135,6 +135,10 @@ typedef struct mt_cli_weld {
      * those the weld made non-manifold. malloc'd. */
     uint32_t *nonmanifold;
     size_t num_nonmanifold;
+    /* inspect --blocks: the blocks the file was split into (0 otherwise),
+     * their size, and vertices_before counts the blocks' vertices. */
+    size_t blocks;
+    double block_size;
 } mt_cli_weld;
 
 /* Parses a --weld value: "exact" (eps 0) or a positive finite distance. */
@@ -154,6 +158,10 @@ typedef struct mt_cli_mesh {
  * the file, to stderr; *out_list is then empty. */
 int mt_cli_face_list_read(const char *command, const char *path, const char *format_name,
                           mt_face_list *out_list);
+/* The same with an input limit after gzip inflation (0: the library's
+ * default), as --max-input-bytes sets it. */
+int mt_cli_face_list_read_bounded(const char *command, const char *path, const char *format_name,
+                                  uint64_t max_input_bytes, mt_face_list *out_list);
 
 /* Reads `path` (format auto-detected unless `format_name` names one) and
  * builds it. max_input_bytes: the largest input read, after gzip inflation

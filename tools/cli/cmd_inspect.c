@@ -2,6 +2,7 @@
  * the half-edge mesh and print its topology report, readable or as JSON with
  * the corpus reference answers' keys, plus queried one-rings and face
  * neighbours. Exit codes as in `meshtopo --help`. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,6 +27,10 @@ static const mt_cli_option options[] = {
     {"weld", "MODE",
      "merge vertices before building: exact (identical coordinates) or EPS (within distance "
      "EPS, e.g. 1e-6)"},
+    {"blocks", "SIZE",
+     "split FILE into blocks on a grid of cell size SIZE (by face centroid, seam vertices "
+     "duplicated per block, as a TSDF mapper sends them), put them one by one into a block "
+     "map that welds exactly, and print the map's report (the keys of --weld exact)"},
     {"limit", "N", "items per list in the readable output (default 5, 0 = all)"},
     {"max-input-bytes", "N",
      "refuse FILE past N bytes inflated (e.g. 512M; default $" MT_CLI_ENV_MAX_INPUT_BYTES
@@ -60,6 +65,17 @@ static bool parse_limit(const char *text, size_t *out)
     return true;
 }
 
+/* A --blocks size: a whole number text, finite and above 0. */
+static bool parse_block_size(const char *text, double *out)
+{
+    if (!text[0]) return false;
+    char *end = NULL;
+    const double v = strtod(text, &end);
+    if (*end != '\0' || !(v > 0) || !isfinite(v)) return false;
+    *out = v;
+    return true;
+}
+
 static bool parse_ids(const char *option, const char *text, uint32_t limit, mt_id_list *out)
 {
     char err[160];
@@ -82,6 +98,22 @@ static int run_inspect(const mt_cli_args *args)
     uint64_t max_input;
     if (!parse_max_input(args, &max_input)) return MT_CLI_EXIT_USAGE;
 
+    double block_size = 0;
+    const char *blocks_text = mt_cli_arg(args, "blocks");
+    if (blocks_text && !parse_block_size(blocks_text, &block_size)) {
+        mt_cli_error("inspect",
+                     "--blocks: expected a block size, a finite number above 0 such as 0.5, "
+                     "got '%s'",
+                     blocks_text);
+        return MT_CLI_EXIT_USAGE;
+    }
+    if (blocks_text && (mt_cli_arg(args, "weld") || mt_cli_flag(args, "strict"))) {
+        mt_cli_error("inspect",
+                     "--blocks welds exactly and builds leniently: it takes neither "
+                     "--weld nor --strict");
+        return MT_CLI_EXIT_USAGE;
+    }
+
     double weld_eps = 0;
     const char *weld_text = mt_cli_arg(args, "weld");
     if (weld_text && !mt_cli_weld_parse(weld_text, &weld_eps)) {
@@ -96,8 +128,13 @@ static int run_inspect(const mt_cli_args *args)
     memset(&build, 0, sizeof build);
     build.strict = mt_cli_flag(args, "strict");
     mt_cli_mesh mesh;
-    int code = mt_cli_mesh_load("inspect", path, mt_cli_arg(args, "format"), max_input,
-                                weld_text ? &weld_eps : NULL, &build, false, &mesh);
+    /* --blocks: the map keeps counts only so far; the rest of the report
+     * comes from a build of its union, checked against the map's counts. */
+    int code =
+        blocks_text
+            ? mt_inspect_blocks_load(path, mt_cli_arg(args, "format"), max_input, block_size, &mesh)
+            : mt_cli_mesh_load("inspect", path, mt_cli_arg(args, "format"), max_input,
+                               weld_text ? &weld_eps : NULL, &build, false, &mesh);
     if (code != MT_CLI_EXIT_OK) return code;
 
     mt_inspect_request req;
@@ -152,7 +189,7 @@ const mt_cli_command mt_cli_cmd_inspect = {
     .summary = "read a mesh file, build it and print its topology report",
     .synopsis =
         "FILE [--json] [--self-intersections] [--vertices LIST] [--faces LIST] "
-        "[--weld exact|EPS] [--strict] [--fail-on-defect]",
+        "[--weld exact|EPS] [--blocks SIZE] [--strict] [--fail-on-defect]",
     .description =
         "Reads FILE (OFF, OBJ, PLY or STL, gzip-compressed too; the format is detected from\n"
         "the content; - reads standard input), builds the half-edge mesh and prints counts,\n"
@@ -176,6 +213,17 @@ const mt_cli_command mt_cli_cmd_inspect = {
         "non-manifold: non-manifold in the welded mesh, while no vertex merged into them was\n"
         "in the unwelded one (JSON key \"weld\").\n"
         "\n"
+        "--blocks SIZE builds the mesh as a robot's mapper would send it: FILE is split into\n"
+        "blocks on a grid of cell size SIZE by face centroid (seam vertices duplicated per\n"
+        "block; faces without a finite centroid in one block of their own; unreferenced\n"
+        "vertices in the block of their cell), the blocks are put one by one into a block\n"
+        "map (meshtopo/map.h) welding exactly, and the map's report is printed with the\n"
+        "keys of --weld exact (\"weld\" counts the blocks' vertices as the ones before the\n"
+        "weld); ids are the map's. The map keeps its counts incrementally but not yet loops,\n"
+        "components or defect ids, so the full report comes from a build of the map's\n"
+        "welded union; the command checks that the map's counts equal that build's and\n"
+        "fails (exit 4) if they do not.\n"
+        "\n"
         "--self-intersections adds the geometric checks: pairs of faces that pass through\n"
         "or touch each other other than at the vertices and edges they share (exact\n"
         "arithmetic, polygons by their triangulation), faces whose sides cross in their\n"
@@ -184,7 +232,8 @@ const mt_cli_command mt_cli_cmd_inspect = {
         "\n"
         "exit codes: 0 report printed (whatever its defects), 1 --fail-on-defect and a\n"
         "defect was found, 2 usage error (also an id out of range), 3 FILE could not be\n"
-        "read or parsed, 4 the mesh could not be built (e.g. --strict refused it).\n",
+        "read or parsed, 4 the mesh could not be built (e.g. --strict refused it, or\n"
+        "--blocks found the map's counts differ from a full build).\n",
     .options = options,
     .num_options = sizeof options / sizeof options[0],
     .min_positionals = 1,

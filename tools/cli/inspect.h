@@ -77,6 +77,17 @@ mt_status mt_inspect_default_queries(const mt_mesh *mesh, bool want_vertices,
  * plus "defects" at the end with json_defects). Returns an exit code. */
 int mt_inspect_print_json(const mt_inspect_request *req, FILE *out);
 
+/* --blocks SIZE: reads `path`, splits it into blocks of side `size` on the
+ * grid (block_split.h), puts them one by one into an mt_map (exact weld)
+ * and fills *out as mt_cli_mesh_load would with --weld exact: out->list is
+ * mt_map_face_list's union (ids are map ids), out->mesh its build (the map
+ * keeps counts only, so the full report comes from that build), out->weld
+ * the blocks and what the weld merged. Fails (MT_CLI_EXIT_BUILD, after a
+ * message naming the counts) when the map's incremental counts differ from
+ * that build's. Returns an exit code, as mt_cli_mesh_load. */
+int mt_inspect_blocks_load(const char *path, const char *format_name, uint64_t max_input,
+                           double size, mt_cli_mesh *out);
+
 /* The readable summary, then the queried one-rings and face neighbours. */
 int mt_inspect_print_text(const mt_inspect_request *req, FILE *out);
 

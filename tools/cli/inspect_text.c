@@ -394,7 +394,11 @@ static void print_weld(FILE *out, const mt_inspect_request *req)
 {
     const mt_cli_weld *w = &req->mesh->weld;
     if (!w->enabled) return;
-    if (w->eps == 0)
+    if (w->blocks)
+        fprintf(out,
+                "weld: exact (identical coordinates), map of %zu %s of size %.17g: ", w->blocks,
+                plural(w->blocks, "block", "blocks"), w->block_size);
+    else if (w->eps == 0)
         fprintf(out, "weld: exact (identical coordinates): ");
     else
         fprintf(out, "weld: within %.17g: ", w->eps);

@@ -94,6 +94,13 @@ int mt_cli_face_list_read(const char *command, const char *path, const char *for
     return face_list_read(command, path, format_name, 0, NULL, out_list);
 }
 
+int mt_cli_face_list_read_bounded(const char *command, const char *path, const char *format_name,
+                                  uint64_t max_input_bytes, mt_face_list *out_list)
+{
+    return face_list_read(command, path, format_name, max_input_bytes, "--max-input-bytes",
+                          out_list);
+}
+
 bool mt_cli_byte_count_parse(const char *text, uint64_t *out)
 {
     uint64_t v = 0;

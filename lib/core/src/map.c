@@ -1,6 +1,7 @@
 /* The block map's lifetime and entry points (map.h): create and destroy,
  * the checks of put / remove before they are planned (map_plan.c), clear,
  * and the O(1) readers of the counts and histograms kept current. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,15 +13,16 @@ mt_status mt_map_create(const mt_map_options *opts, mt_map **out, mt_diag *diag)
     if (!out) return mt__fail(diag, MT_ERR_INVALID_ARG, MT_NONE, "map: NULL output");
     *out = NULL;
     const mt_map_weld weld = opts ? opts->weld : MT_MAP_WELD_EXACT;
-    if (weld == MT_MAP_WELD_EPS)
-        return mt__fail(diag, MT_ERR_UNSUPPORTED, MT_NONE,
-                        "map: welding within a tolerance (MT_MAP_WELD_EPS) is not implemented; "
-                        "use MT_MAP_WELD_EXACT or MT_MAP_WELD_NONE");
-    if (weld != MT_MAP_WELD_EXACT && weld != MT_MAP_WELD_NONE)
+    if (weld != MT_MAP_WELD_EXACT && weld != MT_MAP_WELD_NONE && weld != MT_MAP_WELD_EPS)
         return mt__fail(diag, MT_ERR_INVALID_ARG, MT_NONE, "map: unknown weld mode %d", (int)weld);
+    const double eps = weld == MT_MAP_WELD_EPS ? opts->eps : 0;
+    if (weld == MT_MAP_WELD_EPS && !(eps > 0 && isfinite(eps)))
+        return mt__fail(diag, MT_ERR_INVALID_ARG, MT_NONE,
+                        "map: MT_MAP_WELD_EPS needs a finite distance eps > 0, got %g", eps);
     mt_map *map = mt__calloc(1, sizeof *map);
     if (!map) return mt__fail(diag, MT_ERR_NOMEM, MT_NONE, "map: out of memory");
     map->weld = weld;
+    map->eps = eps;
     map->faces_removed.elem_size = map->verts_added.elem_size = map->verts_removed.elem_size =
         sizeof(uint32_t);
     *out = map;
@@ -88,7 +90,7 @@ mt_status mt_map_put(mt_map *map, mt_map_key key, const mt_face_list *block,
         return mt__fail(diag, MT_ERR_INVALID_ARG, MT_NONE,
                         MT__KEY_FMT ": %u vertices but no positions; a map needs them",
                         MT__KEY_ARGS(key), block->num_verts);
-    if (map->weld == MT_MAP_WELD_EXACT && vertex_ids)
+    if (map->weld != MT_MAP_WELD_NONE && vertex_ids)
         return mt__fail(diag, MT_ERR_INVALID_ARG, MT_NONE,
                         MT__KEY_FMT ": vertex ids given, but the map welds by position",
                         MT__KEY_ARGS(key));

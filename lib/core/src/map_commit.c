@@ -128,7 +128,7 @@ static void update_verts(mt__map_plan *p)
         map->vert_origin[v] = MT__MAP_NO_ORIGIN;
     }
     map->vert_end = p->new_vert_end;
-    const bool exact = map->weld == MT_MAP_WELD_EXACT;
+    const bool exact = map->weld != MT_MAP_WELD_NONE; /* a weld table is kept */
     map->verts_added.len = map->verts_removed.len = 0;
     uint32_t *added = map->verts_added.data, *removed = map->verts_removed.data;
     for (uint32_t t = 0; t < p->num_tv; t++) {

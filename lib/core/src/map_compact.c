@@ -31,7 +31,7 @@ static void renumber_blocks(mt_map *map, const uint32_t *vmap, const uint32_t *f
 
 static void rebuild_weld_table(mt_map *map)
 {
-    if (map->weld != MT_MAP_WELD_EXACT) return;
+    if (map->weld == MT_MAP_WELD_NONE) return;
     const uint32_t live = map->weld_table.count;
     mt__table smaller = {NULL, 0, 0};
     if (map->weld_table.cap > 64 && (uint64_t)live * 8 < map->weld_table.cap &&

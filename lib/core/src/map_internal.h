@@ -78,6 +78,10 @@ uint32_t mt__table_find(const mt__table *t, uint32_t hash, mt__table_eq_fn eq, c
                         const void *key);
 /* Inserts an entry; room must have been reserved. */
 void mt__table_insert(mt__table *t, uint32_t hash, uint32_t entry);
+/* Calls visit(arg, entry) for every entry of the probe run that starts at
+ * hash: every entry whose hash equals it, and others (the caller filters). */
+void mt__table_scan(const mt__table *t, uint32_t hash, void (*visit)(void *arg, uint32_t entry),
+                    void *arg);
 void mt__table_remove(mt__table *t, uint32_t entry, mt__table_hash_fn hash, const void *ctx);
 void mt__table_clear(mt__table *t);
 void mt__table_free(mt__table *t);
@@ -180,6 +184,7 @@ static inline uint64_t mt__origin_pack(uint32_t slot, uint32_t local)
 
 struct mt_map {
     mt_map_weld weld;
+    double eps; /* MT_MAP_WELD_EPS: the weld distance; 0 otherwise */
 
     /* Blocks by slot (a slot is reused as soon as it is free). */
     mt__map_block **blocks;
@@ -195,7 +200,7 @@ struct mt_map {
     uint32_t *vert_head;   /* [vert_cap] first face of its list, MT_NONE */
     uint64_t *vert_origin; /* [vert_cap] an origin (slot, local), MT__MAP_NO_ORIGIN */
     uint8_t *vert_flags;   /* [vert_cap] MT__V_* */
-    mt__table weld_table;  /* finite live vertices by position (exact mode) */
+    mt__table weld_table;  /* finite live vertices by position (exact) or cell (eps) */
 
     /* Faces by id. */
     uint32_t face_end, face_cap;

@@ -75,7 +75,7 @@ static mt_status reserve_all(mt__map_plan *p)
     const uint32_t faces = p->block ? p->block->num_faces : 0;
     if (mt__map_reserve_verts(map, p->new_vert_end) != MT_OK ||
         mt__map_reserve_faces(map, map->face_end + faces) != MT_OK ||
-        (map->weld == MT_MAP_WELD_EXACT &&
+        (map->weld != MT_MAP_WELD_NONE &&
          mt__table_reserve(&map->weld_table, map->weld_table.count + births, mt__weld_entry_hash,
                            map) != MT_OK) ||
         (p->block && !p->old && reserve_slot(p) != MT_OK) ||

@@ -61,6 +61,15 @@ void mt__table_insert(mt__table *t, uint32_t hash, uint32_t entry)
     t->count++;
 }
 
+void mt__table_scan(const mt__table *t, uint32_t hash, void (*visit)(void *arg, uint32_t entry),
+                    void *arg)
+{
+    if (t->cap == 0) return;
+    const uint32_t mask = t->cap - 1;
+    for (uint32_t i = hash & mask; t->slots[i] != MT_NONE; i = (i + 1) & mask)
+        visit(arg, t->slots[i]);
+}
+
 void mt__table_remove(mt__table *t, uint32_t entry, mt__table_hash_fn hash, const void *ctx)
 {
     if (t->cap == 0) return;

@@ -2,8 +2,11 @@
  * position equals a live map vertex's (bitwise, -0.0 == 0.0; never a NaN
  * or infinity) becomes that vertex, else the block's first vertex at that
  * position makes a new one, as mt_face_list_weld(list, 0) does to the
- * union. None mode: the sender's ids, with one position per id. Also
- * gathers the touched vertices of the operation and whether each lives on. */
+ * union. Eps mode: the lowest-numbered live map vertex within eps (cells of
+ * side eps, 27 searched, the distance test of mt_face_list_weld), else the
+ * lowest-numbered new vertex of the block within eps, else a new one. None
+ * mode: the sender's ids, with one position per id. Also gathers the
+ * touched vertices of the operation and whether each lives on. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -38,9 +41,103 @@ bool mt__pos_finite(const double *p)
     return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
 }
 
-uint32_t mt__weld_entry_hash(const void *map, uint32_t vert)
+/* ---- eps mode: cells of side eps ---- */
+
+/* Cells past this many sides from the origin are clamped (as
+ * mt_face_list_weld does): points that far share a clamped cell or lie in
+ * neighbouring ones, so no pair within eps is missed. */
+#define CELL_LIMIT 4611686018427387904.0 /* 2^62 */
+
+static void cell_of(const double *p, double eps, int64_t *c)
 {
-    return mt__pos_hash(&((const mt_map *)map)->pos[3 * (size_t)vert]);
+    for (int k = 0; k < 3; k++) {
+        double x = floor(p[k] / eps);
+        if (x > CELL_LIMIT) x = CELL_LIMIT;
+        if (x < -CELL_LIMIT) x = -CELL_LIMIT;
+        c[k] = (int64_t)x;
+    }
+}
+
+static uint32_t cell_hash(const int64_t *c)
+{
+    uint64_t h = (uint64_t)c[0] * 0x9e3779b97f4a7c15ull;
+    h = (h ^ (uint64_t)c[1]) * 0xc2b2ae3d27d4eb4full;
+    h = (h ^ (uint64_t)c[2]) * 0x165667b19e3779f9ull;
+    return (uint32_t)mt__mix64(h);
+}
+
+static uint32_t pos_cell_hash(const double *p, double eps)
+{
+    int64_t c[3];
+    cell_of(p, eps, c);
+    return cell_hash(c);
+}
+
+/* Whether p and q are within eps, scaled so that neither overflow nor
+ * underflow of the squares decides: mt_face_list_weld's test, bit for bit. */
+static bool within(const double *p, const double *q, double eps)
+{
+    double d[3], m = 0;
+    for (int k = 0; k < 3; k++) {
+        d[k] = fabs(p[k] - q[k]);
+        if (d[k] > m) m = d[k];
+    }
+    if (m > eps) return false;
+    if (m == 0) return true;
+    double s = 0;
+    for (int k = 0; k < 3; k++) s += (d[k] / m) * (d[k] / m);
+    return m * sqrt(s) <= eps;
+}
+
+typedef struct near_search {
+    const double *x; /* the vertex welded */
+    double eps;
+    const double *positions; /* of the table's entries */
+    const uint32_t *ids;     /* entry -> map id; NULL: entries are map ids */
+    int64_t cell[3];         /* the cell scanned */
+    uint32_t best;           /* lowest map id within eps so far */
+} near_search;
+
+static void near_visit(void *arg, uint32_t e)
+{
+    near_search *s = arg;
+    const double *q = s->positions + 3 * (size_t)e;
+    int64_t c[3];
+    cell_of(q, s->eps, c);
+    if (c[0] != s->cell[0] || c[1] != s->cell[1] || c[2] != s->cell[2]) return;
+    const uint32_t id = s->ids ? s->ids[e] : e;
+    if (id < s->best && within(s->x, q, s->eps)) s->best = id;
+}
+
+/* The lowest map id among the table's entries within eps of x (the 27
+ * cells around x's), MT_NONE when none is. */
+static uint32_t find_near(const mt__table *t, const double *positions, const uint32_t *ids,
+                          const double *x, double eps)
+{
+    near_search s = {x, eps, positions, ids, {0, 0, 0}, MT_NONE};
+    int64_t c[3];
+    cell_of(x, eps, c);
+    const int64_t lim = (int64_t)CELL_LIMIT;
+    for (int dx = -1; dx <= 1; dx++)
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dz = -1; dz <= 1; dz++) {
+                s.cell[0] = c[0] + dx;
+                s.cell[1] = c[1] + dy;
+                s.cell[2] = c[2] + dz;
+                /* a clamped cell has no neighbour past the limit */
+                if (s.cell[0] > lim || s.cell[0] < -lim || s.cell[1] > lim || s.cell[1] < -lim ||
+                    s.cell[2] > lim || s.cell[2] < -lim)
+                    continue;
+                mt__table_scan(t, cell_hash(s.cell), near_visit, &s);
+            }
+    return s.best;
+}
+
+uint32_t mt__weld_entry_hash(const void *ctx, uint32_t vert)
+{
+    const mt_map *map = ctx;
+    const double *p = &map->pos[3 * (size_t)vert];
+    return map->weld == MT_MAP_WELD_EPS ? pos_cell_hash(p, map->eps) : mt__pos_hash(p);
 }
 
 static bool weld_entry_eq(const void *map, uint32_t vert, const void *key)
@@ -79,8 +176,8 @@ static uint32_t touch(mt__map_plan *p, uint32_t v, uint8_t role)
     return t;
 }
 
-/* Exact mode: the new block's map vertices (new ones numbered from
- * vert_end in block order). */
+/* Exact and eps modes: the new block's map vertices (new ones numbered
+ * from vert_end in block order). */
 static mt_status weld_exact(mt__map_plan *p)
 {
     mt_map *map = p->map;
@@ -89,10 +186,16 @@ static mt_status weld_exact(mt__map_plan *p)
     mt__table fresh = {NULL, 0, 0};
     if (mt__table_reserve(&fresh, b->num_verts, local_hash, pos) != MT_OK) return MT_ERR_NOMEM;
     uint32_t next = map->vert_end;
+    const bool eps = map->weld == MT_MAP_WELD_EPS;
     for (uint32_t u = 0; u < b->num_verts; u++) {
         const double *x = pos + 3 * (size_t)u;
         uint32_t v = MT_NONE;
-        if (mt__pos_finite(x)) {
+        if (eps && mt__pos_finite(x)) {
+            /* Live map vertices have lower ids than the block's new ones. */
+            v = find_near(&map->weld_table, map->pos, NULL, x, map->eps);
+            if (v == MT_NONE) v = find_near(&fresh, pos, b->vert_map, x, map->eps);
+            if (v == MT_NONE) mt__table_insert(&fresh, pos_cell_hash(x, map->eps), u);
+        } else if (mt__pos_finite(x)) {
             const uint32_t h = mt__pos_hash(x);
             v = mt__table_find(&map->weld_table, h, weld_entry_eq, map, x);
             if (v == MT_NONE) {

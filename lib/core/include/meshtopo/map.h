@@ -2,7 +2,8 @@
  * (voxblox, nvblox) publish it, with the counts of its topology report kept
  * current in time proportional to the change, never by rescanning the map.
  * The map always equals the full build of the welded union of its blocks
- * (mt_face_list_weld with eps 0 of the blocks' face lists put end to end). */
+ * (exact weld: mt_face_list_weld with eps 0 of the blocks' face lists put
+ * end to end; see MT_MAP_WELD_EPS for what a tolerance guarantees). */
 #ifndef MESHTOPO_MAP_H
 #define MESHTOPO_MAP_H
 
@@ -43,8 +44,34 @@ extern "C" {
  *     refused (MT_ERR_INVALID_ARG naming both). The one exception is a
  *     vertex held only by the block being replaced: the new version may
  *     move it.
- *   MT_MAP_WELD_EPS: welding within a tolerance is not implemented yet;
- *     mt_map_create refuses it with MT_ERR_UNSUPPORTED.
+ *   MT_MAP_WELD_EPS: a block vertex becomes the lowest-numbered live map
+ *     vertex within Euclidean distance mt_map_options.eps of it (the
+ *     distance test of mt_face_list_weld, bit for bit), else the
+ *     lowest-numbered vertex the same put has already made within eps,
+ *     else a new map vertex at its own position. A map vertex keeps the
+ *     position of the block vertex that made it; the copies welded into it
+ *     lie within eps of that position (not of each other: merging is not
+ *     transitive, a chain of points eps/2 apart is not one vertex). NaN and
+ *     infinite positions are never welded. Live finite map vertices are
+ *     always more than eps apart (a vertex is made only when no live one is
+ *     within eps), so a cell of the spatial hash (cells of side eps, the 27
+ *     around a vertex searched) holds a bounded number: expected O(1) per
+ *     block vertex, as in exact mode.
+ *     Order matters, as it does for mt_face_list_weld ("each vertex merges
+ *     into the lowest-numbered earlier survivor within eps"). While no block
+ *     has been removed or replaced since the map was created or cleared,
+ *     the map is exactly mt_face_list_weld(eps) of the blocks' face lists
+ *     end to end in the order they were put (the same positions, vertex and
+ *     face order; map ids are survivor ranks). After a removal or a
+ *     replacement that no longer holds in general: a map vertex outlives
+ *     the block that made it (with its position) while other blocks hold
+ *     it, so re-welding the remaining blocks from scratch could pick other
+ *     survivors. What always holds is the rule above, applied at each put
+ *     against the live vertices of that moment, and the counts equal a full
+ *     build of mt_map_face_list's union. A replacement keeps the id of
+ *     every vertex its new version welds into (a seam that moved by less
+ *     than eps keeps its vertices). mt_map_create refuses an eps that is
+ *     not finite and positive (MT_ERR_INVALID_ARG).
  *
  * Ids. A map vertex and a map face keep their id for as long as they exist.
  * Face ids are given by the map in increasing order; vertex ids too, except
@@ -53,7 +80,8 @@ extern "C" {
  * mt_map_compact (which renumbers densely and returns the old-to-new maps)
  * or mt_map_clear (which starts the ids again at 0). Replacing a block keeps
  * the id of every vertex the new version still uses (a welded vertex is
- * found by its position); its faces are all new records with new ids.
+ * found by its position, or within eps of it); its faces are all new
+ * records with new ids.
  * mt_map_id_ends tells how far ids have gone.
  *
  * The union. mt_map_face_list writes the map as a plain face list: the live
@@ -73,7 +101,8 @@ extern "C" {
  * meshes whose vertices have bounded valence; a vertex shared by very many
  * faces (a fan of 10^5 triangles) makes every update at it cost its
  * valence. mt_map_clear, mt_map_compact and mt_map_face_list are linear in
- * the map. Counts do not depend on the order the blocks came in.
+ * the map. With exact and none welding, counts do not depend on the order
+ * the blocks came in; with eps welding they may (see MT_MAP_WELD_EPS).
  * Not kept (a later slice): boundary loops, connected components,
  * orientability, genus, defect lists with ids, and the topology events of a
  * delta (loops opened or closed, components merged or split, defects by
@@ -100,13 +129,13 @@ typedef struct mt_map_key {
 typedef enum mt_map_weld {
     MT_MAP_WELD_EXACT = 0, /* weld bitwise-equal positions (-0.0 == 0.0), never NaN */
     MT_MAP_WELD_NONE = 1,  /* the sender gives map-wide vertex ids */
-    MT_MAP_WELD_EPS = 2    /* within eps: not implemented (MT_ERR_UNSUPPORTED) */
+    MT_MAP_WELD_EPS = 2    /* weld within eps, lowest-numbered live vertex first (above) */
 } mt_map_weld;
 
 /* Options; a zeroed struct (or NULL) gives the defaults. */
 typedef struct mt_map_options {
     mt_map_weld weld;
-    double eps; /* MT_MAP_WELD_EPS only */
+    double eps; /* MT_MAP_WELD_EPS only: the weld distance, finite and > 0 */
 } mt_map_options;
 
 /* Limits. A block with more vertices, faces or indices than these, or a
@@ -180,9 +209,9 @@ typedef struct mt_map_delta {
      * slice. */
 } mt_map_delta;
 
-/* Creates an empty map. MT_ERR_INVALID_ARG for a NULL out or an unknown
- * weld mode, MT_ERR_UNSUPPORTED for MT_MAP_WELD_EPS, MT_ERR_NOMEM; *out is
- * NULL on failure. Free the map with mt_map_destroy. */
+/* Creates an empty map. MT_ERR_INVALID_ARG for a NULL out, an unknown
+ * weld mode, or MT_MAP_WELD_EPS with an eps not finite and positive;
+ * MT_ERR_NOMEM; *out is NULL on failure. Free the map with mt_map_destroy. */
 mt_status mt_map_create(const mt_map_options *opts, mt_map **out, mt_diag *diag);
 
 /* Frees a map and everything it holds. NULL-safe. */
@@ -193,7 +222,7 @@ void mt_map_destroy(mt_map *map);
  * delta says what changed). The face list is copied (the map keeps its
  * topology, the positions of new vertices, and per block vertex its map
  * vertex; not the caller's arrays). vertex_ids: NULL with
- * MT_MAP_WELD_EXACT; with MT_MAP_WELD_NONE, block->num_verts map vertex ids
+ * MT_MAP_WELD_EXACT and MT_MAP_WELD_EPS; with MT_MAP_WELD_NONE, block->num_verts map vertex ids
  * (each below MT_MAP_MAX_VERT_ID). out_delta may be NULL.
  *
  * Errors, each leaving the map unchanged, diag naming the block ("block
@@ -292,6 +321,30 @@ mt_status mt_map_face_list(const mt_map *map, mt_face_list *out, uint32_t *out_v
 /* Bytes the map holds (blocks, per-element arrays, hash tables, delta
  * buffers), capacity included. */
 size_t mt_map_memory_bytes(const mt_map *map);
+
+/* ---- Checking the map --------------------------------------------------- */
+
+/* Compares the map's incremental counts with `report`, the mt_report of a
+ * full build of what the map holds (mt_mesh_build of mt_map_face_list's
+ * list, or of a list map.h says the map equals). Compared: every field of
+ * mt_map_counts except num_blocks (a report has no blocks), that is every
+ * count, euler_characteristic and the flags closed, manifold and
+ * consistently_oriented, and both histograms bin by bin (keys and counts).
+ * Nothing else of the report (loops, components, defect lists) is looked at.
+ *
+ * Returns MT_OK when everything is equal. MT_ERR_CORRUPT when anything
+ * differs (the map's bookkeeping disagrees with the build: a bug in
+ * meshtopo, or a report of some other mesh); diag's message then names
+ * every differing field with both values, in the order of mt_map_counts,
+ * the histograms last, e.g. "nonmanifold_edges map 0, build 1;
+ * edge_use_histogram map {1:4 2:5}, build {1:4 2:4 3:1}" (flags as 0 or 1),
+ * cut to the message's size and then ending in "...".
+ * MT_ERR_INVALID_ARG for a NULL map or report. The map is not changed;
+ * nothing is allocated. Linear in the number of histogram bins (O(1) for
+ * the counts). Meant for tests, fuzzers and tools that check the map
+ * against a build (meshtopo inspect --blocks); it costs nothing on its own,
+ * but the build it needs is linear in the map. */
+mt_status mt_map_compare_report(const mt_map *map, const mt_report *report, mt_diag *diag);
 
 #ifdef __cplusplus
 }
