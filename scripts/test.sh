@@ -72,8 +72,17 @@ lay_clone() {
     ) | tar -xf - -C "$dest"
 }
 
+# Every ctest of build DIR; then why each skipped test skipped (ctest shows
+# the output of failed tests only, and counts the skipped in its summary).
 run_ctest() {
-    ctest --test-dir "$1" --output-on-failure -j 2
+    local rc=0
+    ctest --test-dir "$1" --output-on-failure -j 2 || rc=$?
+    local log=$1/Testing/Temporary/LastTest.log
+    if [ -f "$log" ] && grep -q '^skipped: ' "$log"; then
+        echo "-- why tests skipped (from $log):"
+        grep -h '^skipped: ' "$log" | sort | uniq -c | sed 's/^/  /'
+    fi
+    return "$rc"
 }
 
 step_normal() {
