@@ -623,6 +623,9 @@ static void on_part(mt_client *client, const void *data, size_t size)
             send_channel = p->channel;
             atomic_fetch_add(&send->refs, 1);
             client->stats.attempts++;
+            /* The query is asked again: its answer gets a whole attempt's
+             * time, not the 30 ms quiet timer of the parts just dropped. */
+            p->deadline_us = now + (int64_t)client->timeout_ms * 1000;
         }
     } else if (parts->window_have >= parts->window_parts) {
         send = pull_locked(client, p);
