@@ -3,7 +3,7 @@
  * build tree), started with posix_spawn on two pipes, read one
  * "word key=value ..." line at a time, and stopped by "quit" and a wait for
  * that one child only. The line protocols themselves are in peer_common.hpp
- * (build) and peer_cgal_selfx.cpp (selfx). */
+ * (build), peer_cgal_selfx.cpp (selfx) and peer_map.cpp (map). */
 #include <errno.h>
 #include <fcntl.h>
 #include <spawn.h>

@@ -8,7 +8,9 @@
  *   meshtopo-bench cluster [options]   1 vs 2 members of a cluster, failover (bench_cluster.c)
  *   meshtopo-bench selfx [options]     self-intersections vs CGAL (bench_selfx.c)
  *   meshtopo-bench inspect [options]   whole-process `meshtopo inspect` and reading vs
- *                                      OpenMesh (bench_inspect.c) */
+ *                                      OpenMesh (bench_inspect.c)
+ *   meshtopo-bench map [options]       an mt_map updated block by block vs a full build,
+ *                                      OpenMesh and CGAL (bench_map.c) */
 #include <stdio.h>
 #include <string.h>
 
@@ -16,6 +18,7 @@
 #include "bench_archive.h"
 #include "bench_cluster.h"
 #include "bench_inspect.h"
+#include "bench_map.h"
 #include "bench_selfx.h"
 #include "bench_transfer.h"
 #include "rtt.h"
@@ -35,6 +38,7 @@ int main(int argc, char **argv)
         return mt__bench_selfx_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "inspect") == 0)
         return mt__bench_inspect_command(argc - 1, argv + 1);
+    if (argc > 1 && strcmp(argv[1], "map") == 0) return mt__bench_map_command(argc - 1, argv + 1);
     if (argc > 1 && strcmp(argv[1], "build") == 0) return mt__bench_command(argc - 1, argv + 1);
     return mt__bench_command(argc, argv);
 }

@@ -110,11 +110,12 @@ extern "C" {
  * full mt_report are not answered by the map yet either: build
  * mt_map_face_list's list for them (linear in the map).
  *
- * Memory: per live triangle of a grid-like surface in nvblox-style blocks,
- * about 67 bytes (a built mesh holds 54), all arrays and tables counted;
- * since removed ids are not reused before mt_map_compact, each face id
- * given since then keeps 8 bytes and each vertex id 37 until it runs.
- * mt_map_memory_bytes tells.
+ * Memory: the live elements' arrays and hash tables, plus, since removed
+ * ids are not reused before mt_map_compact, a slot for every face and
+ * vertex id given since the last compaction: a map whose blocks are
+ * replaced again and again grows until it is compacted.
+ * mt_map_memory_bytes tells; docs/performance/maps.md has the figures
+ * (meshtopo-bench map).
  *
  * Threads: a map is not thread-safe; one call at a time. Memory: every
  * allocation goes through the core's allocator (and its test hook). */
