@@ -1,7 +1,7 @@
 /* meshtopod's flags and MESHTOPOD_* variables, from one table. Parsing is
- * by hand over that table rather than getopt_long: the same entry then
- * serves the flag, its variable, range checks and the help text, and the
- * parser keeps no global state between calls (tests parse many times).
+ * over that table: the same entry serves the flag (read by meshtopo::args,
+ * as every meshtopo program reads its command line), its variable, range
+ * checks and the help text.
  * Runs once, on the main thread, before any other thread starts. */
 #include "config.h"
 
@@ -12,6 +12,8 @@
 #include <string.h>
 #include <sys/statvfs.h>
 #include <unistd.h>
+
+#include "meshtopo/args.h"
 
 /* --max-archive-bytes until the archive directory is known. */
 #define DERIVED_FROM_ARCHIVE UINT64_MAX
@@ -299,12 +301,35 @@ static mt_status apply(const setting *s, const char *value, const char *origin, 
     return MT_ERR_INVALID_ARG;
 }
 
-static const setting *find_flag(const char *name, size_t len)
+/* The flags of the settings, and --version, for meshtopo::args. */
+typedef struct flag_table {
+    mt__option options[NUM_SETTINGS + 1];
+} flag_table;
+
+static void flag_table_make(flag_table *t)
 {
-    for (size_t i = 0; i < NUM_SETTINGS; i++)
-        if (strlen(settings[i].flag) == len && strncmp(settings[i].flag, name, len) == 0)
-            return &settings[i];
-    return NULL;
+    for (size_t i = 0; i < NUM_SETTINGS; i++) {
+        const bool is_switch = settings[i].kind == KIND_SWITCH;
+        t->options[i] =
+            (mt__option){settings[i].flag, is_switch ? NULL : "VALUE", settings[i].help, is_switch};
+    }
+    t->options[NUM_SETTINGS] = (mt__option){"version", NULL, "print the version", false};
+}
+
+static mt_status fail_args(const mt__args *args, mt_diag *diag)
+{
+    switch (args->error) {
+        case MT__ARGS_UNKNOWN_OPTION:
+            return fail(diag, "option", args->at, "unknown (see --help)");
+        case MT__ARGS_MISSING_VALUE:
+            return fail(diag, "option", args->at, "needs a value");
+        case MT__ARGS_TOO_MANY_ARGUMENTS:
+            return fail(diag, "argument", args->at, "meshtopod takes no positional arguments");
+        case MT__ARGS_NO_MEMORY:
+            return fail(diag, "arguments", "", "out of memory");
+        default:
+            return fail(diag, "arguments", args->at, "refused");
+    }
 }
 
 mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_action *out_action,
@@ -321,32 +346,32 @@ mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_ac
         mt_status s = apply(&settings[i], value, origin, out, diag);
         if (s != MT_OK) return s;
     }
-    for (int i = 1; i < argc; i++) {
-        const char *arg = argv[i];
-        if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
-            *out_action = MTD_CONFIG_HELP;
-            return MT_OK;
-        }
-        if (strcmp(arg, "--version") == 0) {
-            *out_action = MTD_CONFIG_VERSION;
-            return MT_OK;
-        }
-        if (strncmp(arg, "--", 2) != 0)
-            return fail(diag, "argument", arg, "meshtopod takes no positional arguments");
-        const char *name = arg + 2, *eq = strchr(name, '=');
-        const size_t len = eq ? (size_t)(eq - name) : strlen(name);
-        const setting *s = find_flag(name, len);
-        if (!s) return fail(diag, "option", arg, "unknown (see --help)");
-        const char *value = eq ? eq + 1 : NULL;
-        if (!value && s->kind == KIND_SWITCH) value = "1";
-        if (!value) {
-            if (i + 1 >= argc) return fail(diag, "option", arg, "needs a value");
-            value = argv[++i];
-        }
-        snprintf(origin, sizeof origin, "option --%s", s->flag);
-        mt_status st = apply(s, value, origin, out, diag);
-        if (st != MT_OK) return st;
+    flag_table flags;
+    flag_table_make(&flags);
+    mt__args args;
+    if (mt__args_parse(flags.options, NUM_SETTINGS + 1, 0, 0, argc > 0 ? argc - 1 : 0, argv + 1,
+                       &args) != MT__ARGS_OK) {
+        mt_status st = fail_args(&args, diag);
+        mt__args_free(&args);
+        return st;
     }
+    if (args.help || args.values[NUM_SETTINGS]) {
+        *out_action = args.help ? MTD_CONFIG_HELP : MTD_CONFIG_VERSION;
+        mt__args_free(&args);
+        return MT_OK;
+    }
+    for (size_t i = 0; i < NUM_SETTINGS; i++) {
+        const char *value = args.values[i];
+        if (!value) continue;
+        if (settings[i].kind == KIND_SWITCH && value[0] == '\0') value = "1";
+        snprintf(origin, sizeof origin, "option --%s", settings[i].flag);
+        mt_status st = apply(&settings[i], value, origin, out, diag);
+        if (st != MT_OK) {
+            mt__args_free(&args);
+            return st;
+        }
+    }
+    mt__args_free(&args);
     if (out->cluster[0] && !out->archive_dir[0])
         return fail(diag, "option --cluster", out->cluster,
                     "needs --archive DIR, the directory all members share");

@@ -81,72 +81,57 @@ static void usage(FILE *out)
             MT__BENCH_QUICK_REPS);
 }
 
-/* Returns 0 when parsed, 1 for --help, 2 on error. */
+/* Returns 0 when parsed, 1 for --help, 2 on error (printed). */
 static int parse_options(int argc, char **argv, mt__bench_options *o)
 {
+    /* The options usage() describes. */
+    static const mt__option option_table[] = {
+        {"quick", NULL, NULL, false},   {"no-reserve", NULL, NULL, false},
+        {"faces", "N", NULL, false},    {"torus-faces", "N", NULL, false},
+        {"reps", "N", NULL, false},     {"threads", "N", NULL, false},
+        {"idle-ms", "N", NULL, false},  {"seed", "N", NULL, false},
+        {"csv", "FILE", NULL, false},   {"markdown", "FILE", NULL, false},
+        {"svg", "FILE", NULL, false},   {"out", "DIR", NULL, false},
+        {"corpus", "DIR", NULL, false}, {"peer-dir", "DIR", NULL, false},
+        {"tmpdir", "DIR", NULL, false},
+    };
+    static const char program[] = "meshtopo-bench";
     memset(o, 0, sizeof *o);
     o->seed = MT__BENCH_SEED;
     o->corpus_dir = MESHTOPO_BENCH_CORPUS_DIR;
-    bool have_faces = false, have_torus = false, have_reps = false;
     uint64_t faces = MT__BENCH_DEFAULT_FACES, torus = MT__BENCH_DEFAULT_TORUS_FACES;
-    uint64_t reps = MT__BENCH_DEFAULT_REPS, v;
+    uint64_t reps = MT__BENCH_DEFAULT_REPS;
+    /* argv[0] is the program or "build"; "all" may follow it. */
     int first = 1;
     if (argc > 1 && strcmp(argv[1], "all") == 0) {
         o->all = true;
         first = 2;
     }
-    for (int i = first; i < argc; i++) {
-        const char *a = argv[i];
-        const char *next = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) return 1;
-        if (strcmp(a, "--quick") == 0) {
-            o->quick = true;
-            continue;
-        }
-        if (strcmp(a, "--no-reserve") == 0) {
-            o->peer_no_reserve = true;
-            continue;
-        }
-        if (!next) {
-            fprintf(stderr, "meshtopo-bench: unknown option or missing value: %s\n", a);
-            return 2;
-        }
-        i++;
-        if (strcmp(a, "--faces") == 0 &&
-            mt__bench_parse_u64(next, 2, MT__BENCH_MAX_FACES, &faces)) {
-            have_faces = true;
-        } else if (strcmp(a, "--torus-faces") == 0 &&
-                   mt__bench_parse_u64(next, 18, MT__BENCH_MAX_FACES, &torus)) {
-            have_torus = true;
-        } else if (strcmp(a, "--reps") == 0 &&
-                   mt__bench_parse_u64(next, 1, MT__BENCH_MAX_REPS, &reps)) {
-            have_reps = true;
-        } else if (strcmp(a, "--threads") == 0 && mt__bench_parse_u64(next, 0, 1024, &v)) {
-            o->threads = (uint32_t)v;
-            o->threads_given = true;
-        } else if (strcmp(a, "--idle-ms") == 0 && mt__bench_parse_u64(next, 0, 10000, &v)) {
-            o->idle_ms = (uint32_t)v;
-        } else if (strcmp(a, "--seed") == 0 && mt__bench_parse_u64(next, 0, UINT64_MAX, &v)) {
-            o->seed = v;
-        } else if (strcmp(a, "--csv") == 0) {
-            o->csv_path = next;
-        } else if (strcmp(a, "--markdown") == 0) {
-            o->md_path = next;
-        } else if (strcmp(a, "--svg") == 0) {
-            o->svg_path = next;
-        } else if (strcmp(a, "--out") == 0) {
-            o->out_dir = next;
-        } else if (strcmp(a, "--corpus") == 0) {
-            o->corpus_dir = next;
-        } else if (strcmp(a, "--peer-dir") == 0) {
-            o->peer_dir = next;
-        } else if (strcmp(a, "--tmpdir") == 0) {
-            o->tmp_parent = next;
-        } else {
-            fprintf(stderr, "meshtopo-bench: bad option or value: %s %s\n", a, next);
-            return 2;
-        }
-    }
+    mt__args args;
+    int read =
+        mt__bench_args_read(program, option_table, sizeof option_table / sizeof option_table[0],
+                            argc - first, argv + first, &args);
+    if (read != 0) return read;
+    bool have_faces = false, have_torus = false, have_reps = false;
+    bool ok =
+        mt__bench_arg_u64(&args, program, "faces", 2, MT__BENCH_MAX_FACES, &faces, &have_faces) &&
+        mt__bench_arg_u64(&args, program, "torus-faces", 18, MT__BENCH_MAX_FACES, &torus,
+                          &have_torus) &&
+        mt__bench_arg_u64(&args, program, "reps", 1, MT__BENCH_MAX_REPS, &reps, &have_reps) &&
+        mt__bench_arg_u32(&args, program, "threads", 0, 1024, &o->threads, &o->threads_given) &&
+        mt__bench_arg_u32(&args, program, "idle-ms", 0, 10000, &o->idle_ms, NULL) &&
+        mt__bench_arg_u64(&args, program, "seed", 0, UINT64_MAX, &o->seed, NULL);
+    o->quick = mt__args_flag(&args, "quick");
+    o->peer_no_reserve = mt__args_flag(&args, "no-reserve");
+    o->csv_path = mt__args_value(&args, "csv");
+    o->md_path = mt__args_value(&args, "markdown");
+    o->svg_path = mt__args_value(&args, "svg");
+    o->out_dir = mt__args_value(&args, "out");
+    if (mt__args_value(&args, "corpus")) o->corpus_dir = mt__args_value(&args, "corpus");
+    o->peer_dir = mt__args_value(&args, "peer-dir");
+    o->tmp_parent = mt__args_value(&args, "tmpdir");
+    mt__args_free(&args);
+    if (!ok) return 2;
     if (o->all && !have_reps) reps = MT__BENCH_ALL_REPS;
     if (o->quick && !have_faces) faces = MT__BENCH_QUICK_FACES;
     if (o->quick && !have_torus) torus = MT__BENCH_QUICK_TORUS_FACES;
@@ -404,14 +389,7 @@ int mt__bench_command(int argc, char **argv)
 {
     mt__bench_options options;
     int parsed = parse_options(argc, argv, &options);
-    if (parsed == 1) {
-        usage(stdout);
-        return 0;
-    }
-    if (parsed != 0) {
-        usage(stderr);
-        return 2;
-    }
+    if (parsed != 0) return mt__bench_usage_exit(parsed, usage);
     provenance_fill(&options, argc, argv);
     char md_buf[PATH_MAX], csv_buf[PATH_MAX], svg_buf[PATH_MAX];
     if (options.out_dir) {

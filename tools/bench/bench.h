@@ -14,6 +14,7 @@
 #include <sys/types.h>
 #include <time.h>
 
+#include "meshtopo/args.h"
 #include "meshtopo/face_list.h"
 
 #ifndef PATH_MAX
@@ -137,6 +138,23 @@ int mt__bench_command(int argc, char **argv);
 bool mt__bench_parse_u32(const char *text, uint32_t min, uint32_t max, uint32_t *out);
 /* The same for 64 bits (NULL text: false). */
 bool mt__bench_parse_u64(const char *text, uint64_t min, uint64_t max, uint64_t *out);
+
+/* Reads a subcommand's arguments (argv without the program or subcommand
+ * name) against its options. Returns 0 when read, 1 for -h/--help, 2 when
+ * refused (the reason printed on stderr, prefixed with `program`; *out is
+ * then freed). After 0 or 1, free *out with mt__args_free. */
+int mt__bench_args_read(const char *program, const mt__option *options, size_t num_options,
+                        int argc, char **argv, mt__args *out);
+/* Option `name`'s value as a count in [min, max] into *out when it was
+ * given (*given, when not NULL, says whether); false, with a message on
+ * stderr naming program, option and value, when it is not such a count. */
+bool mt__bench_arg_u64(const mt__args *args, const char *program, const char *name, uint64_t min,
+                       uint64_t max, uint64_t *out, bool *given);
+bool mt__bench_arg_u32(const mt__args *args, const char *program, const char *name, uint32_t min,
+                       uint32_t max, uint32_t *out, bool *given);
+/* The exit code after a subcommand's options were not run with (parsed 1:
+ * --help, usage on stdout, 0; parsed 2: refused, usage on stderr, 2). */
+int mt__bench_usage_exit(int parsed, void (*usage)(FILE *out));
 
 /* bench_stats.c: both sort `values` in place; NaN for n == 0. */
 double mt__bench_median_of(double *values, uint32_t n);

@@ -62,12 +62,36 @@ typedef struct options {
     bool keep, scan;
 } options;
 
-static int usage(void)
+static void usage(FILE *out)
 {
-    fprintf(stderr,
+    fprintf(out,
             "usage: meshtopo-bench archive [--faces N] [--reps N (>= 5)] [--dir DIR] "
             "[--keep] [--quick] [--scan]\n");
-    return 2;
+}
+
+/* Returns 0, 1 (--help) or 2 (usage error, printed). */
+static int parse_options(int argc, char **argv, options *o)
+{
+    /* The options usage() names. */
+    static const mt__option option_table[] = {
+        {"quick", NULL, NULL, false}, {"scan", NULL, NULL, false}, {"keep", NULL, NULL, false},
+        {"faces", "N", NULL, false},  {"reps", "N", NULL, false},  {"dir", "DIR", NULL, false},
+    };
+    static const char program[] = "meshtopo-bench archive";
+    *o = (options){1000000, 5, NULL, false, false};
+    mt__args args;
+    int read =
+        mt__bench_args_read(program, option_table, sizeof option_table / sizeof option_table[0],
+                            argc - 1, argv + 1, &args);
+    if (read != 0) return read;
+    if (mt__args_flag(&args, "quick")) o->faces = 20000;
+    bool ok = mt__bench_arg_u32(&args, program, "faces", 2, UINT32_MAX, &o->faces, NULL) &&
+              mt__bench_arg_u32(&args, program, "reps", 5, MAX_REPS, &o->reps, NULL);
+    o->scan = mt__args_flag(&args, "scan");
+    o->keep = mt__args_flag(&args, "keep");
+    o->dir = mt__args_value(&args, "dir");
+    mt__args_free(&args);
+    return ok ? 0 : 2;
 }
 
 static uint64_t file_size(const char *path)
@@ -299,26 +323,9 @@ static void print_table(const options *o, const mt_face_list *list, const mt__ba
 
 int mt__bench_archive_command(int argc, char **argv)
 {
-    options o = {1000000, 5, NULL, false, false};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "--quick") == 0) {
-            o.faces = 20000;
-        } else if (strcmp(a, "--scan") == 0) {
-            o.scan = true;
-        } else if (strcmp(a, "--keep") == 0) {
-            o.keep = true;
-        } else if (i + 1 < argc && strcmp(a, "--faces") == 0) {
-            o.faces = (uint32_t)strtoul(argv[++i], NULL, 10);
-        } else if (i + 1 < argc && strcmp(a, "--reps") == 0) {
-            o.reps = (uint32_t)strtoul(argv[++i], NULL, 10);
-        } else if (i + 1 < argc && strcmp(a, "--dir") == 0) {
-            o.dir = argv[++i];
-        } else {
-            return usage();
-        }
-    }
-    if (o.reps < 5 || o.reps > MAX_REPS || o.faces < 2) return usage();
+    options o;
+    int parsed = parse_options(argc, argv, &o);
+    if (parsed != 0) return mt__bench_usage_exit(parsed, usage);
     char scratch[4096];
     if (!o.dir) {
         /* /var/tmp rather than /tmp: /tmp is often tmpfs, where fsync costs nothing. */

@@ -72,41 +72,32 @@ static void usage(FILE *out)
 /* Returns 0, 1 (--help) or 2 (usage error, printed). */
 static int parse_options(int argc, char **argv, options *o)
 {
+    /* The options usage() describes. */
+    static const mt__option option_table[] = {
+        {"quick", NULL, NULL, false},    {"daemon", "PATH", NULL, false},
+        {"archive", "DIR", NULL, false}, {"triangles", "N", NULL, false},
+        {"meshes", "N", NULL, false},    {"reps", "N", NULL, false},
+    };
+    static const char program[] = "meshtopo-bench cluster";
     memset(o, 0, sizeof *o);
     o->triangles = 1000000;
     o->meshes = 16;
     o->reps = 3;
+    mt__args args;
+    int read =
+        mt__bench_args_read(program, option_table, sizeof option_table / sizeof option_table[0],
+                            argc - 1, argv + 1, &args);
+    if (read != 0) return read;
     bool triangles_given = false, reps_given = false;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) return 1;
-        if (strcmp(a, "--quick") == 0) {
-            o->quick = true;
-            continue;
-        }
-        bool ok = v != NULL;
-        if (ok && strcmp(a, "--daemon") == 0) {
-            o->daemon_path = v;
-        } else if (ok && strcmp(a, "--archive") == 0) {
-            o->archive = v;
-        } else if (ok && strcmp(a, "--triangles") == 0) {
-            ok = mt__bench_parse_u32(v, 2000, 20000000, &o->triangles);
-            triangles_given = true;
-        } else if (ok && strcmp(a, "--meshes") == 0) {
-            ok = mt__bench_parse_u32(v, 2, MAX_MESHES, &o->meshes);
-        } else if (ok && strcmp(a, "--reps") == 0) {
-            ok = mt__bench_parse_u32(v, 1, MAX_REPS, &o->reps);
-            reps_given = true;
-        } else {
-            fprintf(stderr, "meshtopo-bench cluster: unknown option or missing value: %s\n", a);
-            return 2;
-        }
-        if (!ok) {
-            fprintf(stderr, "meshtopo-bench cluster: %s: bad value '%s'\n", a, v);
-            return 2;
-        }
-        i++;
-    }
+    bool ok = mt__bench_arg_u32(&args, program, "triangles", 2000, 20000000, &o->triangles,
+                                &triangles_given) &&
+              mt__bench_arg_u32(&args, program, "meshes", 2, MAX_MESHES, &o->meshes, NULL) &&
+              mt__bench_arg_u32(&args, program, "reps", 1, MAX_REPS, &o->reps, &reps_given);
+    o->quick = mt__args_flag(&args, "quick");
+    o->daemon_path = mt__args_value(&args, "daemon");
+    o->archive = mt__args_value(&args, "archive");
+    mt__args_free(&args);
+    if (!ok) return 2;
     if (o->quick) {
         if (!triangles_given) o->triangles = 40000;
         if (!reps_given) o->reps = 2;

@@ -97,50 +97,39 @@ static void usage(FILE *out)
 /* Returns 0, 1 (--help) or 2 (usage error, printed). */
 static int parse_options(int argc, char **argv, options *o)
 {
+    /* The options usage() describes. */
+    static const mt__option option_table[] = {
+        {"quick", NULL, NULL, false},      {"faces", "N", NULL, false},
+        {"torus-faces", "N", NULL, false}, {"reps", "N", NULL, false},
+        {"seed", "N", NULL, false},        {"meshtopo", "PATH", NULL, false},
+        {"peer-dir", "DIR", NULL, false},  {"tmpdir", "DIR", NULL, false},
+        {"markdown", "FILE", NULL, false},
+    };
+    static const char program[] = "meshtopo-bench inspect";
     memset(o, 0, sizeof *o);
     o->faces = DEFAULT_FACES;
     o->torus_faces = DEFAULT_TORUS_FACES;
     o->reps = DEFAULT_REPS;
     o->seed = 12345;
+    mt__args args;
+    int read =
+        mt__bench_args_read(program, option_table, sizeof option_table / sizeof option_table[0],
+                            argc - 1, argv + 1, &args);
+    if (read != 0) return read;
     bool faces_given = false, torus_given = false, reps_given = false;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) return 1;
-        if (strcmp(a, "--quick") == 0) {
-            o->quick = true;
-            continue;
-        }
-        bool ok = v != NULL;
-        if (strcmp(a, "--faces") == 0) {
-            ok = mt__bench_parse_u64(v, 2, (uint64_t)1 << 31, &o->faces);
-            faces_given = true;
-        } else if (strcmp(a, "--torus-faces") == 0) {
-            ok = mt__bench_parse_u64(v, 18, (uint64_t)1 << 31, &o->torus_faces);
-            torus_given = true;
-        } else if (strcmp(a, "--reps") == 0) {
-            ok = mt__bench_parse_u32(v, 1, MT__BENCH_MAX_REPS, &o->reps);
-            reps_given = true;
-        } else if (strcmp(a, "--seed") == 0) {
-            ok = mt__bench_parse_u64(v, 0, UINT64_MAX, &o->seed);
-        } else if (strcmp(a, "--meshtopo") == 0) {
-            o->meshtopo = v;
-        } else if (strcmp(a, "--peer-dir") == 0) {
-            o->peer_dir = v;
-        } else if (strcmp(a, "--tmpdir") == 0) {
-            o->tmp_parent = v;
-        } else if (strcmp(a, "--markdown") == 0) {
-            o->md_path = v;
-        } else {
-            fprintf(stderr, "meshtopo-bench inspect: unknown option '%s'\n", a);
-            return 2;
-        }
-        if (!ok) {
-            fprintf(stderr, "meshtopo-bench inspect: %s: bad or missing value\n", a);
-            return 2;
-        }
-        i++;
-    }
+    bool ok =
+        mt__bench_arg_u64(&args, program, "faces", 2, (uint64_t)1 << 31, &o->faces, &faces_given) &&
+        mt__bench_arg_u64(&args, program, "torus-faces", 18, (uint64_t)1 << 31, &o->torus_faces,
+                          &torus_given) &&
+        mt__bench_arg_u32(&args, program, "reps", 1, MT__BENCH_MAX_REPS, &o->reps, &reps_given) &&
+        mt__bench_arg_u64(&args, program, "seed", 0, UINT64_MAX, &o->seed, NULL);
+    o->quick = mt__args_flag(&args, "quick");
+    o->meshtopo = mt__args_value(&args, "meshtopo");
+    o->peer_dir = mt__args_value(&args, "peer-dir");
+    o->tmp_parent = mt__args_value(&args, "tmpdir");
+    o->md_path = mt__args_value(&args, "markdown");
+    mt__args_free(&args);
+    if (!ok) return 2;
     if (o->quick) {
         if (!faces_given) o->faces = QUICK_FACES;
         if (!torus_given) o->torus_faces = QUICK_TORUS_FACES;
@@ -537,14 +526,7 @@ int mt__bench_inspect_command(int argc, char **argv)
 {
     options o;
     int parsed = parse_options(argc, argv, &o);
-    if (parsed == 1) {
-        usage(stdout);
-        return 0;
-    }
-    if (parsed != 0) {
-        usage(stderr);
-        return 2;
-    }
+    if (parsed != 0) return mt__bench_usage_exit(parsed, usage);
     signal(SIGPIPE, SIG_IGN);
     char meshtopo[PATH_MAX], peer[PATH_MAX];
     if (!find_meshtopo(&o, meshtopo, sizeof meshtopo)) {

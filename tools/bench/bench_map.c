@@ -19,6 +19,7 @@
 #include "meshtopo/mesh.h"
 #include "meshtopo/report.h"
 
+#define PROGRAM "meshtopo-bench map"
 #define DEFAULT_FACES 4000000u
 #define QUICK_FACES 40000u
 #define MIN_FACES 4000u
@@ -78,6 +79,12 @@ static void usage(FILE *out)
             2 * BLOCK_CELLS * BLOCK_CELLS, DEFAULT_FACES, DEFAULT_STEPS, QUICK_FACES, QUICK_STEPS);
 }
 
+/* The options usage() describes. */
+static const mt__option option_table[] = {
+    {"faces", "N", NULL, false},  {"steps", "N", NULL, false},     {"seed", "N", NULL, false},
+    {"quick", NULL, NULL, false}, {"no-peers", NULL, NULL, false}, {"peer-dir", "DIR", NULL, false},
+};
+
 /* Returns 0, 1 (--help) or 2 (usage error, printed). */
 static int parse_options(int argc, char **argv, options *o)
 {
@@ -85,39 +92,21 @@ static int parse_options(int argc, char **argv, options *o)
     o->faces = DEFAULT_FACES;
     o->steps = DEFAULT_STEPS;
     o->seed = DEFAULT_SEED;
+    mt__args args;
+    int read =
+        mt__bench_args_read(PROGRAM, option_table, sizeof option_table / sizeof option_table[0],
+                            argc - 1, argv + 1, &args);
+    if (read != 0) return read;
     bool faces_given = false, steps_given = false;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) return 1;
-        if (strcmp(a, "--quick") == 0) {
-            o->quick = true;
-            continue;
-        }
-        if (strcmp(a, "--no-peers") == 0) {
-            o->no_peers = true;
-            continue;
-        }
-        bool ok = v != NULL;
-        if (ok && strcmp(a, "--faces") == 0) {
-            ok = mt__bench_parse_u64(v, MIN_FACES, MAX_FACES, &o->faces);
-            faces_given = true;
-        } else if (ok && strcmp(a, "--steps") == 0) {
-            ok = mt__bench_parse_u32(v, 1, MAX_STEPS, &o->steps);
-            steps_given = true;
-        } else if (ok && strcmp(a, "--seed") == 0) {
-            ok = mt__bench_parse_u64(v, 0, UINT64_MAX, &o->seed);
-        } else if (ok && strcmp(a, "--peer-dir") == 0) {
-            o->peer_dir = v;
-        } else {
-            fprintf(stderr, "meshtopo-bench map: unknown option or missing value: %s\n", a);
-            return 2;
-        }
-        if (!ok) {
-            fprintf(stderr, "meshtopo-bench map: %s: bad value '%s'\n", a, v);
-            return 2;
-        }
-        i++;
-    }
+    bool ok =
+        mt__bench_arg_u64(&args, PROGRAM, "faces", MIN_FACES, MAX_FACES, &o->faces, &faces_given) &&
+        mt__bench_arg_u32(&args, PROGRAM, "steps", 1, MAX_STEPS, &o->steps, &steps_given) &&
+        mt__bench_arg_u64(&args, PROGRAM, "seed", 0, UINT64_MAX, &o->seed, NULL);
+    o->quick = mt__args_flag(&args, "quick");
+    o->no_peers = mt__args_flag(&args, "no-peers");
+    o->peer_dir = mt__args_value(&args, "peer-dir");
+    mt__args_free(&args);
+    if (!ok) return 2;
     if (o->quick && !faces_given) o->faces = QUICK_FACES;
     if (o->quick && !steps_given) o->steps = QUICK_STEPS;
     return 0;
@@ -269,14 +258,7 @@ int mt__bench_map_command(int argc, char **argv)
 {
     options o;
     int parsed = parse_options(argc, argv, &o);
-    if (parsed == 1) {
-        usage(stdout);
-        return 0;
-    }
-    if (parsed != 0) {
-        usage(stderr);
-        return 2;
-    }
+    if (parsed != 0) return mt__bench_usage_exit(parsed, usage);
     signal(SIGPIPE, SIG_IGN); /* a dead peer is reported through its pipe */
     mt__map_surface s = surface_make(o.faces);
     uint32_t nb = s.tiles_x * s.tiles_y, per_step = mt__map_step_count(&s);

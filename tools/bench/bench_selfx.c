@@ -101,45 +101,42 @@ static void usage(FILE *out)
 /* Returns 0, 1 (--help) or 2 (usage error, printed). */
 static int parse_options(int argc, char **argv, options *o)
 {
+    /* The options usage() describes. */
+    static const mt__option option_table[] = {
+        {"quick", NULL, NULL, false},   {"faces", "N", NULL, false},
+        {"reps", "N", NULL, false},     {"seed", "N", NULL, false},
+        {"mesh", "NAME", NULL, false},  {"peer-dir", "DIR", NULL, false},
+        {"tmpdir", "DIR", NULL, false},
+    };
+    static const char program[] = "meshtopo-bench selfx";
     memset(o, 0, sizeof *o);
     o->faces = DEFAULT_FACES;
     o->reps = DEFAULT_REPS;
     o->seed = DEFAULT_SEED;
     o->only = -1;
+    mt__args args;
+    int read =
+        mt__bench_args_read(program, option_table, sizeof option_table / sizeof option_table[0],
+                            argc - 1, argv + 1, &args);
+    if (read != 0) return read;
     bool faces_given = false, reps_given = false;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) return 1;
-        if (strcmp(a, "--quick") == 0) {
-            o->quick = true;
-            continue;
+    bool ok =
+        mt__bench_arg_u64(&args, program, "faces", MIN_FACES, MAX_FACES, &o->faces, &faces_given) &&
+        mt__bench_arg_u32(&args, program, "reps", 1, MT__BENCH_MAX_REPS, &o->reps, &reps_given) &&
+        mt__bench_arg_u64(&args, program, "seed", 0, UINT64_MAX, &o->seed, NULL);
+    const char *mesh = mt__args_value(&args, "mesh");
+    if (ok && mesh) {
+        o->only = strcmp(mesh, "grid") == 0 ? 0 : strcmp(mesh, "torus") == 0 ? 1 : -1;
+        if (o->only < 0) {
+            fprintf(stderr, "%s: --mesh: bad value '%s' (grid or torus)\n", program, mesh);
+            ok = false;
         }
-        bool ok = v != NULL;
-        if (ok && strcmp(a, "--faces") == 0) {
-            ok = mt__bench_parse_u64(v, MIN_FACES, MAX_FACES, &o->faces);
-            faces_given = true;
-        } else if (ok && strcmp(a, "--reps") == 0) {
-            ok = mt__bench_parse_u32(v, 1, MT__BENCH_MAX_REPS, &o->reps);
-            reps_given = true;
-        } else if (ok && strcmp(a, "--seed") == 0) {
-            ok = mt__bench_parse_u64(v, 0, UINT64_MAX, &o->seed);
-        } else if (ok && strcmp(a, "--mesh") == 0) {
-            o->only = strcmp(v, "grid") == 0 ? 0 : strcmp(v, "torus") == 0 ? 1 : -1;
-            ok = o->only >= 0;
-        } else if (ok && strcmp(a, "--peer-dir") == 0) {
-            o->peer_dir = v;
-        } else if (ok && strcmp(a, "--tmpdir") == 0) {
-            o->tmp_parent = v;
-        } else {
-            fprintf(stderr, "meshtopo-bench selfx: unknown option or missing value: %s\n", a);
-            return 2;
-        }
-        if (!ok) {
-            fprintf(stderr, "meshtopo-bench selfx: %s: bad value '%s'\n", a, v);
-            return 2;
-        }
-        i++;
     }
+    o->quick = mt__args_flag(&args, "quick");
+    o->peer_dir = mt__args_value(&args, "peer-dir");
+    o->tmp_parent = mt__args_value(&args, "tmpdir");
+    mt__args_free(&args);
+    if (!ok) return 2;
     if (o->quick && !faces_given) o->faces = QUICK_FACES;
     if (o->quick && !reps_given) o->reps = QUICK_REPS;
     return 0;
@@ -603,14 +600,7 @@ int mt__bench_selfx_command(int argc, char **argv)
 {
     options o;
     int parsed = parse_options(argc, argv, &o);
-    if (parsed == 1) {
-        usage(stdout);
-        return 0;
-    }
-    if (parsed != 0) {
-        usage(stderr);
-        return 2;
-    }
+    if (parsed != 0) return mt__bench_usage_exit(parsed, usage);
     signal(SIGPIPE, SIG_IGN); /* a dead peer is reported through its pipe */
     char dir[PATH_MAX];
     if (!tmpdir_make(&o, dir, sizeof dir)) return 1;

@@ -71,53 +71,36 @@ static void usage(FILE *out)
 /* Returns 0, 1 (--help) or 2 (usage error, printed). */
 static int parse_options(int argc, char **argv, options *o)
 {
+    /* The options usage() describes. */
+    static const mt__option option_table[] = {
+        {"quick", NULL, NULL, false},    {"daemon", "PATH", NULL, false},
+        {"triangles", "N", NULL, false}, {"reps", "N", NULL, false},
+        {"window", "N", NULL, false},    {"loss", "PERCENT", NULL, false},
+        {"csv", "FILE", NULL, false},
+    };
+    static const char program[] = "meshtopo-bench transfer";
     memset(o, 0, sizeof *o);
     o->triangles = 1000000;
     o->reps = 5;
     o->window = MT_CLIENT_DEFAULT_WINDOW_CHUNKS;
-    o->loss = 5;
+    uint32_t loss = 5;
+    mt__args args;
+    int read =
+        mt__bench_args_read(program, option_table, sizeof option_table / sizeof option_table[0],
+                            argc - 1, argv + 1, &args);
+    if (read != 0) return read;
     bool triangles_given = false;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        uint32_t n = 0;
-        bool ok = true;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) return 1;
-        if (strcmp(a, "--quick") == 0) {
-            o->quick = true;
-            continue;
-        }
-        if (strcmp(a, "--daemon") != 0 && strcmp(a, "--triangles") != 0 &&
-            strcmp(a, "--reps") != 0 && strcmp(a, "--window") != 0 && strcmp(a, "--loss") != 0 &&
-            strcmp(a, "--csv") != 0) {
-            fprintf(stderr, "meshtopo-bench transfer: unknown option %s\n", a);
-            return 2;
-        }
-        if (!v) {
-            fprintf(stderr, "meshtopo-bench transfer: %s needs a value\n", a);
-            return 2;
-        }
-        if (strcmp(a, "--daemon") == 0) {
-            o->daemon_path = v;
-        } else if (strcmp(a, "--triangles") == 0) {
-            ok = mt__bench_parse_u32(v, 20000, 20000000, &o->triangles);
-            triangles_given = true;
-        } else if (strcmp(a, "--reps") == 0) {
-            ok = mt__bench_parse_u32(v, 1, MAX_REPS, &o->reps);
-        } else if (strcmp(a, "--window") == 0) {
-            ok = mt__bench_parse_u32(v, 1, 4096, &o->window);
-        } else if (strcmp(a, "--loss") == 0) {
-            ok = mt__bench_parse_u32(v, 1, 50, &n);
-            o->loss = (int)n;
-        } else {
-            o->csv_path = v;
-        }
-        if (!ok) {
-            fprintf(stderr, "meshtopo-bench transfer: %s: bad value '%s'\n", a, v);
-            return 2;
-        }
-        i++;
-    }
+    bool ok = mt__bench_arg_u32(&args, program, "triangles", 20000, 20000000, &o->triangles,
+                                &triangles_given) &&
+              mt__bench_arg_u32(&args, program, "reps", 1, MAX_REPS, &o->reps, NULL) &&
+              mt__bench_arg_u32(&args, program, "window", 1, 4096, &o->window, NULL) &&
+              mt__bench_arg_u32(&args, program, "loss", 1, 50, &loss, NULL);
+    o->loss = (int)loss;
+    o->quick = mt__args_flag(&args, "quick");
+    o->daemon_path = mt__args_value(&args, "daemon");
+    o->csv_path = mt__args_value(&args, "csv");
+    mt__args_free(&args);
+    if (!ok) return 2;
     if (o->quick) {
         if (!triangles_given) o->triangles = 40000;
         o->reps = o->reps < 2 ? o->reps : 2;
@@ -349,14 +332,7 @@ int mt__bench_transfer_command(int argc, char **argv)
 {
     options o;
     int parsed = parse_options(argc, argv, &o);
-    if (parsed == 1) {
-        usage(stdout);
-        return 0;
-    }
-    if (parsed != 0) {
-        usage(stderr);
-        return 2;
-    }
+    if (parsed != 0) return mt__bench_usage_exit(parsed, usage);
     char err[512] = "";
     /* First, before any thread exists: the private network. */
     int net = mt__rtt_enter_private_network(err, sizeof err);

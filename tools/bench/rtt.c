@@ -56,74 +56,49 @@ static void usage(FILE *out)
             "one failed, 2 on a usage error, 77 when no network namespace can be made here.\n");
 }
 
-static bool is_value_option(const char *arg)
-{
-    static const char *const names[] = {"--daemon",  "--grid",    "--round-trips", "--reps",
-                                        "--seconds", "--clients", "--batch",       "--window",
-                                        "--seed",    "--csv",     "--markdown"};
-    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
-        if (strcmp(arg, names[i]) == 0) return true;
-    return false;
-}
-
 /* Returns 0, 1 (--help) or 2 (usage error, printed). */
 static int parse_options(int argc, char **argv, mt__rtt_options *o)
 {
+    /* The options usage() describes. */
+    static const mt__option option_table[] = {
+        {"quick", NULL, NULL, false},  {"daemon", "PATH", NULL, false},
+        {"grid", "N", NULL, false},    {"round-trips", "N", NULL, false},
+        {"reps", "N", NULL, false},    {"seconds", "S", NULL, false},
+        {"clients", "N", NULL, false}, {"batch", "N", NULL, false},
+        {"window", "N", NULL, false},  {"seed", "N", NULL, false},
+        {"csv", "FILE", NULL, false},  {"markdown", "FILE", NULL, false},
+    };
+    static const char program[] = "meshtopo-bench rtt";
     memset(o, 0, sizeof *o);
     o->grid = 100;
     o->round_trips = 2000;
     o->reps = 5;
-    o->seconds = 2.0;
     o->clients = 4;
     o->batch = 1000;
     o->window = 16;
     o->seed = 1;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        bool ok = true, takes_value = true;
-        uint32_t n = 0;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) return 1;
-        if (strcmp(a, "--quick") == 0) {
-            o->quick = true;
-            takes_value = false;
-        } else if (!is_value_option(a)) {
-            fprintf(stderr, "meshtopo-bench rtt: unknown option %s\n", a);
-            return 2;
-        } else if (!v) {
-            fprintf(stderr, "meshtopo-bench rtt: %s needs a value\n", a);
-            return 2;
-        } else if (strcmp(a, "--daemon") == 0) {
-            o->daemon_path = v;
-        } else if (strcmp(a, "--grid") == 0) {
-            ok = mt__bench_parse_u32(v, 2, 2000, &o->grid);
-        } else if (strcmp(a, "--round-trips") == 0) {
-            ok = mt__bench_parse_u32(v, 10, 1000000, &o->round_trips);
-        } else if (strcmp(a, "--reps") == 0) {
-            ok = mt__bench_parse_u32(v, 1, MT__RTT_MAX_REPS, &o->reps);
-        } else if (strcmp(a, "--seconds") == 0) {
-            ok = mt__bench_parse_u32(v, 1, 600, &n);
-            o->seconds = n;
-        } else if (strcmp(a, "--clients") == 0) {
-            ok = mt__bench_parse_u32(v, 1, MT__RTT_MAX_CLIENTS, &o->clients);
-        } else if (strcmp(a, "--batch") == 0) {
-            ok = mt__bench_parse_u32(v, 1, 4096, &o->batch);
-        } else if (strcmp(a, "--window") == 0) {
-            ok = mt__bench_parse_u32(v, 1, 256, &o->window);
-        } else if (strcmp(a, "--seed") == 0) {
-            ok = mt__bench_parse_u32(v, 0, UINT32_MAX, &n);
-            o->seed = n;
-        } else if (strcmp(a, "--csv") == 0) {
-            o->csv_path = v;
-        } else if (strcmp(a, "--markdown") == 0) {
-            o->md_path = v;
-        }
-        if (!ok) {
-            fprintf(stderr, "meshtopo-bench rtt: %s: bad value '%s'\n", a, v);
-            return 2;
-        }
-        if (takes_value) i++;
-    }
+    uint32_t seconds = 2;
+    mt__args args;
+    int read =
+        mt__bench_args_read(program, option_table, sizeof option_table / sizeof option_table[0],
+                            argc - 1, argv + 1, &args);
+    if (read != 0) return read;
+    bool ok =
+        mt__bench_arg_u32(&args, program, "grid", 2, 2000, &o->grid, NULL) &&
+        mt__bench_arg_u32(&args, program, "round-trips", 10, 1000000, &o->round_trips, NULL) &&
+        mt__bench_arg_u32(&args, program, "reps", 1, MT__RTT_MAX_REPS, &o->reps, NULL) &&
+        mt__bench_arg_u32(&args, program, "seconds", 1, 600, &seconds, NULL) &&
+        mt__bench_arg_u32(&args, program, "clients", 1, MT__RTT_MAX_CLIENTS, &o->clients, NULL) &&
+        mt__bench_arg_u32(&args, program, "batch", 1, 4096, &o->batch, NULL) &&
+        mt__bench_arg_u32(&args, program, "window", 1, 256, &o->window, NULL) &&
+        mt__bench_arg_u64(&args, program, "seed", 0, UINT32_MAX, &o->seed, NULL);
+    o->seconds = seconds;
+    o->quick = mt__args_flag(&args, "quick");
+    o->daemon_path = mt__args_value(&args, "daemon");
+    o->csv_path = mt__args_value(&args, "csv");
+    o->md_path = mt__args_value(&args, "markdown");
+    mt__args_free(&args);
+    if (!ok) return 2;
     if (o->quick) {
         o->grid = o->grid < 30 ? o->grid : 30;
         o->round_trips = 200;
@@ -324,14 +299,7 @@ int mt__bench_rtt_command(int argc, char **argv)
 {
     mt__rtt_options o;
     int parsed = parse_options(argc, argv, &o);
-    if (parsed == 1) {
-        usage(stdout);
-        return 0;
-    }
-    if (parsed != 0) {
-        usage(stderr);
-        return 2;
-    }
+    if (parsed != 0) return mt__bench_usage_exit(parsed, usage);
     char err[512] = "";
     /* First, before any thread exists: the private network. */
     int net = mt__rtt_enter_private_network(err, sizeof err);

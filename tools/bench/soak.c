@@ -91,29 +91,32 @@ static void usage(FILE *to)
 
 static int parse_options(int argc, char **argv, options *o)
 {
+    /* The options usage() describes. */
+    static const mt__option option_table[] = {
+        {"seconds", "S", NULL, false},
+        {"clients", "N", NULL, false},
+        {"daemon", "PATH", NULL, false},
+    };
+    static const char program[] = "meshtopo-bench soak";
     o->seconds = 600;
     o->clients = 3;
-    o->daemon_path = NULL;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) return 1;
-        if (i + 1 >= argc) return -1;
-        const char *v = argv[++i];
+    mt__args args;
+    int read =
+        mt__bench_args_read(program, option_table, sizeof option_table / sizeof option_table[0],
+                            argc - 1, argv + 1, &args);
+    if (read != 0) return read;
+    bool ok = mt__bench_arg_u32(&args, program, "clients", 1, MAX_CLIENTS, &o->clients, NULL);
+    const char *seconds = mt__args_value(&args, "seconds");
+    if (ok && seconds) {
         char *end = NULL;
-        if (strcmp(a, "--seconds") == 0) {
-            o->seconds = strtod(v, &end);
-            if (*end || o->seconds < 20 || o->seconds > 86400) return -1;
-        } else if (strcmp(a, "--clients") == 0) {
-            unsigned long n = strtoul(v, &end, 10);
-            if (*end || n < 1 || n > MAX_CLIENTS) return -1;
-            o->clients = (uint32_t)n;
-        } else if (strcmp(a, "--daemon") == 0) {
-            o->daemon_path = v;
-        } else {
-            return -1;
-        }
+        o->seconds = strtod(seconds, &end);
+        ok = end != seconds && *end == '\0' && o->seconds >= 20 && o->seconds <= 86400;
+        if (!ok)
+            fprintf(stderr, "%s: --seconds: bad value '%s' (from 20 to 86400)\n", program, seconds);
     }
-    return 0;
+    o->daemon_path = mt__args_value(&args, "daemon");
+    mt__args_free(&args);
+    return ok ? 0 : 2;
 }
 
 static void push(samples *s, double v)
@@ -364,10 +367,7 @@ int mt__bench_soak_command(int argc, char **argv)
 {
     options o;
     int parsed = parse_options(argc, argv, &o);
-    if (parsed != 0) {
-        usage(parsed == 1 ? stdout : stderr);
-        return parsed == 1 ? 0 : 2;
-    }
+    if (parsed != 0) return mt__bench_usage_exit(parsed, usage);
     char err[512] = "";
     int net = mt__rtt_enter_private_network(err, sizeof err);
     if (net != 0) {
