@@ -50,4 +50,11 @@ int map_check_against_list(const mt_map *map, const mt_face_list *list, const ch
  * against the map's translation functions). Returns the differences. */
 int map_check_full(const mt_map *map, const char *what);
 
+/* map_queries.c: `samples` vertices (rings, the faces of each edge at them
+ * and of one other pair) and `samples` faces (neighbours), every one when
+ * there are fewer, picked from `seed`, asked of the map and of a full build
+ * of its union; every answer must be the build's in map ids. Returns the
+ * number of failures (also recorded with mt_test_fail). */
+int map_check_queries(const mt_map *map, const char *what, uint64_t seed, uint32_t samples);
+
 #endif

@@ -6,7 +6,8 @@
  * corpus meshes split into blocks with duplicated seams (nvblox) or
  * per-face vertices (voxblox). After every operation the map's counts and
  * histograms must equal those of mt_mesh_build of mt_map_face_list (also
- * validated) and of the union of the blocks welded by mt_face_list_weld;
+ * validated) and of the union of the blocks welded by mt_face_list_weld,
+ * and a sample of rings, face neighbours and edge faces the build's;
  * deltas, id stability and translation are checked along the way. */
 #include <math.h>
 #include <stdarg.h>
@@ -20,6 +21,9 @@
 #include "meshtopo/generate.h"
 #include "meshtopo/io.h"
 #include "meshtopo/map.h"
+
+/* Vertices and faces whose queries are compared after each operation. */
+#define QUERY_SAMPLES 12
 
 /* ---- the model: what the map must hold ---------------------------------- */
 
@@ -205,6 +209,8 @@ static void check_equivalence(run *r)
     char what[160];
     snprintf(what, sizeof what, "%s op %u (map face list)", r->name, r->op);
     map_check_full(r->map, what);
+    snprintf(what, sizeof what, "%s op %u (queries)", r->name, r->op);
+    map_check_queries(r->map, what, r->rng + r->op, QUERY_SAMPLES);
     mt_face_list ref;
     reference_list(r, &ref);
     snprintf(what, sizeof what, "%s op %u (welded union)", r->name, r->op);

@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "meshtopo/face_list.h"
+#include "meshtopo/query.h"
 #include "meshtopo/report.h"
 #include "meshtopo/status.h"
 
@@ -322,6 +323,33 @@ mt_status mt_map_face_list(const mt_map *map, mt_face_list *out, uint32_t *out_v
 /* Bytes the map holds (blocks, per-element arrays, hash tables, delta
  * buffers), capacity included. */
 size_t mt_map_memory_bytes(const mt_map *map);
+
+/* ---- Adjacency queries ------------------------------------------------------ */
+
+/* The queries of meshtopo/query.h on the map, in map ids: each gives what
+ * that query gives on a full mt_mesh_build of mt_map_face_list's union,
+ * translated to map ids (neighbours, faces and fans in the same order, the
+ * same statuses). Each builds the map's faces at the element's vertices on
+ * the calling thread: O(the size of those faces) expected time and memory,
+ * independent of the map's size, allocated and freed by the call. The map is not changed; calls may
+ * run concurrently with each other, not with an update. Besides the statuses of the mesh query:
+ * MT_ERR_INVALID_ARG for NULL arguments, MT_ERR_OUT_OF_RANGE for an id that is not a live vertex
+ * (face), MT_ERR_NOMEM; diag (NULL-safe) says which. */
+
+/* mt_vert_ring of map vertex `vert` (a live vertex in no face has no fans). */
+mt_status mt_map_vert_ring(const mt_map *map, uint32_t vert, mt_ring *ring, mt_diag *diag);
+
+/* mt_face_neighbors of map face `face`; a face the map keeps but a build
+ * rejects (an out-of-range entry, a repeated vertex) gives MT_ERR_NOT_FOUND. */
+mt_status mt_map_face_neighbors(const mt_map *map, uint32_t face, uint32_t *out_faces,
+                                size_t faces_capacity, uint32_t *out_offsets,
+                                size_t offsets_capacity, size_t *out_num_faces,
+                                size_t *out_num_edges, mt_diag *diag);
+
+/* mt_edge_faces of map vertices a and b (MT_ERR_NOT_FOUND: no valid face
+ * has the side {a, b}). */
+mt_status mt_map_edge_faces(const mt_map *map, uint32_t a, uint32_t b, uint32_t *out_faces,
+                            size_t capacity, size_t *out_count, mt_diag *diag);
 
 /* ---- Checking the map --------------------------------------------------- */
 
