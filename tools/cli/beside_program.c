@@ -7,7 +7,7 @@
 
 #include "cli.h"
 
-bool mt_cli_beside_program(const char *relative, char *out, size_t size)
+bool cli_beside_program(const char *relative, char *out, size_t size)
 {
     char exe[4096];
     ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);

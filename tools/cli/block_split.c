@@ -45,11 +45,11 @@ static mt_map_key cell_of(const mt_face_list *list, const uint32_t *idx, uint32_
         for (int a = 0; a < 3; a++) c[a] += list->positions[3 * (size_t)idx[i] + a];
         k++;
     }
-    if (k == 0) return MT_CLI_BLOCK_OUTLIER_KEY;
+    if (k == 0) return CLI_BLOCK_OUTLIER_KEY;
     int32_t q[3];
     for (int a = 0; a < 3; a++) {
         const double x = floor(c[a] / k / size);
-        if (!isfinite(x) || x < -CELL_LIMIT || x > CELL_LIMIT) return MT_CLI_BLOCK_OUTLIER_KEY;
+        if (!isfinite(x) || x < -CELL_LIMIT || x > CELL_LIMIT) return CLI_BLOCK_OUTLIER_KEY;
         q[a] = (int32_t)x;
     }
     return (mt_map_key){q[0], q[1], q[2]};
@@ -65,7 +65,7 @@ static mt_status fail(mt_diag *diag, mt_status st, const char *text)
     return st;
 }
 
-void mt_cli_block_set_free(mt_cli_block_set *set)
+void cli_block_set_free(cli_block_set *set)
 {
     if (!set) return;
     for (size_t b = 0; b < set->count; b++) {
@@ -80,7 +80,7 @@ void mt_cli_block_set_free(mt_cli_block_set *set)
  * vertex scratch; `mark` is unique to this block. */
 static mt_status fill_block(const mt_face_list *list, const uint64_t *first, const item *items,
                             size_t n, uint32_t *stamp, uint32_t *local, uint32_t mark,
-                            mt_cli_block *out, mt_diag *diag)
+                            cli_block *out, mt_diag *diag)
 {
     uint32_t nf = 0, nv = 0;
     uint64_t ni = 0;
@@ -141,8 +141,7 @@ static mt_status fill_block(const mt_face_list *list, const uint64_t *first, con
     return MT_OK;
 }
 
-mt_status mt_cli_blocks_split(const mt_face_list *list, double size, mt_cli_block_set *out,
-                              mt_diag *diag)
+mt_status cli_blocks_split(const mt_face_list *list, double size, cli_block_set *out, mt_diag *diag)
 {
     memset(out, 0, sizeof *out);
     if (!(size > 0) || !isfinite(size))
@@ -189,7 +188,7 @@ mt_status mt_cli_blocks_split(const mt_face_list *list, double size, mt_cli_bloc
         a = b;
     }
 done:
-    if (st != MT_OK) mt_cli_block_set_free(out);
+    if (st != MT_OK) cli_block_set_free(out);
     free(first);
     free(used);
     free(stamp);

@@ -18,18 +18,18 @@
  * than 2^30 cells from the origin. Such faces all go to this one block, so
  * a vertex with a NaN or infinite coordinate is never duplicated (the map
  * never welds those, as mt_face_list_weld does not). */
-#define MT_CLI_BLOCK_OUTLIER_KEY ((mt_map_key){INT32_MIN, INT32_MIN, INT32_MIN})
+#define CLI_BLOCK_OUTLIER_KEY ((mt_map_key){INT32_MIN, INT32_MIN, INT32_MIN})
 
-typedef struct mt_cli_block {
+typedef struct cli_block {
     mt_map_key key;
     mt_face_list list; /* malloc'd; faces in the file's order */
     uint32_t *source;  /* [list.num_verts] the file vertex each block vertex copies */
-} mt_cli_block;
+} cli_block;
 
-typedef struct mt_cli_block_set {
-    mt_cli_block *blocks; /* ascending key (x, then y, then z) */
+typedef struct cli_block_set {
+    cli_block *blocks; /* ascending key (x, then y, then z) */
     size_t count;
-} mt_cli_block_set;
+} cli_block_set;
 
 /* Splits `list` (positions required when it has vertices) into blocks of
  * side `size` (finite, > 0) by face centroid over the in-range corners.
@@ -39,9 +39,9 @@ typedef struct mt_cli_block_set {
  * out-of-range index stays out of range: UINT32_MAX - r, r its rank among
  * the face's distinct out-of-range values, so equal values stay equal.
  * O((F + V) log(F + V)). MT_ERR_INVALID_ARG (no positions, bad size),
- * MT_ERR_NOMEM; *out is then empty. Free with mt_cli_block_set_free. */
-mt_status mt_cli_blocks_split(const mt_face_list *list, double size, mt_cli_block_set *out,
-                              mt_diag *diag);
-void mt_cli_block_set_free(mt_cli_block_set *set);
+ * MT_ERR_NOMEM; *out is then empty. Free with cli_block_set_free. */
+mt_status cli_blocks_split(const mt_face_list *list, double size, cli_block_set *out,
+                           mt_diag *diag);
+void cli_block_set_free(cli_block_set *set);
 
 #endif

@@ -8,7 +8,7 @@
 
 #include "cli.h"
 
-void mt_cli_error(const char *command, const char *fmt, ...)
+void cli_error(const char *command, const char *fmt, ...)
 {
     va_list ap;
     fprintf(stderr, "meshtopo %s: ", command);
@@ -18,15 +18,15 @@ void mt_cli_error(const char *command, const char *fmt, ...)
     fputc('\n', stderr);
 }
 
-int mt_cli_finish_output(const char *command, int code, int failure_code)
+int cli_finish_output(const char *command, int code, int failure_code)
 {
-    if (fflush(stdout) == 0 || code != MT_CLI_EXIT_OK) return code;
-    mt_cli_error(command, "cannot write the output");
+    if (fflush(stdout) == 0 || code != CLI_EXIT_OK) return code;
+    cli_error(command, "cannot write the output");
     return failure_code;
 }
 
-static const mt_cli_option *option_find(const mt_cli_command *cmd, const char *name,
-                                        size_t name_len, size_t *out_index)
+static const cli_option *option_find(const cli_command *cmd, const char *name, size_t name_len,
+                                     size_t *out_index)
 {
     for (size_t i = 0; i < cmd->num_options; i++) {
         const char *o = cmd->options[i].name;
@@ -38,8 +38,7 @@ static const mt_cli_option *option_find(const mt_cli_command *cmd, const char *n
     return NULL;
 }
 
-int mt_cli_args_parse(const mt_cli_command *cmd, int argc, char **argv, mt_cli_args *out,
-                      bool *out_help)
+int cli_args_parse(const cli_command *cmd, int argc, char **argv, cli_args *out, bool *out_help)
 {
     memset(out, 0, sizeof *out);
     *out_help = false;
@@ -50,9 +49,9 @@ int mt_cli_args_parse(const mt_cli_command *cmd, int argc, char **argv, mt_cli_a
     out->values = calloc(cmd->num_options + 1, sizeof *out->values);
     out->positionals = calloc((size_t)argc + 1, sizeof *out->positionals);
     if (!out->values || !out->positionals) {
-        mt_cli_error(cmd->name, "out of memory");
-        mt_cli_args_free(out);
-        return MT_CLI_EXIT_USAGE;
+        cli_error(cmd->name, "out of memory");
+        cli_args_free(out);
+        return CLI_EXIT_USAGE;
     }
     bool options_done = false;
     for (int i = 0; i < argc; i++) {
@@ -70,25 +69,25 @@ int mt_cli_args_parse(const mt_cli_command *cmd, int argc, char **argv, mt_cli_a
             continue;
         }
         if (arg[1] != '-') {
-            mt_cli_error(cmd->name, "unknown option '%s'", arg);
-            mt_cli_args_free(out);
-            return MT_CLI_EXIT_USAGE;
+            cli_error(cmd->name, "unknown option '%s'", arg);
+            cli_args_free(out);
+            return CLI_EXIT_USAGE;
         }
         const char *name = arg + 2;
         const char *eq = strchr(name, '=');
         size_t name_len = eq ? (size_t)(eq - name) : strlen(name);
         size_t index = 0;
-        const mt_cli_option *opt = option_find(cmd, name, name_len, &index);
+        const cli_option *opt = option_find(cmd, name, name_len, &index);
         if (!opt) {
-            mt_cli_error(cmd->name, "unknown option '--%.*s'", (int)name_len, name);
-            mt_cli_args_free(out);
-            return MT_CLI_EXIT_USAGE;
+            cli_error(cmd->name, "unknown option '--%.*s'", (int)name_len, name);
+            cli_args_free(out);
+            return CLI_EXIT_USAGE;
         }
         if (!opt->value_name) {
             if (eq) {
-                mt_cli_error(cmd->name, "option '--%s' takes no value", opt->name);
-                mt_cli_args_free(out);
-                return MT_CLI_EXIT_USAGE;
+                cli_error(cmd->name, "option '--%s' takes no value", opt->name);
+                cli_args_free(out);
+                return CLI_EXIT_USAGE;
             }
             out->values[index] = "";
         } else if (eq) {
@@ -96,26 +95,26 @@ int mt_cli_args_parse(const mt_cli_command *cmd, int argc, char **argv, mt_cli_a
         } else if (i + 1 < argc) {
             out->values[index] = argv[++i];
         } else {
-            mt_cli_error(cmd->name, "option '--%s' needs a value (%s)", opt->name, opt->value_name);
-            mt_cli_args_free(out);
-            return MT_CLI_EXIT_USAGE;
+            cli_error(cmd->name, "option '--%s' needs a value (%s)", opt->name, opt->value_name);
+            cli_args_free(out);
+            return CLI_EXIT_USAGE;
         }
     }
-    if (*out_help) return MT_CLI_EXIT_OK;
+    if (*out_help) return CLI_EXIT_OK;
     if (out->num_positionals < cmd->min_positionals) {
-        mt_cli_error(cmd->name, "missing argument");
-        mt_cli_args_free(out);
-        return MT_CLI_EXIT_USAGE;
+        cli_error(cmd->name, "missing argument");
+        cli_args_free(out);
+        return CLI_EXIT_USAGE;
     }
     if (out->num_positionals > cmd->max_positionals) {
-        mt_cli_error(cmd->name, "unexpected argument '%s'", out->positionals[cmd->max_positionals]);
-        mt_cli_args_free(out);
-        return MT_CLI_EXIT_USAGE;
+        cli_error(cmd->name, "unexpected argument '%s'", out->positionals[cmd->max_positionals]);
+        cli_args_free(out);
+        return CLI_EXIT_USAGE;
     }
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
-void mt_cli_args_free(mt_cli_args *args)
+void cli_args_free(cli_args *args)
 {
     free(args->values);
     free(args->positionals);
@@ -124,26 +123,26 @@ void mt_cli_args_free(mt_cli_args *args)
     args->num_positionals = 0;
 }
 
-const char *mt_cli_arg(const mt_cli_args *args, const char *name)
+const char *cli_arg(const cli_args *args, const char *name)
 {
     for (size_t i = 0; i < args->num_options; i++)
         if (strcmp(args->options[i].name, name) == 0) return args->values[i];
     return NULL;
 }
 
-bool mt_cli_flag(const mt_cli_args *args, const char *name)
+bool cli_flag(const cli_args *args, const char *name)
 {
-    return mt_cli_arg(args, name) != NULL;
+    return cli_arg(args, name) != NULL;
 }
 
-void mt_cli_print_command_help(const mt_cli_command *cmd, FILE *out)
+void cli_print_command_help(const cli_command *cmd, FILE *out)
 {
     fprintf(out, "usage: meshtopo %s %s\n\n%s\n", cmd->name, cmd->synopsis, cmd->summary);
     if (cmd->description && cmd->description[0]) fprintf(out, "\n%s", cmd->description);
     if (cmd->num_options == 0) return;
     fprintf(out, "\noptions:\n");
     for (size_t i = 0; i < cmd->num_options; i++) {
-        const mt_cli_option *o = &cmd->options[i];
+        const cli_option *o = &cmd->options[i];
         char left[64];
         snprintf(left, sizeof left, "--%s%s%s", o->name, o->value_name ? " " : "",
                  o->value_name ? o->value_name : "");

@@ -21,28 +21,28 @@ enum { MODULE_PATH_MAX = 4096 };
 
 static const char *const module_commands[] = {"archive", "replay", "render"};
 
-size_t mt_cli_module_count(void)
+size_t cli_module_count(void)
 {
     return sizeof module_commands / sizeof module_commands[0];
 }
 
-const char *mt_cli_module_name(size_t i)
+const char *cli_module_name(size_t i)
 {
-    return i < mt_cli_module_count() ? module_commands[i] : NULL;
+    return i < cli_module_count() ? module_commands[i] : NULL;
 }
 
-const mt_cli_command *mt_cli_module_command(const char *name, char *err, size_t err_size)
+const cli_command *cli_module_command(const char *name, char *err, size_t err_size)
 {
     size_t i = 0;
-    while (i < mt_cli_module_count() && strcmp(module_commands[i], name) != 0) i++;
-    if (i == mt_cli_module_count()) {
+    while (i < cli_module_count() && strcmp(module_commands[i], name) != 0) i++;
+    if (i == cli_module_count()) {
         snprintf(err, err_size, "'%s' is not a command of the archive module", name);
         return NULL;
     }
     static void *module;
     char path[MODULE_PATH_MAX];
     if (!module) {
-        if (!mt_cli_beside_program(MESHTOPO_CLI_MODULE_FROM_BINDIR, path, sizeof path)) {
+        if (!cli_beside_program(MESHTOPO_CLI_MODULE_FROM_BINDIR, path, sizeof path)) {
             snprintf(err, err_size, "cannot find this program's directory (/proc/self/exe)");
             return NULL;
         }
@@ -54,8 +54,8 @@ const mt_cli_command *mt_cli_module_command(const char *name, char *err, size_t 
         }
     }
     char symbol[64];
-    snprintf(symbol, sizeof symbol, "mt_cli_cmd_%s", name);
-    const mt_cli_command *cmd = dlsym(module, symbol);
+    snprintf(symbol, sizeof symbol, "cli_cmd_%s", name);
+    const cli_command *cmd = dlsym(module, symbol);
     if (!cmd) snprintf(err, err_size, "the archive module has no command '%s'", name);
     return cmd;
 }

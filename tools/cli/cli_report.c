@@ -1,4 +1,4 @@
-/* meshtopod's topology_t as an mt_cli_report for every printer of the CLI
+/* meshtopod's topology_t as an cli_report for every printer of the CLI
  * (see cli_report.h): the client library converts the report
  * (mt_client_report_from_topology checks what came from the network), this
  * adds the provenance. */
@@ -8,8 +8,7 @@
 #include "cli.h"
 #include "cli_report.h"
 
-mt_status mt_cli_report_from_topology(const meshtopo_topology_t *t, mt_cli_report *out,
-                                      mt_diag *diag)
+mt_status cli_report_from_topology(const meshtopo_topology_t *t, cli_report *out, mt_diag *diag)
 {
     memset(out, 0, sizeof *out);
     mt_client_report converted;
@@ -28,19 +27,19 @@ mt_status mt_cli_report_from_topology(const meshtopo_topology_t *t, mt_cli_repor
     return MT_OK;
 }
 
-int mt_cli_report_take(const char *command, const meshtopo_topology_t *t, mt_cli_report *out)
+int cli_report_take(const char *command, const meshtopo_topology_t *t, cli_report *out)
 {
     mt_diag diag;
-    mt_status st = mt_cli_report_from_topology(t, out, &diag);
-    if (st == MT_OK) return MT_CLI_EXIT_OK;
-    mt_cli_error(command, "mesh '%s': unusable report from meshtopod: %s", t->mesh_id,
-                 diag.message[0] ? diag.message : mt_strerror(st));
-    return MT_CLI_EXIT_REFUSED;
+    mt_status st = cli_report_from_topology(t, out, &diag);
+    if (st == MT_OK) return CLI_EXIT_OK;
+    cli_error(command, "mesh '%s': unusable report from meshtopod: %s", t->mesh_id,
+              diag.message[0] ? diag.message : mt_strerror(st));
+    return CLI_EXIT_REFUSED;
 }
 
-mt_cli_report mt_cli_report_local(const mt_report *r)
+cli_report cli_report_local(const mt_report *r)
 {
-    mt_cli_report out;
+    cli_report out;
     memset(&out, 0, sizeof out);
     out.report = *r;
     out.num_loop_lengths = r->boundary_loops;
@@ -49,7 +48,7 @@ mt_cli_report mt_cli_report_local(const mt_report *r)
     return out;
 }
 
-void mt_cli_report_free(mt_cli_report *report)
+void cli_report_free(cli_report *report)
 {
     if (!report) return;
     if (report->owned) {

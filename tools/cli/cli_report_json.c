@@ -6,7 +6,7 @@
 #include "meshtopo/report_json.h"
 #include "remote.h"
 
-bool mt_cli_report_write_json(mt_json *j, const mt_cli_report *cr)
+bool cli_report_write_json(mt_json *j, const cli_report *cr)
 {
     const mt_report *r = &cr->report;
     char hash[24];
@@ -18,7 +18,7 @@ bool mt_cli_report_write_json(mt_json *j, const mt_cli_report *cr)
     mt_json_key(j, "source");
     mt_json_string(j, cr->source);
     mt_json_key(j, "content_hash");
-    mt_json_string(j, mt_cli_hash_text(cr->content_hash, hash, sizeof hash));
+    mt_json_string(j, cli_hash_text(cr->content_hash, hash, sizeof hash));
     mt_json_key(j, "build_duration_us");
     mt_json_int(j, cr->build_duration_us);
     bool ok = mt_report_json_write_summary(j, r, cr->num_loop_lengths, cr->num_components,

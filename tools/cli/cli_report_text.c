@@ -1,6 +1,6 @@
 /* The readable forms of a report from meshtopod (an ack, a REPORT reply, a
  * TOPOLOGY message): the summary `send` and `query report` print, and the
- * one line per build of `watch`. Both read the converted mt_cli_report
+ * one line per build of `watch`. Both read the converted cli_report
  * (cli_report.c); numbers print as the daemon sent them. */
 #include <inttypes.h>
 
@@ -17,13 +17,13 @@ static const char *defect_name(uint32_t kind)
     return kind < MT_DEFECT_KIND_COUNT ? mt_defect_key((mt_defect_kind)kind) : "unknown";
 }
 
-void mt_cli_report_print_text(const mt_cli_report *cr, FILE *out)
+void cli_report_print_text(const cli_report *cr, FILE *out)
 {
     const mt_report *r = &cr->report;
     char hash[24];
     fprintf(out, "mesh %s version %" PRId32 " (source %s, content hash %s, built in %.3f ms)\n",
             cr->mesh_id, cr->version, cr->source,
-            mt_cli_hash_text(cr->content_hash, hash, sizeof hash),
+            cli_hash_text(cr->content_hash, hash, sizeof hash),
             (double)cr->build_duration_us / 1000.0);
     fprintf(out,
             "counts: V %" PRIu32 ", F %" PRIu32 " (%" PRIu32 " valid), E %" PRIu64
@@ -66,7 +66,7 @@ void mt_cli_report_print_text(const mt_cli_report *cr, FILE *out)
     fputc('\n', out);
 }
 
-void mt_cli_report_print_line(const mt_cli_report *cr, const char *channel, FILE *out)
+void cli_report_print_line(const cli_report *cr, const char *channel, FILE *out)
 {
     const mt_report *r = &cr->report;
     fprintf(out,

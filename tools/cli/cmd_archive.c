@@ -7,7 +7,7 @@
 
 #include "cmd_archive.h"
 
-static const mt_cli_option options[] = {
+static const cli_option options[] = {
     {"json", NULL, "ls, show, verify: print one JSON object"},
     {"version", "N", "show, export, rm: this version (default: the highest archived)"},
     {"all", NULL, "rm: remove every version of the mesh"},
@@ -18,19 +18,19 @@ static const mt_cli_option options[] = {
 typedef struct subcommand {
     const char *name;
     size_t min_args, max_args; /* after the subcommand's name */
-    int (*run)(const mt_cli_args *args);
+    int (*run)(const cli_args *args);
     bool json, version, all, self_intersections; /* which options apply */
 } subcommand;
 
 static const subcommand subcommands[] = {
-    {"ls", 1, 1, mt_cli_archive_ls, true, false, false, false},
-    {"show", 2, 2, mt_cli_archive_show, true, true, false, false},
-    {"verify", 1, 1, mt_cli_archive_verify, true, false, false, false},
-    {"export", 3, 3, mt_cli_archive_export, false, true, false, true},
-    {"rm", 2, 2, mt_cli_archive_rm, false, true, true, false},
+    {"ls", 1, 1, cli_archive_ls, true, false, false, false},
+    {"show", 2, 2, cli_archive_show, true, true, false, false},
+    {"verify", 1, 1, cli_archive_verify, true, false, false, false},
+    {"export", 3, 3, cli_archive_export, false, true, false, true},
+    {"rm", 2, 2, cli_archive_rm, false, true, true, false},
 };
 
-int mt_cli_archive_open(const char *dir, bool read_only, mt_archive **out)
+int cli_archive_open(const char *dir, bool read_only, mt_archive **out)
 {
     mt_archive_options open_options = {.read_only = read_only};
     mt_diag diag;
@@ -38,57 +38,57 @@ int mt_cli_archive_open(const char *dir, bool read_only, mt_archive **out)
     if (st == MT_OK) {
         /* Check content as meshtopod does on load. */
         mt_archive_set_content_hash(*out, mt_archive_content_hash, NULL);
-        return MT_CLI_EXIT_OK;
+        return CLI_EXIT_OK;
     }
-    mt_cli_error("archive", "%s", diag.message);
-    return MT_CLI_EXIT_READ;
+    cli_error("archive", "%s", diag.message);
+    return CLI_EXIT_READ;
 }
 
-int mt_cli_archive_version(const mt_cli_args *args, uint32_t *out)
+int cli_archive_version(const cli_args *args, uint32_t *out)
 {
     *out = 0;
-    const char *text = mt_cli_arg(args, "version");
-    if (!text) return MT_CLI_EXIT_OK;
+    const char *text = cli_arg(args, "version");
+    if (!text) return CLI_EXIT_OK;
     char *end = NULL;
     unsigned long long v = text[0] >= '0' && text[0] <= '9' ? strtoull(text, &end, 10) : 0;
     if (!end || *end != '\0' || v == 0 || v > UINT32_MAX) {
-        mt_cli_error("archive", "--version: expected a version number (1 or more), got '%s'", text);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("archive", "--version: expected a version number (1 or more), got '%s'", text);
+        return CLI_EXIT_USAGE;
     }
     *out = (uint32_t)v;
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
-static int run_archive(const mt_cli_args *args)
+static int run_archive(const cli_args *args)
 {
     const char *name = args->positionals[0];
     const subcommand *sub = NULL;
     for (size_t i = 0; i < sizeof subcommands / sizeof subcommands[0]; i++)
         if (strcmp(subcommands[i].name, name) == 0) sub = &subcommands[i];
     if (!sub) {
-        mt_cli_error("archive", "unknown subcommand '%s' (ls, show, verify, export, rm)", name);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("archive", "unknown subcommand '%s' (ls, show, verify, export, rm)", name);
+        return CLI_EXIT_USAGE;
     }
     size_t given = args->num_positionals - 1;
     if (given < sub->min_args || given > sub->max_args) {
-        mt_cli_error("archive", "%s takes %zu argument%s, got %zu (see meshtopo help archive)",
-                     sub->name, sub->min_args, sub->min_args == 1 ? "" : "s", given);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("archive", "%s takes %zu argument%s, got %zu (see meshtopo help archive)",
+                  sub->name, sub->min_args, sub->min_args == 1 ? "" : "s", given);
+        return CLI_EXIT_USAGE;
     }
-    const char *bad = (!sub->json && mt_cli_flag(args, "json"))        ? "--json"
-                      : (!sub->version && mt_cli_arg(args, "version")) ? "--version"
-                      : (!sub->all && mt_cli_flag(args, "all"))        ? "--all"
-                      : (!sub->self_intersections && mt_cli_flag(args, "self-intersections"))
+    const char *bad = (!sub->json && cli_flag(args, "json"))        ? "--json"
+                      : (!sub->version && cli_arg(args, "version")) ? "--version"
+                      : (!sub->all && cli_flag(args, "all"))        ? "--all"
+                      : (!sub->self_intersections && cli_flag(args, "self-intersections"))
                           ? "--self-intersections"
                           : NULL;
     if (bad) {
-        mt_cli_error("archive", "%s does not apply to '%s'", bad, sub->name);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("archive", "%s does not apply to '%s'", bad, sub->name);
+        return CLI_EXIT_USAGE;
     }
     return sub->run(args);
 }
 
-const mt_cli_command mt_cli_cmd_archive = {
+const cli_command cli_cmd_archive = {
     .name = "archive",
     .summary = "list, show, verify, export or remove archived mesh versions (offline)",
     .synopsis =

@@ -10,19 +10,19 @@
 #include "cli.h"
 #include "meshtopo/archive.h"
 
-/* Opens DIR (must exist). Returns MT_CLI_EXIT_OK or MT_CLI_EXIT_READ after
+/* Opens DIR (must exist). Returns CLI_EXIT_OK or CLI_EXIT_READ after
  * printing the reason. */
-int mt_cli_archive_open(const char *dir, bool read_only, mt_archive **out);
+int cli_archive_open(const char *dir, bool read_only, mt_archive **out);
 
-/* --version N (N >= 1) into *out; 0 when absent. MT_CLI_EXIT_OK or
- * MT_CLI_EXIT_USAGE after printing the problem. */
-int mt_cli_archive_version(const mt_cli_args *args, uint32_t *out);
+/* --version N (N >= 1) into *out; 0 when absent. CLI_EXIT_OK or
+ * CLI_EXIT_USAGE after printing the problem. */
+int cli_archive_version(const cli_args *args, uint32_t *out);
 
 /* The subcommands; args->positionals[0] is the subcommand's name. */
-int mt_cli_archive_ls(const mt_cli_args *args);
-int mt_cli_archive_show(const mt_cli_args *args);
-int mt_cli_archive_verify(const mt_cli_args *args);
-int mt_cli_archive_export(const mt_cli_args *args);
-int mt_cli_archive_rm(const mt_cli_args *args);
+int cli_archive_ls(const cli_args *args);
+int cli_archive_show(const cli_args *args);
+int cli_archive_verify(const cli_args *args);
+int cli_archive_export(const cli_args *args);
+int cli_archive_rm(const cli_args *args);
 
 #endif

@@ -32,7 +32,7 @@ static bool export_kind_of(const char *out, export_kind *kind)
     mt_format format = mt_format_from_path(out);
     if (has_suffix(out, ".vtu"))
         *kind = EXPORT_VTU;
-    else if (mt_cli_is_archive_path(out))
+    else if (cli_is_archive_path(out))
         *kind = EXPORT_HDF;
     else if (format == MT_FORMAT_PLY_BINARY_LE || format == MT_FORMAT_PLY_ASCII ||
              format == MT_FORMAT_PLY_BINARY_BE)
@@ -62,7 +62,7 @@ static mt_status write_colored_ply(const char *out, const mt_face_list *list, co
     uint8_t *vertex = malloc(3 * (size_t)list->num_verts + 1);
     uint8_t *face = malloc(3 * (size_t)list->num_faces + 1);
     if (st == MT_OK &&
-        (!vertex || !face || !mt_cli_defect_colors(list, mesh, pairs, num_pairs, vertex, face)))
+        (!vertex || !face || !cli_defect_colors(list, mesh, pairs, num_pairs, vertex, face)))
         st = MT_ERR_NOMEM;
     if (st == MT_OK) {
         mt_write_options options = {.vertex_colors = vertex, .face_colors = face};
@@ -82,43 +82,43 @@ static int write_vtk(const char *out, export_kind kind, const mt_archive_record 
                      const mt_mesh *mesh, bool self_intersections)
 {
     mt_archive_meta meta = {rec->mesh_id, rec->version, rec->utime, rec->source, rec->content_hash};
-    mt_cli_temp_archive temp;
+    cli_temp_archive temp;
     int code =
-        mt_cli_temp_archive_write("archive", &rec->faces, mesh, &meta, self_intersections, &temp);
-    if (code != MT_CLI_EXIT_OK) return code;
+        cli_temp_archive_write("archive", &rec->faces, mesh, &meta, self_intersections, &temp);
+    if (code != CLI_EXIT_OK) return code;
     if (kind == EXPORT_HDF) {
-        code = mt_cli_temp_archive_copy("archive", &temp, out);
+        code = cli_temp_archive_copy("archive", &temp, out);
     } else {
         const char *script_args[] = {temp.path, out, NULL};
-        code = mt_cli_vtk_script_run("archive", "export_vtu.py", script_args);
+        code = cli_vtk_script_run("archive", "export_vtu.py", script_args);
     }
-    mt_cli_temp_archive_remove(&temp);
+    cli_temp_archive_remove(&temp);
     return code;
 }
 
-int mt_cli_archive_export(const mt_cli_args *args)
+int cli_archive_export(const cli_args *args)
 {
     const char *dir = args->positionals[1], *id = args->positionals[2];
     const char *out = args->positionals[3];
-    const bool self_intersections = mt_cli_flag(args, "self-intersections");
+    const bool self_intersections = cli_flag(args, "self-intersections");
     uint32_t version = 0;
-    int code = mt_cli_archive_version(args, &version);
-    if (code != MT_CLI_EXIT_OK) return code;
+    int code = cli_archive_version(args, &version);
+    if (code != CLI_EXIT_OK) return code;
     export_kind kind;
     if (!export_kind_of(out, &kind)) {
-        mt_cli_error("archive",
-                     "%s: the output name must end in .off, .obj, .ply (.gz too), .vtu, .hdf or "
-                     ".vtkhdf",
-                     out);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("archive",
+                  "%s: the output name must end in .off, .obj, .ply (.gz too), .vtu, .hdf or "
+                  ".vtkhdf",
+                  out);
+        return CLI_EXIT_USAGE;
     }
     if (self_intersections && kind == EXPORT_MESH) {
-        mt_cli_error("archive", "--self-intersections applies to .ply, .vtu, .hdf and .vtkhdf");
-        return MT_CLI_EXIT_USAGE;
+        cli_error("archive", "--self-intersections applies to .ply, .vtu, .hdf and .vtkhdf");
+        return CLI_EXIT_USAGE;
     }
     mt_archive *archive = NULL;
-    code = mt_cli_archive_open(dir, true, &archive);
-    if (code != MT_CLI_EXIT_OK) return code;
+    code = cli_archive_open(dir, true, &archive);
+    if (code != CLI_EXIT_OK) return code;
     mt_archive_record rec;
     mt_mesh *mesh = NULL;
     mt_diag diag;
@@ -130,18 +130,18 @@ int mt_cli_archive_export(const mt_cli_args *args)
     if (st == MT_OK && kind == EXPORT_PLY)
         st = write_colored_ply(out, &rec.faces, mesh, self_intersections, &diag);
     if (st != MT_OK) {
-        mt_cli_error("archive", "%s", diag.message);
-        code = st == MT_ERR_INVALID_ARG ? MT_CLI_EXIT_USAGE : MT_CLI_EXIT_READ;
+        cli_error("archive", "%s", diag.message);
+        code = st == MT_ERR_INVALID_ARG ? CLI_EXIT_USAGE : CLI_EXIT_READ;
     } else if (kind == EXPORT_HDF || kind == EXPORT_VTU) {
         code = write_vtk(out, kind, &rec, mesh, self_intersections);
     }
-    if (code == MT_CLI_EXIT_OK)
+    if (code == CLI_EXIT_OK)
         printf("exported mesh %s version %u (%u vertices, %u faces) to %s\n", rec.mesh_id,
                rec.version, rec.faces.num_verts, rec.faces.num_faces, out);
     mt_mesh_destroy(mesh);
     mt_archive_record_free(&rec);
     mt_archive_close(archive);
-    return mt_cli_finish_output("archive", code, MT_CLI_EXIT_READ);
+    return cli_finish_output("archive", code, CLI_EXIT_READ);
 }
 
 /* Versions of id present in the archive, ascending (malloc'ed). */
@@ -159,25 +159,25 @@ static size_t versions_of(const mt_archive *archive, const char *id, uint32_t **
     return n;
 }
 
-int mt_cli_archive_rm(const mt_cli_args *args)
+int cli_archive_rm(const cli_args *args)
 {
     const char *dir = args->positionals[1], *id = args->positionals[2];
     uint32_t version = 0;
-    int code = mt_cli_archive_version(args, &version);
-    if (code != MT_CLI_EXIT_OK) return code;
-    bool all = mt_cli_flag(args, "all");
+    int code = cli_archive_version(args, &version);
+    if (code != CLI_EXIT_OK) return code;
+    bool all = cli_flag(args, "all");
     if (all && version) {
-        mt_cli_error("archive", "rm: give --version or --all, not both");
-        return MT_CLI_EXIT_USAGE;
+        cli_error("archive", "rm: give --version or --all, not both");
+        return CLI_EXIT_USAGE;
     }
     mt_diag diag;
     if (mt_msgs_mesh_id_check(id, &diag) != MT_OK) {
-        mt_cli_error("archive", "rm: %s", diag.message);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("archive", "rm: %s", diag.message);
+        return CLI_EXIT_USAGE;
     }
     mt_archive *archive = NULL;
-    code = mt_cli_archive_open(dir, false, &archive);
-    if (code != MT_CLI_EXIT_OK) return code;
+    code = cli_archive_open(dir, false, &archive);
+    if (code != CLI_EXIT_OK) return code;
     uint32_t *versions = NULL;
     size_t n = versions_of(archive, id, &versions);
     if (version) {
@@ -190,18 +190,18 @@ int mt_cli_archive_rm(const mt_cli_args *args)
         n = 1;
     }
     if (n == 0 || !versions) {
-        mt_cli_error("archive", "rm: mesh '%s' is not archived in %s", id, dir);
-        code = MT_CLI_EXIT_READ;
+        cli_error("archive", "rm: mesh '%s' is not archived in %s", id, dir);
+        code = CLI_EXIT_READ;
     }
-    for (size_t i = 0; code == MT_CLI_EXIT_OK && i < n; i++) {
+    for (size_t i = 0; code == CLI_EXIT_OK && i < n; i++) {
         if (mt_archive_remove(archive, id, versions[i], &diag) != MT_OK) {
-            mt_cli_error("archive", "rm: %s", diag.message);
-            code = MT_CLI_EXIT_READ;
+            cli_error("archive", "rm: %s", diag.message);
+            code = CLI_EXIT_READ;
         } else {
             printf("removed mesh %s version %u\n", id, versions[i]);
         }
     }
     free(versions);
     mt_archive_close(archive);
-    return mt_cli_finish_output("archive", code, MT_CLI_EXIT_READ);
+    return cli_finish_output("archive", code, CLI_EXIT_READ);
 }

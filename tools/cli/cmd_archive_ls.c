@@ -55,7 +55,7 @@ static void print_text(const char *dir, const mt_archive_listing *l)
                " %5" PRIu32 " %5s  %-16s  %s\n",
                e->mesh_id, e->version, utime_text(e->utime, when, sizeof when), e->file_bytes,
                s->num_verts, s->num_faces, s->num_defects, s->connected_components, genus,
-               mt_cli_hash_text((int64_t)e->content_hash, hash, sizeof hash), e->source);
+               cli_hash_text((int64_t)e->content_hash, hash, sizeof hash), e->source);
     }
     for (size_t i = 0; i < l->count; i++)
         if (l->entries[i].status != MT_OK) printf("unreadable: %s\n", l->entries[i].diag.message);
@@ -87,7 +87,7 @@ static void print_json(const char *dir, const mt_archive_listing *l)
         mt_json_key(&j, "source");
         mt_json_string(&j, e->source);
         mt_json_key(&j, "content_hash");
-        mt_json_string(&j, mt_cli_hash_text((int64_t)e->content_hash, hash, sizeof hash));
+        mt_json_string(&j, cli_hash_text((int64_t)e->content_hash, hash, sizeof hash));
         mt_json_key(&j, "file");
         mt_json_string(&j, e->file_name);
         mt_json_key(&j, "file_bytes");
@@ -139,24 +139,24 @@ static void print_json(const char *dir, const mt_archive_listing *l)
     mt_json_finish(&j);
 }
 
-int mt_cli_archive_ls(const mt_cli_args *args)
+int cli_archive_ls(const cli_args *args)
 {
     const char *dir = args->positionals[1];
     mt_archive *archive = NULL;
-    int code = mt_cli_archive_open(dir, true, &archive);
-    if (code != MT_CLI_EXIT_OK) return code;
+    int code = cli_archive_open(dir, true, &archive);
+    if (code != CLI_EXIT_OK) return code;
     mt_archive_listing listing;
     mt_diag diag;
     if (mt_archive_list(archive, &listing, &diag) != MT_OK) {
-        mt_cli_error("archive", "%s", diag.message);
+        cli_error("archive", "%s", diag.message);
         mt_archive_close(archive);
-        return MT_CLI_EXIT_READ;
+        return CLI_EXIT_READ;
     }
-    if (mt_cli_flag(args, "json"))
+    if (cli_flag(args, "json"))
         print_json(dir, &listing);
     else
         print_text(dir, &listing);
     mt_archive_listing_free(&listing);
     mt_archive_close(archive);
-    return mt_cli_finish_output("archive", MT_CLI_EXIT_OK, MT_CLI_EXIT_READ);
+    return cli_finish_output("archive", CLI_EXIT_OK, CLI_EXIT_READ);
 }

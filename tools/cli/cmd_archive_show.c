@@ -94,7 +94,7 @@ static void print_json(const char *dir, const mt_archive_record *rec)
     mt_json_key(&j, "source");
     mt_json_string(&j, rec->source);
     mt_json_key(&j, "content_hash");
-    mt_json_string(&j, mt_cli_hash_text((int64_t)rec->content_hash, hash, sizeof hash));
+    mt_json_string(&j, cli_hash_text((int64_t)rec->content_hash, hash, sizeof hash));
     mt_json_key(&j, "format_version");
     mt_json_uint(&j, rec->format_version);
     mt_json_key(&j, "has_positions");
@@ -105,15 +105,15 @@ static void print_json(const char *dir, const mt_archive_record *rec)
     mt_json_finish(&j);
 }
 
-int mt_cli_archive_show(const mt_cli_args *args)
+int cli_archive_show(const cli_args *args)
 {
     const char *dir = args->positionals[1], *id = args->positionals[2];
     uint32_t version = 0;
-    int code = mt_cli_archive_version(args, &version);
-    if (code != MT_CLI_EXIT_OK) return code;
+    int code = cli_archive_version(args, &version);
+    if (code != CLI_EXIT_OK) return code;
     mt_archive *archive = NULL;
-    code = mt_cli_archive_open(dir, true, &archive);
-    if (code != MT_CLI_EXIT_OK) return code;
+    code = cli_archive_open(dir, true, &archive);
+    if (code != CLI_EXIT_OK) return code;
     mt_archive_record rec;
     mt_diag diag;
     mt_mesh *mesh = NULL;
@@ -122,32 +122,32 @@ int mt_cli_archive_show(const mt_cli_args *args)
      * the face list only when a file lacks them or they are damaged. */
     mt_status st = mt_archive_load_mesh(archive, id, version, true, &rec, &mesh, &info, &diag);
     if (st == MT_OK && info.fallback.status != MT_OK)
-        mt_cli_error("archive", "note: rebuilt from the face list: %s", info.fallback.message);
+        cli_error("archive", "note: rebuilt from the face list: %s", info.fallback.message);
     if (st != MT_OK) {
-        mt_cli_error("archive", "%s", diag.message);
-        code = st == MT_ERR_INVALID_ARG ? MT_CLI_EXIT_USAGE : MT_CLI_EXIT_READ;
-    } else if (mt_cli_flag(args, "json")) {
+        cli_error("archive", "%s", diag.message);
+        code = st == MT_ERR_INVALID_ARG ? CLI_EXIT_USAGE : CLI_EXIT_READ;
+    } else if (cli_flag(args, "json")) {
         print_json(dir, &rec);
     } else {
         char hash[24];
         printf("mesh %s version %" PRIu32 " (source %s, utime %" PRId64 ", content hash %s)\n",
                rec.mesh_id, rec.version, rec.source[0] ? rec.source : "-", rec.utime,
-               mt_cli_hash_text((int64_t)rec.content_hash, hash, sizeof hash));
-        mt_cli_mesh shown;
+               cli_hash_text((int64_t)rec.content_hash, hash, sizeof hash));
+        cli_mesh shown;
         memset(&shown, 0, sizeof shown);
         shown.list = rec.faces;
         shown.mesh = mesh;
         char path[4096];
         snprintf(path, sizeof path, "%s/%s", dir, rec.file_name);
-        mt_inspect_request req;
+        inspect_request req;
         memset(&req, 0, sizeof req);
         req.path = path;
         req.mesh = &shown;
         req.limit = 5;
-        code = mt_inspect_print_text(&req, stdout);
+        code = inspect_print_text(&req, stdout);
     }
     mt_mesh_destroy(mesh);
     mt_archive_record_free(&rec);
     mt_archive_close(archive);
-    return mt_cli_finish_output("archive", code, MT_CLI_EXIT_READ);
+    return cli_finish_output("archive", code, CLI_EXIT_READ);
 }

@@ -10,19 +10,19 @@
 #include "cmd_archive.h"
 #include "meshtopo/json_writer.h"
 
-int mt_cli_archive_verify(const mt_cli_args *args)
+int cli_archive_verify(const cli_args *args)
 {
     const char *dir = args->positionals[1];
-    bool json = mt_cli_flag(args, "json");
+    bool json = cli_flag(args, "json");
     mt_archive *archive = NULL;
-    int code = mt_cli_archive_open(dir, true, &archive);
-    if (code != MT_CLI_EXIT_OK) return code;
+    int code = cli_archive_open(dir, true, &archive);
+    if (code != CLI_EXIT_OK) return code;
     mt_archive_listing listing;
     mt_diag diag;
     if (mt_archive_list(archive, &listing, &diag) != MT_OK) {
-        mt_cli_error("archive", "%s", diag.message);
+        cli_error("archive", "%s", diag.message);
         mt_archive_close(archive);
-        return MT_CLI_EXIT_READ;
+        return CLI_EXIT_READ;
     }
     mt_json j;
     if (json) {
@@ -71,10 +71,10 @@ int mt_cli_archive_verify(const mt_cli_args *args)
         printf("%zu file%s checked, %zu bad\n", listing.count, listing.count == 1 ? "" : "s", bad);
     }
     if (bad > 0) {
-        mt_cli_error("archive", "verify: %zu of %zu files in %s are bad", bad, listing.count, dir);
-        code = MT_CLI_EXIT_READ;
+        cli_error("archive", "verify: %zu of %zu files in %s are bad", bad, listing.count, dir);
+        code = CLI_EXIT_READ;
     }
     mt_archive_listing_free(&listing);
     mt_archive_close(archive);
-    return mt_cli_finish_output("archive", code, MT_CLI_EXIT_READ);
+    return cli_finish_output("archive", code, CLI_EXIT_READ);
 }

@@ -41,20 +41,20 @@ static int bench_run(int argc, char **argv)
     const char *program = find_bench(path, sizeof path);
     char **args = calloc((size_t)argc + 2, sizeof *args);
     if (!args) {
-        mt_cli_error("bench", "out of memory");
-        return MT_CLI_EXIT_USAGE;
+        cli_error("bench", "out of memory");
+        return CLI_EXIT_USAGE;
     }
     args[0] = (char *)BENCH_PROGRAM;
     for (int i = 0; i < argc; i++) args[i + 1] = argv[i];
     fflush(NULL);
     execvp(program, args);
-    mt_cli_error("bench", "cannot run %s: %s (it is built with -DMESHTOPO_BUILD_BENCH=ON)", program,
-                 strerror(errno));
+    cli_error("bench", "cannot run %s: %s (it is built with -DMESHTOPO_BUILD_BENCH=ON)", program,
+              strerror(errno));
     free(args);
-    return MT_CLI_EXIT_USAGE;
+    return CLI_EXIT_USAGE;
 }
 
-const mt_cli_command mt_cli_cmd_bench = {
+const cli_command cli_cmd_bench = {
     .name = "bench",
     .summary = "benchmarks: core build vs OpenMesh/CGAL, query round trips, soak",
     .synopsis = "[build|rtt|transfer|archive|soak|cluster] [options]",

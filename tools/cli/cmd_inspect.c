@@ -12,7 +12,7 @@
 /* Most ids one --vertices/--faces list may expand to. */
 #define MAX_QUERY_IDS ((size_t)1 << 24)
 
-static const mt_cli_option options[] = {
+static const cli_option options[] = {
     {"json", NULL, "print one JSON object with the keys of the corpus answers (DEFINITIONS.md)"},
     {"json-defects", NULL, "with --json (implied): add a \"defects\" array listing every defect"},
     {"vertices", "LIST", "query these vertices (e.g. 0,78,100-110), in this order"},
@@ -33,25 +33,23 @@ static const mt_cli_option options[] = {
      "map that welds exactly, and print the map's report (the keys of --weld exact)"},
     {"limit", "N", "items per list in the readable output (default 5, 0 = all)"},
     {"max-input-bytes", "N",
-     "refuse FILE past N bytes inflated (e.g. 512M; default $" MT_CLI_ENV_MAX_INPUT_BYTES
-     " or 16G)"},
+     "refuse FILE past N bytes inflated (e.g. 512M; default $" CLI_ENV_MAX_INPUT_BYTES " or 16G)"},
 };
 
 /* --max-input-bytes, else $MESHTOPO_MAX_INPUT_BYTES, else 0 (the library's
  * default). Returns false after printing the problem. */
-static bool parse_max_input(const mt_cli_args *args, uint64_t *out)
+static bool parse_max_input(const cli_args *args, uint64_t *out)
 {
     *out = 0;
-    const char *text = mt_cli_arg(args, "max-input-bytes");
+    const char *text = cli_arg(args, "max-input-bytes");
     const char *what = "--max-input-bytes";
     if (!text) {
-        text = getenv(MT_CLI_ENV_MAX_INPUT_BYTES);
-        what = "$" MT_CLI_ENV_MAX_INPUT_BYTES;
+        text = getenv(CLI_ENV_MAX_INPUT_BYTES);
+        what = "$" CLI_ENV_MAX_INPUT_BYTES;
         if (!text || !text[0]) return true;
     }
-    if (mt_cli_byte_count_parse(text, out)) return true;
-    mt_cli_error("inspect", "%s: expected a byte count such as 1048576 or 512M, got '%s'", what,
-                 text);
+    if (cli_byte_count_parse(text, out)) return true;
+    cli_error("inspect", "%s: expected a byte count such as 1048576 or 512M, got '%s'", what, text);
     return false;
 }
 
@@ -80,111 +78,110 @@ static bool parse_ids(const char *option, const char *text, uint32_t limit, mt_i
 {
     char err[160];
     if (mt_id_list_parse(text, limit, MAX_QUERY_IDS, out, err, sizeof err)) return true;
-    mt_cli_error("inspect", "--%s: %s", option, err);
+    cli_error("inspect", "--%s: %s", option, err);
     return false;
 }
 
-static int run_inspect(const mt_cli_args *args)
+static int run_inspect(const cli_args *args)
 {
     const char *path = args->positionals[0];
-    bool json = mt_cli_flag(args, "json") || mt_cli_flag(args, "json-defects");
+    bool json = cli_flag(args, "json") || cli_flag(args, "json-defects");
     size_t limit = 5;
-    const char *limit_text = mt_cli_arg(args, "limit");
+    const char *limit_text = cli_arg(args, "limit");
     if (limit_text && !parse_limit(limit_text, &limit)) {
-        mt_cli_error("inspect", "--limit: expected a count, got '%s'", limit_text);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("inspect", "--limit: expected a count, got '%s'", limit_text);
+        return CLI_EXIT_USAGE;
     }
 
     uint64_t max_input;
-    if (!parse_max_input(args, &max_input)) return MT_CLI_EXIT_USAGE;
+    if (!parse_max_input(args, &max_input)) return CLI_EXIT_USAGE;
 
     double block_size = 0;
-    const char *blocks_text = mt_cli_arg(args, "blocks");
+    const char *blocks_text = cli_arg(args, "blocks");
     if (blocks_text && !parse_block_size(blocks_text, &block_size)) {
-        mt_cli_error("inspect",
-                     "--blocks: expected a block size, a finite number above 0 such as 0.5, "
-                     "got '%s'",
-                     blocks_text);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("inspect",
+                  "--blocks: expected a block size, a finite number above 0 such as 0.5, "
+                  "got '%s'",
+                  blocks_text);
+        return CLI_EXIT_USAGE;
     }
-    if (blocks_text && (mt_cli_arg(args, "weld") || mt_cli_flag(args, "strict"))) {
-        mt_cli_error("inspect",
-                     "--blocks welds exactly and builds leniently: it takes neither "
-                     "--weld nor --strict");
-        return MT_CLI_EXIT_USAGE;
+    if (blocks_text && (cli_arg(args, "weld") || cli_flag(args, "strict"))) {
+        cli_error("inspect",
+                  "--blocks welds exactly and builds leniently: it takes neither "
+                  "--weld nor --strict");
+        return CLI_EXIT_USAGE;
     }
 
     double weld_eps = 0;
-    const char *weld_text = mt_cli_arg(args, "weld");
-    if (weld_text && !mt_cli_weld_parse(weld_text, &weld_eps)) {
-        mt_cli_error("inspect",
-                     "--weld: expected 'exact' or a positive distance such as 1e-6, "
-                     "got '%s'",
-                     weld_text);
-        return MT_CLI_EXIT_USAGE;
+    const char *weld_text = cli_arg(args, "weld");
+    if (weld_text && !cli_weld_parse(weld_text, &weld_eps)) {
+        cli_error("inspect",
+                  "--weld: expected 'exact' or a positive distance such as 1e-6, "
+                  "got '%s'",
+                  weld_text);
+        return CLI_EXIT_USAGE;
     }
 
     mt_build_options build;
     memset(&build, 0, sizeof build);
-    build.strict = mt_cli_flag(args, "strict");
-    mt_cli_mesh mesh;
+    build.strict = cli_flag(args, "strict");
+    cli_mesh mesh;
     /* --blocks: the map keeps counts only so far; the rest of the report
      * comes from a build of its union, checked against the map's counts. */
-    int code =
-        blocks_text
-            ? mt_inspect_blocks_load(path, mt_cli_arg(args, "format"), max_input, block_size, &mesh)
-            : mt_cli_mesh_load("inspect", path, mt_cli_arg(args, "format"), max_input,
-                               weld_text ? &weld_eps : NULL, &build, false, &mesh);
-    if (code != MT_CLI_EXIT_OK) return code;
+    int code = blocks_text ? inspect_blocks_load(path, cli_arg(args, "format"), max_input,
+                                                 block_size, &mesh)
+                           : cli_mesh_load("inspect", path, cli_arg(args, "format"), max_input,
+                                           weld_text ? &weld_eps : NULL, &build, false, &mesh);
+    if (code != CLI_EXIT_OK) return code;
 
-    mt_inspect_request req;
+    inspect_request req;
     memset(&req, 0, sizeof req);
     req.path = path;
     req.mesh = &mesh;
-    req.json_defects = mt_cli_flag(args, "json-defects");
+    req.json_defects = cli_flag(args, "json-defects");
     req.limit = limit;
-    mt_inspect_geometry geometry = {0};
-    if (mt_cli_flag(args, "self-intersections")) {
+    inspect_geometry geometry = {0};
+    if (cli_flag(args, "self-intersections")) {
         mt_diag diag;
-        mt_status st = mt_inspect_geometry_compute(mesh.mesh, &geometry, &diag);
+        mt_status st = inspect_geometry_compute(mesh.mesh, &geometry, &diag);
         if (st != MT_OK) {
-            mt_cli_error("inspect", "--self-intersections: %s", diag.message);
-            mt_cli_mesh_free(&mesh);
-            return MT_CLI_EXIT_BUILD;
+            cli_error("inspect", "--self-intersections: %s", diag.message);
+            cli_mesh_free(&mesh);
+            return CLI_EXIT_BUILD;
         }
         req.geometry = &geometry;
     }
-    const char *verts_text = mt_cli_arg(args, "vertices");
-    const char *faces_text = mt_cli_arg(args, "faces");
+    const char *verts_text = cli_arg(args, "vertices");
+    const char *faces_text = cli_arg(args, "faces");
     if ((verts_text &&
          !parse_ids("vertices", verts_text, mt_mesh_num_verts(mesh.mesh), &req.vertices)) ||
         (faces_text && !parse_ids("faces", faces_text, mt_mesh_num_faces(mesh.mesh), &req.faces))) {
-        code = MT_CLI_EXIT_USAGE;
+        code = CLI_EXIT_USAGE;
     } else if (json) {
         /* Elements not named on the command line are chosen as the corpus answers choose them. */
-        mt_status st = mt_inspect_default_queries(mesh.mesh, !verts_text, &req.vertices,
-                                                  !faces_text, &req.faces);
+        mt_status st =
+            inspect_default_queries(mesh.mesh, !verts_text, &req.vertices, !faces_text, &req.faces);
         if (st != MT_OK) {
-            mt_cli_error("inspect", "choosing the queried elements failed: %s", mt_strerror(st));
-            code = MT_CLI_EXIT_BUILD;
+            cli_error("inspect", "choosing the queried elements failed: %s", mt_strerror(st));
+            code = CLI_EXIT_BUILD;
         } else {
-            code = mt_inspect_print_json(&req, stdout);
+            code = inspect_print_json(&req, stdout);
         }
     } else {
-        code = mt_inspect_print_text(&req, stdout);
+        code = inspect_print_text(&req, stdout);
     }
-    if (code == MT_CLI_EXIT_OK && mt_cli_flag(args, "fail-on-defect") &&
-        (mt_mesh_report(mesh.mesh)->num_defects > 0 || mt_inspect_geometry_findings(&geometry) > 0))
-        code = MT_CLI_EXIT_DEFECT;
-    code = mt_cli_finish_output("inspect", code, MT_CLI_EXIT_BUILD);
+    if (code == CLI_EXIT_OK && cli_flag(args, "fail-on-defect") &&
+        (mt_mesh_report(mesh.mesh)->num_defects > 0 || inspect_geometry_findings(&geometry) > 0))
+        code = CLI_EXIT_DEFECT;
+    code = cli_finish_output("inspect", code, CLI_EXIT_BUILD);
     mt_id_list_free(&req.vertices);
     mt_id_list_free(&req.faces);
-    mt_inspect_geometry_free(&geometry);
-    mt_cli_mesh_free(&mesh);
+    inspect_geometry_free(&geometry);
+    cli_mesh_free(&mesh);
     return code;
 }
 
-const mt_cli_command mt_cli_cmd_inspect = {
+const cli_command cli_cmd_inspect = {
     .name = "inspect",
     .summary = "read a mesh file, build it and print its topology report",
     .synopsis =

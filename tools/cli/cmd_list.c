@@ -9,9 +9,9 @@
 #include "members.h"
 #include "remote.h"
 
-static const mt_cli_option options[] = {
+static const cli_option options[] = {
     {"json", NULL, "print {\"meshes\": [an object per mesh version]}"},
-    MT_CLI_REMOTE_OPTIONS,
+    CLI_REMOTE_OPTIONS,
 };
 
 /* One listed version: row i of reply r. */
@@ -56,7 +56,7 @@ static void print_json(const list_row *rows, size_t n)
         mt_json_key(&j, "num_defects");
         mt_json_int(&j, r->list_num_defects[i]);
         mt_json_key(&j, "content_hash");
-        mt_json_string(&j, mt_cli_hash_text(r->list_content_hashes[i], hash, sizeof hash));
+        mt_json_string(&j, cli_hash_text(r->list_content_hashes[i], hash, sizeof hash));
         mt_json_object_end(&j);
     }
     mt_json_array_end(&j);
@@ -78,8 +78,8 @@ static void print_text(const list_row *rows, size_t n)
         int32_t i = rows[k].i;
         printf("%-24s %7" PRId32 " %10" PRId32 " %10" PRId32 " %8" PRId64 "  %-16s  %s\n",
                r->list_mesh_ids[i], r->list_versions[i], r->list_num_verts[i], r->list_num_faces[i],
-               r->list_num_defects[i],
-               mt_cli_hash_text(r->list_content_hashes[i], hash, sizeof hash), r->list_sources[i]);
+               r->list_num_defects[i], cli_hash_text(r->list_content_hashes[i], hash, sizeof hash),
+               r->list_sources[i]);
     }
 }
 
@@ -102,18 +102,18 @@ static list_row *merge(const meshtopo_reply_t *replies, int num_replies, size_t 
     return rows;
 }
 
-static int run_list(const mt_cli_args *args)
+static int run_list(const cli_args *args)
 {
-    mt_cli_remote remote;
-    int code = mt_cli_remote_parse(args, &remote);
-    if (code != MT_CLI_EXIT_OK) return code;
+    cli_remote remote;
+    int code = cli_remote_parse(args, &remote);
+    if (code != CLI_EXIT_OK) return code;
     mt_client *client = NULL;
-    code = mt_cli_client_create("list", &remote, &client);
-    if (code != MT_CLI_EXIT_OK) return code;
+    code = cli_client_create("list", &remote, &client);
+    if (code != CLI_EXIT_OK) return code;
     /* One daemon answers for every mesh; each member of a cluster for its
      * own, so each is asked in turn. */
-    static mt_cli_members members;
-    mt_cli_members_find(client, remote.timeout_ms, &members);
+    static cli_members members;
+    cli_members_find(client, remote.timeout_ms, &members);
     const int asked = members.cluster[0] ? members.count : 1;
     meshtopo_reply_t *replies = calloc((size_t)asked, sizeof *replies);
     int answered = 0;
@@ -129,29 +129,28 @@ static int run_list(const mt_cli_args *args)
         if (instance)
             fprintf(stderr, "meshtopo list: member '%s' (instance %s) of cluster '%s':\n",
                     members.names[m], instance, members.cluster);
-        code =
-            mt_cli_call_failed("list", NULL, &remote, st, replies[answered].mesh_id != NULL, &diag);
+        code = cli_call_failed("list", NULL, &remote, st, replies[answered].mesh_id != NULL, &diag);
         mt_client_reply_free(&replies[answered]);
     }
     size_t n = 0;
     list_row *rows = replies && answered ? merge(replies, answered, &n) : NULL;
     if (answered && !rows) {
-        mt_cli_error("list", "out of memory merging %d listings", answered);
-        code = MT_CLI_EXIT_NO_ANSWER;
-    } else if (answered && mt_cli_flag(args, "json")) {
+        cli_error("list", "out of memory merging %d listings", answered);
+        code = CLI_EXIT_NO_ANSWER;
+    } else if (answered && cli_flag(args, "json")) {
         print_json(rows, n);
     } else if (answered) {
         print_text(rows, n);
     }
-    code = mt_cli_finish_output("list", code, MT_CLI_EXIT_USAGE);
+    code = cli_finish_output("list", code, CLI_EXIT_USAGE);
     free(rows);
     for (int m = 0; m < answered; m++) mt_client_reply_free(&replies[m]);
     free(replies);
-    mt_cli_client_destroy("list", &remote, client);
+    cli_client_destroy("list", &remote, client);
     return code;
 }
 
-const mt_cli_command mt_cli_cmd_list = {
+const cli_command cli_cmd_list = {
     .name = "list",
     .summary = "list the mesh versions meshtopod holds",
     .synopsis = "[--json] [--lcm-url URL] [--prefix PREFIX]",

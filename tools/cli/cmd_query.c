@@ -64,10 +64,10 @@ static int32_t expected_reals(int32_t kind, int32_t num_items)
 }
 static const size_t num_kinds = sizeof kinds / sizeof kinds[0];
 
-static const mt_cli_option options[] = {
+static const cli_option options[] = {
     {"version", "N", "query this version of the mesh (default: the latest)"},
     {"json", NULL, "print one JSON object: mesh_id, version, kind and an object per item"},
-    MT_CLI_REMOTE_OPTIONS,
+    CLI_REMOTE_OPTIONS,
 };
 
 /* ---- Reading the reply ------------------------------------------------- */
@@ -133,11 +133,11 @@ static const char *shape_name(int32_t shape)
 
 /* A SELF_INTERSECTIONS item as the lists of `inspect --self-intersections`
  * (msgs/reply_t.lcm: three groups, one real per non-simple face); false
- * when the groups do not have that shape. Free with mt_inspect_geometry_free. */
+ * when the groups do not have that shape. Free with inspect_geometry_free. */
 static bool read_self_intersections(const meshtopo_reply_t *r, const mt_client_item *item,
-                                    mt_inspect_geometry *g)
+                                    inspect_geometry *g)
 {
-    *g = (mt_inspect_geometry){.ms = -1};
+    *g = (inspect_geometry){.ms = -1};
     mt_client_group pairs = group_of(r, item, 0), faces = group_of(r, item, 1),
                     loops = group_of(r, item, 2);
     if (item->num_groups != 3 || pairs.num_values % 2 || faces.num_values % 4 ||
@@ -150,7 +150,7 @@ static bool read_self_intersections(const meshtopo_reply_t *r, const mt_client_i
     g->faces = calloc(g->num_faces + 1, sizeof *g->faces);
     g->loops = calloc(g->num_loops + 1, sizeof *g->loops);
     if (!g->pairs || !g->faces || !g->loops) {
-        mt_inspect_geometry_free(g);
+        inspect_geometry_free(g);
         return false;
     }
     for (size_t i = 0; i < g->num_pairs; i++)
@@ -190,14 +190,14 @@ static bool print_geometry_text(const meshtopo_reply_t *r, int32_t kind, size_t 
         return true;
     }
     if (kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS) {
-        mt_inspect_geometry g;
+        inspect_geometry g;
         if (!read_self_intersections(r, item, &g)) {
             printf(" malformed answer\n");
             return true;
         }
         putchar('\n');
-        mt_inspect_geometry_text(stdout, &g, 0);
-        mt_inspect_geometry_free(&g);
+        inspect_geometry_text(stdout, &g, 0);
+        inspect_geometry_free(&g);
         return true;
     }
     if (kind != MESHTOPO_QUERY_T_CONVEXITY) return false;
@@ -326,14 +326,14 @@ static bool write_geometry_json(mt_json *j, const meshtopo_reply_t *r, int32_t k
         return true;
     }
     if (kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS) {
-        mt_inspect_geometry g;
+        inspect_geometry g;
         if (!read_self_intersections(r, item, &g)) {
             mt_json_key(j, "malformed");
             mt_json_bool(j, true);
             return true;
         }
-        mt_inspect_geometry_json(j, &g);
-        mt_inspect_geometry_free(&g);
+        inspect_geometry_json(j, &g);
+        inspect_geometry_free(&g);
         return true;
     }
     if (kind != MESHTOPO_QUERY_T_CONVEXITY) return false;
@@ -457,7 +457,7 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
 
 /* report: the REPORT query's report converted, NULL for the other kinds. */
 static void print_json(const meshtopo_reply_t *r, const query_kind *qk, const mt_id_list *ids,
-                       const mt_cli_report *report)
+                       const cli_report *report)
 {
     mt_json j;
     mt_json_init(&j, stdout);
@@ -470,7 +470,7 @@ static void print_json(const meshtopo_reply_t *r, const query_kind *qk, const mt
     mt_json_string(&j, qk->name);
     if (report) {
         mt_json_key(&j, "report");
-        mt_cli_report_write_json(&j, report);
+        cli_report_write_json(&j, report);
     } else {
         mt_json_key(&j, "items");
         mt_json_array_begin(&j);
@@ -492,7 +492,7 @@ static const query_kind *kind_find(const char *name)
 }
 
 /* Appends the ids of every positional from the third on to *out. */
-static int parse_ids(const mt_cli_args *args, mt_id_list *out)
+static int parse_ids(const cli_args *args, mt_id_list *out)
 {
     memset(out, 0, sizeof *out);
     for (size_t p = 2; p < args->num_positionals; p++) {
@@ -500,69 +500,69 @@ static int parse_ids(const mt_cli_args *args, mt_id_list *out)
         char err[160];
         if (!mt_id_list_parse(args->positionals[p], UINT32_MAX, MAX_QUERY_IDS - out->count, &part,
                               err, sizeof err)) {
-            mt_cli_error("query", "ids '%s': %s", args->positionals[p], err);
+            cli_error("query", "ids '%s': %s", args->positionals[p], err);
             mt_id_list_free(out);
-            return MT_CLI_EXIT_USAGE;
+            return CLI_EXIT_USAGE;
         }
         uint32_t *ids = realloc(out->ids, (out->count + part.count + 1) * sizeof *ids);
         if (!ids) {
             mt_id_list_free(&part);
             mt_id_list_free(out);
-            mt_cli_error("query", "out of memory");
-            return MT_CLI_EXIT_USAGE;
+            cli_error("query", "out of memory");
+            return CLI_EXIT_USAGE;
         }
         if (part.count) memcpy(ids + out->count, part.ids, part.count * sizeof *ids);
         out->ids = ids;
         out->count += part.count;
         mt_id_list_free(&part);
     }
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
-static int run_query(const mt_cli_args *args)
+static int run_query(const cli_args *args)
 {
     const char *mesh_id = args->positionals[0];
     const query_kind *qk = kind_find(args->positionals[1]);
     if (!qk) {
-        mt_cli_error("query",
-                     "unknown kind '%s' (ring, valence, face-neighbors, edge-faces, "
-                     "boundary-loops, components, report, defects, dihedral, deficit, "
-                     "convexity, self-intersections)",
-                     args->positionals[1]);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("query",
+                  "unknown kind '%s' (ring, valence, face-neighbors, edge-faces, "
+                  "boundary-loops, components, report, defects, dihedral, deficit, "
+                  "convexity, self-intersections)",
+                  args->positionals[1]);
+        return CLI_EXIT_USAGE;
     }
     int version = 0;
-    const char *version_text = mt_cli_arg(args, "version");
-    if (version_text && (!mt_cli_parse_int(version_text, &version) || version == 0)) {
-        mt_cli_error("query", "--version: expected 1, 2, ..., got '%s'", version_text);
-        return MT_CLI_EXIT_USAGE;
+    const char *version_text = cli_arg(args, "version");
+    if (version_text && (!cli_parse_int(version_text, &version) || version == 0)) {
+        cli_error("query", "--version: expected 1, 2, ..., got '%s'", version_text);
+        return CLI_EXIT_USAGE;
     }
-    mt_cli_remote remote;
-    int code = mt_cli_remote_parse(args, &remote);
-    if (code != MT_CLI_EXIT_OK) return code;
+    cli_remote remote;
+    int code = cli_remote_parse(args, &remote);
+    if (code != CLI_EXIT_OK) return code;
     mt_id_list ids;
     code = parse_ids(args, &ids);
-    if (code != MT_CLI_EXIT_OK) return code;
+    if (code != CLI_EXIT_OK) return code;
     if (qk->ids == IDS_NEEDED && ids.count == 0) {
-        mt_cli_error("query", "%s needs %s ids", qk->name,
-                     takes_pairs(qk->kind) ? "vertex pair" : qk->of);
-        code = MT_CLI_EXIT_USAGE;
+        cli_error("query", "%s needs %s ids", qk->name,
+                  takes_pairs(qk->kind) ? "vertex pair" : qk->of);
+        code = CLI_EXIT_USAGE;
     } else if (qk->ids == IDS_NONE && ids.count > 0) {
-        mt_cli_error("query", "%s takes no ids", qk->name);
-        code = MT_CLI_EXIT_USAGE;
+        cli_error("query", "%s takes no ids", qk->name);
+        code = CLI_EXIT_USAGE;
     } else if (takes_pairs(qk->kind) && ids.count % 2 != 0) {
-        mt_cli_error("query", "%s takes vertex pairs: an even number of ids, got %zu", qk->name,
-                     ids.count);
-        code = MT_CLI_EXIT_USAGE;
+        cli_error("query", "%s takes vertex pairs: an even number of ids, got %zu", qk->name,
+                  ids.count);
+        code = CLI_EXIT_USAGE;
     }
-    if (code != MT_CLI_EXIT_OK) {
+    if (code != CLI_EXIT_OK) {
         mt_id_list_free(&ids);
         return code;
     }
 
     mt_client *client = NULL;
-    code = mt_cli_client_create("query", &remote, &client);
-    if (code != MT_CLI_EXIT_OK) {
+    code = cli_client_create("query", &remote, &client);
+    if (code != CLI_EXIT_OK) {
         mt_id_list_free(&ids);
         return code;
     }
@@ -572,37 +572,36 @@ static int run_query(const mt_cli_args *args)
     mt_status st =
         mt_client_query(client, mesh_id, version, qk->kind, ids.ids, ids.count, &reply, &diag);
     size_t num_items = mt_client_reply_num_items(&reply);
-    bool answered = reply.mesh_id != NULL, json = mt_cli_flag(args, "json");
-    mt_cli_report report;
+    bool answered = reply.mesh_id != NULL, json = cli_flag(args, "json");
+    cli_report report;
     memset(&report, 0, sizeof report);
     if ((st == MT_ERR_CORRUPT && !answered) || (st == MT_OK && !reply_fits(&reply, qk, &ids))) {
         /* Unanswered MT_ERR_CORRUPT: the client refused a reply whose offsets
          * do not describe its arrays. */
-        mt_cli_error("query", "mesh '%s': the reply's items and offsets do not fit together",
-                     mesh_id);
-        code = MT_CLI_EXIT_REFUSED;
+        cli_error("query", "mesh '%s': the reply's items and offsets do not fit together", mesh_id);
+        code = CLI_EXIT_REFUSED;
     } else if (st != MT_OK) {
-        code = mt_cli_call_failed("query", mesh_id, &remote, st, answered, &diag);
+        code = cli_call_failed("query", mesh_id, &remote, st, answered, &diag);
     } else if (qk->kind == MESHTOPO_QUERY_T_REPORT) {
-        code = mt_cli_report_take("query", &reply.reports[0], &report);
-        if (code == MT_CLI_EXIT_OK && json)
+        code = cli_report_take("query", &reply.reports[0], &report);
+        if (code == CLI_EXIT_OK && json)
             print_json(&reply, qk, &ids, &report);
-        else if (code == MT_CLI_EXIT_OK)
-            mt_cli_report_print_text(&report, stdout);
+        else if (code == CLI_EXIT_OK)
+            cli_report_print_text(&report, stdout);
     } else if (json) {
         print_json(&reply, qk, &ids, NULL);
     } else {
         for (size_t i = 0; i < num_items; i++) print_item_text(&reply, qk, &ids, i);
     }
-    mt_cli_report_free(&report);
-    code = mt_cli_finish_output("query", code, MT_CLI_EXIT_USAGE);
+    cli_report_free(&report);
+    code = cli_finish_output("query", code, CLI_EXIT_USAGE);
     mt_client_reply_free(&reply);
-    mt_cli_client_destroy("query", &remote, client);
+    cli_client_destroy("query", &remote, client);
     mt_id_list_free(&ids);
     return code;
 }
 
-const mt_cli_command mt_cli_cmd_query = {
+const cli_command cli_cmd_query = {
     .name = "query",
     .summary = "ask meshtopod one batch query about a held mesh",
     .synopsis = "ID KIND [IDS...] [--version N] [--json] [--lcm-url URL] [--prefix PREFIX]",

@@ -12,7 +12,7 @@
 #include "temp_archive.h"
 #include "vtk_script.h"
 
-static const mt_cli_option options[] = {
+static const cli_option options[] = {
     {"out", "PNG", "the picture to write (required)"},
     {"view", "VIEW", "iso (default), front, back, left, right, top or bottom; +Y is up"},
     {"size", "WxH", "the picture's size in pixels (default 800x600; 16 to 8192 a side)"},
@@ -39,12 +39,12 @@ static bool size_parse(const char *text, unsigned *w, unsigned *h)
 static int load_archive_file(const char *path, mt_archive_record *rec, mt_mesh **mesh)
 {
     char dir[4096];
-    const char *name = mt_cli_basename(path);
+    const char *name = cli_basename(path);
     int n = name == path ? snprintf(dir, sizeof dir, ".")
                          : snprintf(dir, sizeof dir, "%.*s", (int)(name - path), path);
     if (n < 0 || (size_t)n >= sizeof dir) {
-        mt_cli_error("render", "%s: name too long", path);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("render", "%s: name too long", path);
+        return CLI_EXIT_USAGE;
     }
     mt_archive *archive = NULL;
     mt_archive_options open_options = {.read_only = true};
@@ -56,48 +56,48 @@ static int load_archive_file(const char *path, mt_archive_record *rec, mt_mesh *
     }
     mt_archive_close(archive);
     if (st != MT_OK) {
-        mt_cli_error("render", "%s", diag.message);
-        return MT_CLI_EXIT_READ;
+        cli_error("render", "%s", diag.message);
+        return CLI_EXIT_READ;
     }
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
-static int run_render(const mt_cli_args *args)
+static int run_render(const cli_args *args)
 {
     const char *path = args->positionals[0];
-    const char *out = mt_cli_arg(args, "out"), *view = mt_cli_arg(args, "view");
-    const char *size = mt_cli_arg(args, "size"), *weld = mt_cli_arg(args, "weld");
+    const char *out = cli_arg(args, "out"), *view = cli_arg(args, "view");
+    const char *size = cli_arg(args, "size"), *weld = cli_arg(args, "weld");
     if (!out || !out[0]) {
-        mt_cli_error("render", "--out PNG is required");
-        return MT_CLI_EXIT_USAGE;
+        cli_error("render", "--out PNG is required");
+        return CLI_EXIT_USAGE;
     }
     if (!view) view = "iso";
     bool view_known = false;
     for (size_t i = 0; i < sizeof views / sizeof views[0]; i++)
         view_known = view_known || strcmp(views[i], view) == 0;
     if (!view_known) {
-        mt_cli_error("render",
-                     "--view: '%s' is not one of iso, front, back, left, right, top, "
-                     "bottom",
-                     view);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("render",
+                  "--view: '%s' is not one of iso, front, back, left, right, top, "
+                  "bottom",
+                  view);
+        return CLI_EXIT_USAGE;
     }
     unsigned width = 800, height = 600;
     if (size && !size_parse(size, &width, &height)) {
-        mt_cli_error("render", "--size: expected WxH, each 16 to 8192 (800x600), got '%s'", size);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("render", "--size: expected WxH, each 16 to 8192 (800x600), got '%s'", size);
+        return CLI_EXIT_USAGE;
     }
     double eps = 0;
-    const bool archived = mt_cli_is_archive_path(path);
-    if (weld && (archived || !mt_cli_weld_parse(weld, &eps))) {
-        mt_cli_error("render",
-                     archived ? "--weld applies to mesh files, not archive files"
-                              : "--weld: expected 'exact' or a positive distance, got '%s'",
-                     weld);
-        return MT_CLI_EXIT_USAGE;
+    const bool archived = cli_is_archive_path(path);
+    if (weld && (archived || !cli_weld_parse(weld, &eps))) {
+        cli_error("render",
+                  archived ? "--weld applies to mesh files, not archive files"
+                           : "--weld: expected 'exact' or a positive distance, got '%s'",
+                  weld);
+        return CLI_EXIT_USAGE;
     }
 
-    mt_cli_mesh loaded;
+    cli_mesh loaded;
     memset(&loaded, 0, sizeof loaded);
     mt_archive_record rec;
     memset(&rec, 0, sizeof rec);
@@ -108,36 +108,35 @@ static int run_render(const mt_cli_args *args)
         code = load_archive_file(path, &rec, &mesh);
         list = &rec.faces;
     } else {
-        code = mt_cli_mesh_load("render", path, NULL, 0, weld ? &eps : NULL, NULL, true, &loaded);
+        code = cli_mesh_load("render", path, NULL, 0, weld ? &eps : NULL, NULL, true, &loaded);
         mesh = loaded.mesh;
         list = &loaded.list;
     }
-    mt_cli_temp_archive temp;
+    cli_temp_archive temp;
     memset(&temp, 0, sizeof temp);
-    if (code == MT_CLI_EXIT_OK)
-        code = mt_cli_temp_archive_write("render", list, mesh, NULL,
-                                         !mt_cli_flag(args, "no-self-intersections"), &temp);
+    if (code == CLI_EXIT_OK)
+        code = cli_temp_archive_write("render", list, mesh, NULL,
+                                      !cli_flag(args, "no-self-intersections"), &temp);
     if (archived) {
         mt_mesh_destroy(mesh);
         mt_archive_record_free(&rec);
     } else {
-        mt_cli_mesh_free(&loaded);
+        cli_mesh_free(&loaded);
     }
-    if (code != MT_CLI_EXIT_OK) return code;
+    if (code != CLI_EXIT_OK) return code;
 
     char size_text[32];
     snprintf(size_text, sizeof size_text, "%ux%u", width, height);
-    const char *script_args[] = {"--out",   out,       "--view",  view,
-                                 "--size",  size_text, "--title", mt_cli_basename(path),
-                                 temp.path, NULL};
-    code = mt_cli_vtk_script_run("render", "render.py", script_args);
-    mt_cli_temp_archive_remove(&temp);
-    if (code == MT_CLI_EXIT_OK)
+    const char *script_args[] = {"--out",   out,       "--view",           view,      "--size",
+                                 size_text, "--title", cli_basename(path), temp.path, NULL};
+    code = cli_vtk_script_run("render", "render.py", script_args);
+    cli_temp_archive_remove(&temp);
+    if (code == CLI_EXIT_OK)
         printf("rendered %s to %s (%s, %s view)\n", path, out, size_text, view);
-    return mt_cli_finish_output("render", code, MT_CLI_EXIT_READ);
+    return cli_finish_output("render", code, CLI_EXIT_READ);
 }
 
-const mt_cli_command mt_cli_cmd_render = {
+const cli_command cli_cmd_render = {
     .name = "render",
     .summary = "draw a mesh with its defects marked into a PNG (VTK, offscreen)",
     .synopsis = "FILE|ARCHIVE-FILE --out PNG [--view VIEW] [--size WxH] [options]",

@@ -15,7 +15,7 @@
 #include "cmd_replay.h"
 #include "remote.h"
 
-static const mt_cli_option options[] = {
+static const cli_option options[] = {
     {"rate", "X", "speed factor 0.001..1e9: 2 = twice as fast, 0 = no waiting (default 1)"},
     {"as-fast-as-possible", NULL, "the same as --rate 0"},
     {"ids", "ID,...", "replay only these mesh ids (every archived version of each)"},
@@ -24,7 +24,7 @@ static const mt_cli_option options[] = {
     {"channel", "CHANNEL", "submit on CHANNEL (\"XYZ_SUBMIT\") or with prefix \"XYZ_\""},
     {"json", NULL, "one JSON object per mesh and line, with send and ack times"},
     {"quiet", NULL, "no progress line (there is none either when stderr is not a terminal)"},
-    MT_CLI_REMOTE_OPTIONS,
+    CLI_REMOTE_OPTIONS,
 };
 
 /* Clients are kept per archived source (mt_client_options.source is the
@@ -38,7 +38,7 @@ typedef struct replay_client {
 
 /* The whole run's state. */
 typedef struct replay {
-    mt_cli_remote remote;
+    cli_remote remote;
     bool json, progress;
     replay_client clients[REPLAY_MAX_CLIENTS];
     size_t num_clients, next_evict;
@@ -73,67 +73,67 @@ static const char *channel_prefix(const char *channel, char *buf, size_t size)
     return channel;
 }
 
-static int parse_options(const mt_cli_args *args, replay *r, double *rate,
-                         mt_cli_replay_filter *filter, char *prefix_buf, size_t prefix_size)
+static int parse_options(const cli_args *args, replay *r, double *rate, cli_replay_filter *filter,
+                         char *prefix_buf, size_t prefix_size)
 {
-    int code = mt_cli_remote_parse(args, &r->remote);
-    if (code != MT_CLI_EXIT_OK) return code;
-    const char *channel = mt_cli_arg(args, "channel");
+    int code = cli_remote_parse(args, &r->remote);
+    if (code != CLI_EXIT_OK) return code;
+    const char *channel = cli_arg(args, "channel");
     if (channel) {
-        if (mt_cli_arg(args, "prefix")) {
-            mt_cli_error("replay", "--channel and --prefix both name the channel: give one");
-            return MT_CLI_EXIT_USAGE;
+        if (cli_arg(args, "prefix")) {
+            cli_error("replay", "--channel and --prefix both name the channel: give one");
+            return CLI_EXIT_USAGE;
         }
         r->remote.prefix = channel_prefix(channel, prefix_buf, prefix_size);
         if (!r->remote.prefix[0] || strlen(r->remote.prefix) > MT_CLIENT_MAX_PREFIX) {
-            mt_cli_error("replay",
-                         "--channel: expected PREFIX or PREFIXSUBMIT with a prefix of "
-                         "1 to %d characters, got '%s'",
-                         MT_CLIENT_MAX_PREFIX, channel);
-            return MT_CLI_EXIT_USAGE;
+            cli_error("replay",
+                      "--channel: expected PREFIX or PREFIXSUBMIT with a prefix of "
+                      "1 to %d characters, got '%s'",
+                      MT_CLIENT_MAX_PREFIX, channel);
+            return CLI_EXIT_USAGE;
         }
     }
     *rate = 1.0;
-    const char *text = mt_cli_arg(args, "rate");
+    const char *text = cli_arg(args, "rate");
     if (text && !parse_rate(text, rate)) {
-        mt_cli_error("replay", "--rate: expected 0 or a number from 0.001 to 1e9, got '%s'", text);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("replay", "--rate: expected 0 or a number from 0.001 to 1e9, got '%s'", text);
+        return CLI_EXIT_USAGE;
     }
-    if (mt_cli_flag(args, "as-fast-as-possible")) {
+    if (cli_flag(args, "as-fast-as-possible")) {
         if (text && *rate != 0) {
-            mt_cli_error("replay", "--as-fast-as-possible contradicts --rate %s", text);
-            return MT_CLI_EXIT_USAGE;
+            cli_error("replay", "--as-fast-as-possible contradicts --rate %s", text);
+            return CLI_EXIT_USAGE;
         }
         *rate = 0;
     }
     memset(filter, 0, sizeof *filter);
-    filter->ids = mt_cli_arg(args, "ids");
+    filter->ids = cli_arg(args, "ids");
     if (filter->ids && !filter->ids[0]) {
-        mt_cli_error("replay", "--ids: expected mesh ids separated by commas");
-        return MT_CLI_EXIT_USAGE;
+        cli_error("replay", "--ids: expected mesh ids separated by commas");
+        return CLI_EXIT_USAGE;
     }
     const char *names[2] = {"since", "until"};
     int64_t *values[2] = {&filter->since, &filter->until};
     bool *given[2] = {&filter->has_since, &filter->has_until};
     for (int i = 0; i < 2; i++) {
-        text = mt_cli_arg(args, names[i]);
+        text = cli_arg(args, names[i]);
         if (!text) continue;
-        if (!mt_cli_replay_parse_time(text, values[i])) {
-            mt_cli_error("replay",
-                         "--%s: expected microseconds since the epoch or an ISO 8601 UTC time "
-                         "like 2026-11-22T08:00:00Z, got '%s'",
-                         names[i], text);
-            return MT_CLI_EXIT_USAGE;
+        if (!cli_replay_parse_time(text, values[i])) {
+            cli_error("replay",
+                      "--%s: expected microseconds since the epoch or an ISO 8601 UTC time "
+                      "like 2026-11-22T08:00:00Z, got '%s'",
+                      names[i], text);
+            return CLI_EXIT_USAGE;
         }
         *given[i] = true;
     }
     if (filter->has_since && filter->has_until && filter->until <= filter->since) {
-        mt_cli_error("replay", "--until must be later than --since");
-        return MT_CLI_EXIT_USAGE;
+        cli_error("replay", "--until must be later than --since");
+        return CLI_EXIT_USAGE;
     }
-    r->json = mt_cli_flag(args, "json");
-    r->progress = !mt_cli_flag(args, "quiet") && isatty(STDERR_FILENO);
-    return MT_CLI_EXIT_OK;
+    r->json = cli_flag(args, "json");
+    r->progress = !cli_flag(args, "quiet") && isatty(STDERR_FILENO);
+    return CLI_EXIT_OK;
 }
 
 /* ---- clients per source ------------------------------------------------------ */
@@ -145,7 +145,7 @@ static int client_for(replay *r, const char *source, mt_client **out)
     for (size_t i = 0; i < r->num_clients; i++)
         if (strcmp(r->clients[i].source, source) == 0) {
             *out = r->clients[i].client;
-            return MT_CLI_EXIT_OK;
+            return CLI_EXIT_OK;
         }
     mt_client_options opts;
     memset(&opts, 0, sizeof opts);
@@ -163,12 +163,12 @@ static int client_for(replay *r, const char *source, mt_client **out)
         mt_client_destroy(client);
         const char *why = st != MT_OK && diag.message[0] ? diag.message : mt_strerror(st);
         if (st == MT_ERR_INVALID_ARG) {
-            mt_cli_error("replay", "source '%s': %s", source, why);
-            return MT_CLI_EXIT_USAGE;
+            cli_error("replay", "source '%s': %s", source, why);
+            return CLI_EXIT_USAGE;
         }
-        mt_cli_error("replay", "cannot talk LCM (%s): %s",
-                     r->remote.lcm_url ? r->remote.lcm_url : "default URL", why);
-        return MT_CLI_EXIT_NO_ANSWER;
+        cli_error("replay", "cannot talk LCM (%s): %s",
+                  r->remote.lcm_url ? r->remote.lcm_url : "default URL", why);
+        return CLI_EXIT_NO_ANSWER;
     }
     size_t slot = r->num_clients;
     if (slot == REPLAY_MAX_CLIENTS) {
@@ -182,7 +182,7 @@ static int client_for(replay *r, const char *source, mt_client **out)
     r->clients[slot].source = copy;
     r->clients[slot].client = client;
     *out = client;
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
 static void clients_destroy(replay *r)
@@ -198,7 +198,7 @@ static void clients_destroy(replay *r)
 
 static double seconds_since_start(const replay *r)
 {
-    return (mt_cli_now_ms() - r->start_ms) / 1e3;
+    return (cli_now_ms() - r->start_ms) / 1e3;
 }
 
 /* "replay 3/10 meshes  elapsed 1.2 s  ETA 3.4 s" on stderr, redrawn in place. */
@@ -277,7 +277,7 @@ static void result_print_json(const replay_result *res)
     mt_json_key(&j, "original_version");
     mt_json_uint(&j, e->version);
     mt_json_key(&j, "archived_content_hash");
-    mt_json_string(&j, mt_cli_hash_text((int64_t)e->content_hash, hash, sizeof hash));
+    mt_json_string(&j, cli_hash_text((int64_t)e->content_hash, hash, sizeof hash));
     mt_json_key(&j, "status");
     mt_json_string(&j, res->status);
     mt_json_key(&j, "error");
@@ -289,7 +289,7 @@ static void result_print_json(const replay_result *res)
         mt_json_null(&j);
     mt_json_key(&j, "content_hash");
     if (res->acked)
-        mt_json_string(&j, mt_cli_hash_text(res->content_hash, hash, sizeof hash));
+        mt_json_string(&j, cli_hash_text(res->content_hash, hash, sizeof hash));
     else
         mt_json_null(&j);
     mt_json_key(&j, "hash_match");
@@ -315,8 +315,8 @@ static void result_print(replay *r, const replay_result *res)
         result_print_json(res);
     } else if (res->acked && strcmp(res->status, "OK") == 0) {
         char got[24], want[24];
-        mt_cli_hash_text(res->content_hash, got, sizeof got);
-        mt_cli_hash_text((int64_t)res->expected_hash, want, sizeof want);
+        cli_hash_text(res->content_hash, got, sizeof got);
+        cli_hash_text((int64_t)res->expected_hash, want, sizeof want);
         bool same = strcmp(got, want) == 0;
         printf("%s version %u -> version %d  content hash %s %s%s\n", res->entry->mesh_id,
                res->entry->version, (int)res->version, got,
@@ -334,15 +334,14 @@ static void result_print(replay *r, const replay_result *res)
 static int code_worse(int a, int b)
 {
     static const int rank[] = {
-        [MT_CLI_EXIT_OK] = 0,       [MT_CLI_EXIT_DEFECT] = 1, [MT_CLI_EXIT_USAGE] = 5,
-        [MT_CLI_EXIT_READ] = 2,     [MT_CLI_EXIT_BUILD] = 3,  [MT_CLI_EXIT_REFUSED] = 4,
-        [MT_CLI_EXIT_NO_ANSWER] = 6};
+        [CLI_EXIT_OK] = 0,    [CLI_EXIT_DEFECT] = 1,  [CLI_EXIT_USAGE] = 5,    [CLI_EXIT_READ] = 2,
+        [CLI_EXIT_BUILD] = 3, [CLI_EXIT_REFUSED] = 4, [CLI_EXIT_NO_ANSWER] = 6};
     return rank[b] > rank[a] ? b : a;
 }
 
 /* Loads, waits for and submits one planned version; returns its exit code
- * (MT_CLI_EXIT_NO_ANSWER stops the replay). */
-static int replay_one(replay *r, const mt_archive *archive, const mt_cli_replay_item *item)
+ * (CLI_EXIT_NO_ANSWER stops the replay). */
+static int replay_one(replay *r, const mt_archive *archive, const cli_replay_item *item)
 {
     const mt_archive_entry *e = item->entry;
     replay_result res = {.entry = e, .offset_s = item->offset_s};
@@ -351,19 +350,19 @@ static int replay_one(replay *r, const mt_archive *archive, const mt_cli_replay_
     mt_diag_clear(&diag);
     if (mt_archive_load_file(archive, e->file_name, &rec, &diag) != MT_OK) {
         progress_clear(r);
-        mt_cli_error("replay", "%s", diag.message);
+        cli_error("replay", "%s", diag.message);
         res.status = "UNREADABLE";
         res.error = diag.message;
         if (r->json) result_print(r, &res);
-        return MT_CLI_EXIT_READ;
+        return CLI_EXIT_READ;
     }
     mt_client *client = NULL;
     int code = client_for(r, rec.source ? rec.source : "", &client);
-    if (code != MT_CLI_EXIT_OK) {
+    if (code != CLI_EXIT_OK) {
         mt_archive_record_free(&rec);
         return code;
     }
-    if (r->start_ms == 0) r->start_ms = mt_cli_now_ms() - item->offset_s * 1e3;
+    if (r->start_ms == 0) r->start_ms = cli_now_ms() - item->offset_s * 1e3;
     wait_until(r, item->offset_s);
     res.sent_s = seconds_since_start(r);
     mt_client_ack ack;
@@ -377,20 +376,20 @@ static int replay_one(replay *r, const mt_archive *archive, const mt_cli_replay_
                             : ack.sent_content_hash;
     if (st == MT_OK) {
         res.status = "OK";
-        code = (uint64_t)res.content_hash == res.expected_hash ? MT_CLI_EXIT_OK : MT_CLI_EXIT_READ;
+        code = (uint64_t)res.content_hash == res.expected_hash ? CLI_EXIT_OK : CLI_EXIT_READ;
     } else {
         progress_clear(r);
-        code = mt_cli_call_failed("replay", rec.mesh_id, &r->remote, st, res.acked, &diag);
-        res.status = res.acked                       ? mt_msgs_code_name(ack.msg.status)
-                     : code == MT_CLI_EXIT_NO_ANSWER ? "NO_ANSWER"
-                                                     : "ERROR";
+        code = cli_call_failed("replay", rec.mesh_id, &r->remote, st, res.acked, &diag);
+        res.status = res.acked                    ? mt_msgs_code_name(ack.msg.status)
+                     : code == CLI_EXIT_NO_ANSWER ? "NO_ANSWER"
+                                                  : "ERROR";
         res.error = diag.message;
     }
     result_print(r, &res);
-    if (code == MT_CLI_EXIT_READ) {
+    if (code == CLI_EXIT_READ) {
         char want[24];
-        mt_cli_error("replay", "%s: meshtopod computed another content hash than the archived %s",
-                     e->file_name, mt_cli_hash_text((int64_t)res.expected_hash, want, sizeof want));
+        cli_error("replay", "%s: meshtopod computed another content hash than the archived %s",
+                  e->file_name, cli_hash_text((int64_t)res.expected_hash, want, sizeof want));
     }
     mt_client_ack_free(&ack);
     mt_archive_record_free(&rec);
@@ -398,13 +397,13 @@ static int replay_one(replay *r, const mt_archive *archive, const mt_cli_replay_
 }
 
 static int replay_run(replay *r, const mt_archive *archive, const mt_archive_listing *listing,
-                      const mt_cli_replay_plan *plan)
+                      const cli_replay_plan *plan)
 {
-    int code = MT_CLI_EXIT_OK;
+    int code = CLI_EXIT_OK;
     for (size_t i = 0; i < listing->count; i++) {
         const mt_archive_entry *e = &listing->entries[i];
         if (e->status == MT_OK) continue;
-        mt_cli_error("replay", "%s", e->diag.message);
+        cli_error("replay", "%s", e->diag.message);
         if (r->json) {
             mt_json j;
             mt_json_init(&j, stdout);
@@ -419,9 +418,9 @@ static int replay_run(replay *r, const mt_archive *archive, const mt_archive_lis
             mt_json_object_end(&j);
             mt_json_finish(&j);
         }
-        code = MT_CLI_EXIT_READ;
+        code = CLI_EXIT_READ;
     }
-    if (plan->count == 0) mt_cli_error("replay", "no archived mesh matches: nothing to replay");
+    if (plan->count == 0) cli_error("replay", "no archived mesh matches: nothing to replay");
     r->total = plan->count;
     r->last_offset_s = plan->count ? plan->items[plan->count - 1].offset_s : 0.0;
     progress_draw(r);
@@ -430,7 +429,7 @@ static int replay_run(replay *r, const mt_archive *archive, const mt_archive_lis
         code = code_worse(code, one);
         r->sent++;
         progress_draw(r);
-        if (one == MT_CLI_EXIT_NO_ANSWER || one == MT_CLI_EXIT_USAGE) break;
+        if (one == CLI_EXIT_NO_ANSWER || one == CLI_EXIT_USAGE) break;
     }
     if (r->progress_drawn) {
         fputc('\n', stderr);
@@ -439,15 +438,15 @@ static int replay_run(replay *r, const mt_archive *archive, const mt_archive_lis
     return code;
 }
 
-static int run_replay(const mt_cli_args *args)
+static int run_replay(const cli_args *args)
 {
     replay r;
     memset(&r, 0, sizeof r);
     double rate = 1.0;
-    mt_cli_replay_filter filter;
+    cli_replay_filter filter;
     char prefix[MT_CLIENT_MAX_PREFIX + 8];
     int code = parse_options(args, &r, &rate, &filter, prefix, sizeof prefix);
-    if (code != MT_CLI_EXIT_OK) return code;
+    if (code != CLI_EXIT_OK) return code;
 
     const char *dir = args->positionals[0];
     mt_archive_options open_options = {.read_only = true};
@@ -455,26 +454,26 @@ static int run_replay(const mt_cli_args *args)
     mt_diag diag;
     mt_diag_clear(&diag);
     if (mt_archive_open(dir, &open_options, &archive, &diag) != MT_OK) {
-        mt_cli_error("replay", "%s", diag.message);
-        return MT_CLI_EXIT_READ;
+        cli_error("replay", "%s", diag.message);
+        return CLI_EXIT_READ;
     }
     mt_archive_listing listing;
     if (mt_archive_list(archive, &listing, &diag) != MT_OK) {
-        mt_cli_error("replay", "%s", diag.message);
+        cli_error("replay", "%s", diag.message);
         mt_archive_close(archive);
-        return MT_CLI_EXIT_READ;
+        return CLI_EXIT_READ;
     }
-    mt_cli_replay_plan plan;
-    code = mt_cli_replay_plan_make(&listing, &filter, rate, &plan);
-    if (code == MT_CLI_EXIT_OK) code = replay_run(&r, archive, &listing, &plan);
+    cli_replay_plan plan;
+    code = cli_replay_plan_make(&listing, &filter, rate, &plan);
+    if (code == CLI_EXIT_OK) code = replay_run(&r, archive, &listing, &plan);
     clients_destroy(&r);
-    mt_cli_replay_plan_free(&plan);
+    cli_replay_plan_free(&plan);
     mt_archive_listing_free(&listing);
     mt_archive_close(archive);
-    return mt_cli_finish_output("replay", code, MT_CLI_EXIT_READ);
+    return cli_finish_output("replay", code, CLI_EXIT_READ);
 }
 
-const mt_cli_command mt_cli_cmd_replay = {
+const cli_command cli_cmd_replay = {
     .name = "replay",
     .summary = "publish archived meshes to meshtopod again, with their original timing",
     .synopsis =

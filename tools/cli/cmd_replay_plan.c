@@ -68,7 +68,7 @@ static bool iso_parse(const char *text, int64_t *out)
     return true;
 }
 
-bool mt_cli_replay_parse_time(const char *text, int64_t *out_utime)
+bool cli_replay_parse_time(const char *text, int64_t *out_utime)
 {
     if (!text[0]) return false;
     if (strspn(text, "0123456789") == strlen(text)) {
@@ -81,8 +81,8 @@ bool mt_cli_replay_parse_time(const char *text, int64_t *out_utime)
 
 static int item_compare(const void *a, const void *b)
 {
-    const mt_archive_entry *x = ((const mt_cli_replay_item *)a)->entry;
-    const mt_archive_entry *y = ((const mt_cli_replay_item *)b)->entry;
+    const mt_archive_entry *x = ((const cli_replay_item *)a)->entry;
+    const mt_archive_entry *y = ((const cli_replay_item *)b)->entry;
     if (x->utime != y->utime) return x->utime < y->utime ? -1 : 1;
     int c = strcmp(x->mesh_id, y->mesh_id);
     if (c != 0) return c;
@@ -113,7 +113,7 @@ static bool ids_check(const mt_archive_listing *listing, const char *list)
             found = e->status == MT_OK && strlen(e->mesh_id) == n && memcmp(e->mesh_id, p, n) == 0;
         }
         if (!found) {
-            mt_cli_error("replay", "--ids: no archived version of mesh '%.*s'", (int)n, p);
+            cli_error("replay", "--ids: no archived version of mesh '%.*s'", (int)n, p);
             ok = false;
         }
         if (!p[n]) return ok;
@@ -121,16 +121,16 @@ static bool ids_check(const mt_archive_listing *listing, const char *list)
     }
 }
 
-int mt_cli_replay_plan_make(const mt_archive_listing *listing, const mt_cli_replay_filter *filter,
-                            double rate, mt_cli_replay_plan *out)
+int cli_replay_plan_make(const mt_archive_listing *listing, const cli_replay_filter *filter,
+                         double rate, cli_replay_plan *out)
 {
     memset(out, 0, sizeof *out);
-    if (filter->ids && !ids_check(listing, filter->ids)) return MT_CLI_EXIT_USAGE;
-    if (listing->count == 0) return MT_CLI_EXIT_OK;
+    if (filter->ids && !ids_check(listing, filter->ids)) return CLI_EXIT_USAGE;
+    if (listing->count == 0) return CLI_EXIT_OK;
     out->items = calloc(listing->count, sizeof *out->items);
     if (!out->items) {
-        mt_cli_error("replay", "out of memory for %zu archive entries", listing->count);
-        return MT_CLI_EXIT_READ;
+        cli_error("replay", "out of memory for %zu archive entries", listing->count);
+        return CLI_EXIT_READ;
     }
     for (size_t i = 0; i < listing->count; i++) {
         const mt_archive_entry *e = &listing->entries[i];
@@ -145,10 +145,10 @@ int mt_cli_replay_plan_make(const mt_archive_listing *listing, const mt_cli_repl
         double gap_s = (double)(out->items[i].entry->utime - out->items[0].entry->utime) / 1e6;
         out->items[i].offset_s = rate > 0 ? gap_s / rate : 0.0;
     }
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
-void mt_cli_replay_plan_free(mt_cli_replay_plan *plan)
+void cli_replay_plan_free(cli_replay_plan *plan)
 {
     if (!plan) return;
     free(plan->items);

@@ -11,13 +11,13 @@
 
 #include "remote.h"
 
-static const mt_cli_option options[] = {
+static const cli_option options[] = {
     {"id", "ID", "mesh id to store it under (required; 1-255 printable bytes, no '/' or '..')"},
     {"strict", NULL, "the daemon refuses the mesh if it has any defect (exit 5, report printed)"},
     {"json", NULL, "print the acknowledgement as one JSON object"},
     {"format", "NAME", "file format: auto (default), off, obj, ply-ascii, ply-le, ply-be"},
     {"quiet", NULL, "no progress bar (there is none either when stderr is not a terminal)"},
-    MT_CLI_REMOTE_OPTIONS,
+    CLI_REMOTE_OPTIONS,
 };
 
 /* The progress bar's state: when the transfer started, whether a bar is drawn. */
@@ -58,7 +58,7 @@ static void draw_progress(uint64_t done, uint64_t total, void *user)
 }
 
 /* report: the ack's report converted, NULL when it carries none. */
-static void print_json(const char *path, const mt_client_ack *ack, const mt_cli_report *report)
+static void print_json(const char *path, const mt_client_ack *ack, const cli_report *report)
 {
     char hash[24];
     mt_json j;
@@ -75,80 +75,80 @@ static void print_json(const char *path, const mt_client_ack *ack, const mt_cli_
     mt_json_key(&j, "version");
     mt_json_int(&j, ack->msg.version);
     mt_json_key(&j, "content_hash");
-    mt_json_string(&j, mt_cli_hash_text(ack->msg.content_hash, hash, sizeof hash));
+    mt_json_string(&j, cli_hash_text(ack->msg.content_hash, hash, sizeof hash));
     mt_json_key(&j, "report");
     if (report)
-        mt_cli_report_write_json(&j, report);
+        cli_report_write_json(&j, report);
     else
         mt_json_null(&j);
     mt_json_object_end(&j);
     mt_json_finish(&j);
 }
 
-static void print_text(const char *path, const mt_client_ack *ack, const mt_cli_report *report)
+static void print_text(const char *path, const mt_client_ack *ack, const cli_report *report)
 {
     char hash[24];
     if (ack->msg.status == MESHTOPO_STATUS_CODE_T_OK)
         printf("sent %s as mesh %s version %d (content hash %s)\n", path, ack->msg.mesh_id,
-               (int)ack->msg.version, mt_cli_hash_text(ack->msg.content_hash, hash, sizeof hash));
+               (int)ack->msg.version, cli_hash_text(ack->msg.content_hash, hash, sizeof hash));
     else
         printf("meshtopod refused %s as mesh %s: %s: %s\n", path, ack->msg.mesh_id,
                mt_msgs_code_name(ack->msg.status), ack->msg.error);
-    if (report) mt_cli_report_print_text(report, stdout);
+    if (report) cli_report_print_text(report, stdout);
 }
 
-static int run_send(const mt_cli_args *args)
+static int run_send(const cli_args *args)
 {
     const char *path = args->positionals[0];
-    const char *id = mt_cli_arg(args, "id");
+    const char *id = cli_arg(args, "id");
     if (!id) {
-        mt_cli_error("send", "--id ID is required");
-        return MT_CLI_EXIT_USAGE;
+        cli_error("send", "--id ID is required");
+        return CLI_EXIT_USAGE;
     }
-    mt_cli_remote remote;
-    int code = mt_cli_remote_parse(args, &remote);
-    if (code != MT_CLI_EXIT_OK) return code;
+    cli_remote remote;
+    int code = cli_remote_parse(args, &remote);
+    if (code != CLI_EXIT_OK) return code;
 
     mt_face_list list;
-    code = mt_cli_face_list_read("send", path, mt_cli_arg(args, "format"), &list);
-    if (code != MT_CLI_EXIT_OK) return code;
+    code = cli_face_list_read("send", path, cli_arg(args, "format"), &list);
+    if (code != CLI_EXIT_OK) return code;
 
     mt_client *client = NULL;
     send_progress progress = {0, 0};
-    bool show = !mt_cli_flag(args, "quiet") && isatty(STDERR_FILENO);
-    code = mt_cli_client_create_progress("send", &remote, show ? draw_progress : NULL, &progress,
-                                         &client);
-    if (code != MT_CLI_EXIT_OK) {
+    bool show = !cli_flag(args, "quiet") && isatty(STDERR_FILENO);
+    code = cli_client_create_progress("send", &remote, show ? draw_progress : NULL, &progress,
+                                      &client);
+    if (code != CLI_EXIT_OK) {
         mt_face_list_free(&list);
         return code;
     }
     mt_client_ack ack;
     mt_diag diag;
     mt_diag_clear(&diag);
-    mt_status st = mt_client_submit(client, id, &list, mt_cli_flag(args, "strict"), &ack, &diag);
+    mt_status st = mt_client_submit(client, id, &list, cli_flag(args, "strict"), &ack, &diag);
     bool answered = ack.msg.mesh_id != NULL;
     if (progress.drawn) fputc('\n', stderr); /* a bar left unfinished by a failure */
     if (answered) {
         const meshtopo_topology_t *t = mt_client_ack_report(&ack);
-        mt_cli_report report;
+        cli_report report;
         memset(&report, 0, sizeof report);
-        if (t) code = mt_cli_report_take("send", t, &report);
-        const mt_cli_report *shown = t && code == MT_CLI_EXIT_OK ? &report : NULL;
-        if (mt_cli_flag(args, "json"))
+        if (t) code = cli_report_take("send", t, &report);
+        const cli_report *shown = t && code == CLI_EXIT_OK ? &report : NULL;
+        if (cli_flag(args, "json"))
             print_json(path, &ack, shown);
         else
             print_text(path, &ack, shown);
-        mt_cli_report_free(&report);
+        cli_report_free(&report);
     }
-    if (st != MT_OK) code = mt_cli_call_failed("send", id, &remote, st, answered, &diag);
-    code = mt_cli_finish_output("send", code, MT_CLI_EXIT_USAGE);
+    if (st != MT_OK) code = cli_call_failed("send", id, &remote, st, answered, &diag);
+    code = cli_finish_output("send", code, CLI_EXIT_USAGE);
     mt_client_ack_free(&ack);
-    mt_cli_client_destroy("send", &remote, client);
+    cli_client_destroy("send", &remote, client);
     mt_face_list_free(&list);
     return code;
 }
 
-const mt_cli_command mt_cli_cmd_send = {
+const cli_command cli_cmd_send = {
     .name = "send",
     .summary = "submit a mesh file to meshtopod and print its acknowledgement",
     .synopsis = "FILE --id ID [--strict] [--json] [--quiet] [--lcm-url URL] [--prefix PREFIX]",

@@ -34,8 +34,8 @@
 
 enum { SPY_PATH_MAX = 4096 };
 
-static const mt_cli_option options[] = {
-    {"lcm-url", "URL", "LCM provider URL (default: $" MT_CLI_ENV_LCM_URL ", else LCM's own)"},
+static const cli_option options[] = {
+    {"lcm-url", "URL", "LCM provider URL (default: $" CLI_ENV_LCM_URL ", else LCM's own)"},
 };
 
 /* Looks `name` up in $PATH like execvp does; writes the first executable
@@ -71,74 +71,74 @@ static const char *msgs_jar_find(void)
     const char *env = getenv(SPY_ENV_MSGS_JAR);
     if (env && env[0]) {
         if (file_readable(env)) return env;
-        mt_cli_error("spy", "$%s names %s, which cannot be read: %s", SPY_ENV_MSGS_JAR, env,
-                     strerror(errno));
+        cli_error("spy", "$%s names %s, which cannot be read: %s", SPY_ENV_MSGS_JAR, env,
+                  strerror(errno));
         return NULL;
     }
     if (file_readable(MESHTOPO_MSGS_JAR_BUILD)) return MESHTOPO_MSGS_JAR_BUILD;
     /* the jar installed with this program */
-    if (mt_cli_beside_program(MESHTOPO_MSGS_JAR_FROM_BINDIR, beside, sizeof beside) &&
+    if (cli_beside_program(MESHTOPO_MSGS_JAR_FROM_BINDIR, beside, sizeof beside) &&
         file_readable(beside))
         return beside;
     if (file_readable(MESHTOPO_MSGS_JAR_INSTALLED)) return MESHTOPO_MSGS_JAR_INSTALLED;
-    mt_cli_error("spy",
-                 "meshtopo-msgs.jar (the message types for lcm-spy) not found: looked at "
-                 "%s%s%s; build it with a JDK and lcm.jar present (Debian: default-jdk-headless "
-                 "liblcm-java), install it, or set $%s",
-                 MESHTOPO_MSGS_JAR_BUILD[0] ? MESHTOPO_MSGS_JAR_BUILD : "",
-                 MESHTOPO_MSGS_JAR_BUILD[0] ? " and " : "", MESHTOPO_MSGS_JAR_INSTALLED,
-                 SPY_ENV_MSGS_JAR);
+    cli_error("spy",
+              "meshtopo-msgs.jar (the message types for lcm-spy) not found: looked at "
+              "%s%s%s; build it with a JDK and lcm.jar present (Debian: default-jdk-headless "
+              "liblcm-java), install it, or set $%s",
+              MESHTOPO_MSGS_JAR_BUILD[0] ? MESHTOPO_MSGS_JAR_BUILD : "",
+              MESHTOPO_MSGS_JAR_BUILD[0] ? " and " : "", MESHTOPO_MSGS_JAR_INSTALLED,
+              SPY_ENV_MSGS_JAR);
     return NULL;
 }
 
-static int run_spy(const mt_cli_args *args)
+static int run_spy(const cli_args *args)
 {
-    const char *url = mt_cli_arg(args, "lcm-url");
-    if (!url) url = getenv(MT_CLI_ENV_LCM_URL);
+    const char *url = cli_arg(args, "lcm-url");
+    if (!url) url = getenv(CLI_ENV_LCM_URL);
     if (url && !url[0]) url = NULL;
 
     char java[SPY_PATH_MAX];
     if (!path_find("java", java, sizeof java)) {
-        mt_cli_error("spy",
-                     "java not found on PATH; lcm-spy needs a Java runtime with AWT "
-                     "(Debian: default-jre)");
-        return MT_CLI_EXIT_READ;
+        cli_error("spy",
+                  "java not found on PATH; lcm-spy needs a Java runtime with AWT "
+                  "(Debian: default-jre)");
+        return CLI_EXIT_READ;
     }
     if (!file_readable(MESHTOPO_LCM_JAR)) {
-        mt_cli_error("spy", "%s (LCM for Java, lcm-spy itself) not found (Debian: liblcm-java)",
-                     MESHTOPO_LCM_JAR);
-        return MT_CLI_EXIT_READ;
+        cli_error("spy", "%s (LCM for Java, lcm-spy itself) not found (Debian: liblcm-java)",
+                  MESHTOPO_LCM_JAR);
+        return CLI_EXIT_READ;
     }
     if (!file_readable(MESHTOPO_JCHART2D_JAR)) {
-        mt_cli_error("spy", "%s (lcm-spy's charts) not found (Debian: libjchart2d-java)",
-                     MESHTOPO_JCHART2D_JAR);
-        return MT_CLI_EXIT_READ;
+        cli_error("spy", "%s (lcm-spy's charts) not found (Debian: libjchart2d-java)",
+                  MESHTOPO_JCHART2D_JAR);
+        return CLI_EXIT_READ;
     }
     const char *msgs_jar = msgs_jar_find();
-    if (!msgs_jar) return MT_CLI_EXIT_READ;
+    if (!msgs_jar) return CLI_EXIT_READ;
     /* lcm-spy opens a window: without a display Java dies with a stack trace. */
     const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
     if ((!display || !display[0]) && (!wayland || !wayland[0])) {
-        mt_cli_error("spy",
-                     "no display (DISPLAY is not set): lcm-spy opens a window; run it on a "
-                     "desktop, over ssh -X, or under xvfb-run; `meshtopo watch` prints the "
-                     "same traffic as text");
-        return MT_CLI_EXIT_READ;
+        cli_error("spy",
+                  "no display (DISPLAY is not set): lcm-spy opens a window; run it on a "
+                  "desktop, over ssh -X, or under xvfb-run; `meshtopo watch` prints the "
+                  "same traffic as text");
+        return CLI_EXIT_READ;
     }
 
     char class_path[3 * SPY_PATH_MAX];
     int n = snprintf(class_path, sizeof class_path, "%s:%s:%s", MESHTOPO_LCM_JAR,
                      MESHTOPO_JCHART2D_JAR, msgs_jar);
     if (n < 0 || (size_t)n >= sizeof class_path) {
-        mt_cli_error("spy", "class path too long: %s", msgs_jar);
-        return MT_CLI_EXIT_USAGE;
+        cli_error("spy", "class path too long: %s", msgs_jar);
+        return CLI_EXIT_USAGE;
     }
     char url_arg[SPY_PATH_MAX];
     if (url) {
         n = snprintf(url_arg, sizeof url_arg, "--lcm-url=%s", url);
         if (n < 0 || (size_t)n >= sizeof url_arg) {
-            mt_cli_error("spy", "--lcm-url: too long");
-            return MT_CLI_EXIT_USAGE;
+            cli_error("spy", "--lcm-url: too long");
+            return CLI_EXIT_USAGE;
         }
     }
     char *argv[] = {"java",        "-Djava.net.preferIPv4Stack=true",
@@ -148,11 +148,11 @@ static int run_spy(const mt_cli_args *args)
     fflush(stdout);
     fflush(stderr);
     execv(java, argv);
-    mt_cli_error("spy", "cannot start %s: %s", java, strerror(errno));
-    return MT_CLI_EXIT_READ;
+    cli_error("spy", "cannot start %s: %s", java, strerror(errno));
+    return CLI_EXIT_READ;
 }
 
-const mt_cli_command mt_cli_cmd_spy = {
+const cli_command cli_cmd_spy = {
     .name = "spy",
     .summary = "start lcm-spy with the meshtopo message types, to watch the bus decoded",
     .synopsis = "[--lcm-url URL]",

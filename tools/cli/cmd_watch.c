@@ -11,10 +11,10 @@
 
 #include "remote.h"
 
-static const mt_cli_option options[] = {
+static const cli_option options[] = {
     {"json", NULL, "print each message as one line of JSON: {channel, type, message}"},
     {"count", "N", "stop after N messages (default: run until SIGINT)"},
-    MT_CLI_REMOTE_OPTIONS,
+    CLI_REMOTE_OPTIONS,
 };
 
 static volatile sig_atomic_t interrupted;
@@ -134,7 +134,7 @@ static void message_printed(watch_state *w)
 {
     fflush(stdout);
     w->printed++;
-    w->last_ms = mt_cli_now_ms();
+    w->last_ms = cli_now_ms();
     pthread_cond_signal(&w->printed_one);
 }
 
@@ -159,41 +159,41 @@ static void on_status(const meshtopo_status_t *status, void *user)
 static void on_topology(const meshtopo_topology_t *topology, void *user)
 {
     watch_state *w = user;
-    mt_cli_report report;
+    cli_report report;
     mt_diag diag;
-    mt_status st = mt_cli_report_from_topology(topology, &report, &diag);
+    mt_status st = cli_report_from_topology(topology, &report, &diag);
     pthread_mutex_lock(&w->lock);
     if (st != MT_OK) {
-        mt_cli_error("watch", "%s: undecodable %s: %s", w->topology_channel,
-                     mt_msgs_type_topology.name, diag.message);
+        cli_error("watch", "%s: undecodable %s: %s", w->topology_channel,
+                  mt_msgs_type_topology.name, diag.message);
     } else if (wants_more(w)) {
         if (w->json) {
             mt_json j;
             json_line_begin(&j, w->topology_channel, &mt_msgs_type_topology);
-            mt_cli_report_write_json(&j, &report);
+            cli_report_write_json(&j, &report);
             json_line_end(&j);
         } else {
-            mt_cli_report_print_line(&report, w->topology_channel, stdout);
+            cli_report_print_line(&report, w->topology_channel, stdout);
         }
         message_printed(w);
     }
     pthread_mutex_unlock(&w->lock);
-    mt_cli_report_free(&report);
+    cli_report_free(&report);
 }
 
 /* Waits until --count messages were printed, a signal came or (with
  * --timeout-ms) nothing came for that long; reports messages the client
  * could not decode. Returns the exit code. */
-static int wait_for_end(watch_state *w, mt_client *client, const mt_cli_remote *remote)
+static int wait_for_end(watch_state *w, mt_client *client, const cli_remote *remote)
 {
-    int code = MT_CLI_EXIT_OK;
+    int code = CLI_EXIT_OK;
     uint64_t undecodable = 0;
     pthread_mutex_lock(&w->lock);
     while (!interrupted && wants_more(w)) {
-        if (remote->timeout_given && mt_cli_now_ms() - w->last_ms > remote->timeout_ms) {
-            mt_cli_error("watch", "no message on %s or %s for %d ms", w->topology_channel,
-                         w->status_channel, remote->timeout_ms);
-            code = MT_CLI_EXIT_NO_ANSWER;
+        if (remote->timeout_given && cli_now_ms() - w->last_ms > remote->timeout_ms) {
+            cli_error("watch", "no message on %s or %s for %d ms", w->topology_channel,
+                      w->status_channel, remote->timeout_ms);
+            code = CLI_EXIT_NO_ANSWER;
             break;
         }
         struct timespec wake;
@@ -207,28 +207,28 @@ static int wait_for_end(watch_state *w, mt_client *client, const mt_cli_remote *
         mt_client_stats stats;
         mt_client_get_stats(client, &stats);
         if (stats.undecodable > undecodable)
-            mt_cli_error("watch", "%s or %s: %" PRIu64 " undecodable message(s)",
-                         w->topology_channel, w->status_channel, stats.undecodable - undecodable);
+            cli_error("watch", "%s or %s: %" PRIu64 " undecodable message(s)", w->topology_channel,
+                      w->status_channel, stats.undecodable - undecodable);
         undecodable = stats.undecodable;
     }
     pthread_mutex_unlock(&w->lock);
     return code;
 }
 
-static int run_watch(const mt_cli_args *args)
+static int run_watch(const cli_args *args)
 {
-    mt_cli_remote remote;
-    int code = mt_cli_remote_parse(args, &remote);
-    if (code != MT_CLI_EXIT_OK) return code;
+    cli_remote remote;
+    int code = cli_remote_parse(args, &remote);
+    if (code != CLI_EXIT_OK) return code;
     int count = 0;
-    const char *count_text = mt_cli_arg(args, "count");
-    if (count_text && (!mt_cli_parse_int(count_text, &count) || count == 0)) {
-        mt_cli_error("watch", "--count: expected a positive count, got '%s'", count_text);
-        return MT_CLI_EXIT_USAGE;
+    const char *count_text = cli_arg(args, "count");
+    if (count_text && (!cli_parse_int(count_text, &count) || count == 0)) {
+        cli_error("watch", "--count: expected a positive count, got '%s'", count_text);
+        return CLI_EXIT_USAGE;
     }
     watch_state w;
     memset(&w, 0, sizeof w);
-    w.json = mt_cli_flag(args, "json");
+    w.json = cli_flag(args, "json");
     w.count = count;
     /* The prefix is checked when the client is created; the names are only
      * printed. */
@@ -243,8 +243,8 @@ static int run_watch(const mt_cli_args *args)
     sigaddset(&stop_signals, SIGTERM);
     pthread_sigmask(SIG_BLOCK, &stop_signals, &old_mask);
     mt_client *client = NULL;
-    code = mt_cli_client_create("watch", &remote, &client);
-    if (code != MT_CLI_EXIT_OK) {
+    code = cli_client_create("watch", &remote, &client);
+    if (code != CLI_EXIT_OK) {
         pthread_sigmask(SIG_SETMASK, &old_mask, NULL);
         return code;
     }
@@ -262,15 +262,15 @@ static int run_watch(const mt_cli_args *args)
     pthread_condattr_setclock(&attr, CLOCK_MONOTONIC);
     pthread_cond_init(&w.printed_one, &attr);
     pthread_condattr_destroy(&attr);
-    w.last_ms = mt_cli_now_ms();
+    w.last_ms = cli_now_ms();
     mt_client_watch_fns fns = {on_status, on_topology, &w};
     mt_client_watch *watch = NULL;
     mt_diag diag;
     mt_status st = mt_client_watch_start(client, &fns, &watch, &diag);
     if (st != MT_OK) {
-        mt_cli_error("watch", "cannot watch %s and %s: %s", w.topology_channel, w.status_channel,
-                     diag.message[0] ? diag.message : mt_strerror(st));
-        code = MT_CLI_EXIT_NO_ANSWER;
+        cli_error("watch", "cannot watch %s and %s: %s", w.topology_channel, w.status_channel,
+                  diag.message[0] ? diag.message : mt_strerror(st));
+        code = CLI_EXIT_NO_ANSWER;
     } else {
         code = wait_for_end(&w, client, &remote);
     }
@@ -283,7 +283,7 @@ static int run_watch(const mt_cli_args *args)
     return code;
 }
 
-const mt_cli_command mt_cli_cmd_watch = {
+const cli_command cli_cmd_watch = {
     .name = "watch",
     .summary = "print meshtopod's topology reports and heartbeats as they arrive",
     .synopsis = "[--json] [--count N] [--timeout-ms MS] [--lcm-url URL] [--prefix PREFIX]",

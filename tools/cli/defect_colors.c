@@ -40,8 +40,8 @@ static bool face_runs(const uint32_t *idx, uint32_t n, uint32_t u, uint32_t w)
     return false;
 }
 
-bool mt_cli_defect_colors(const mt_face_list *list, const mt_mesh *mesh, const mt_face_pair *pairs,
-                          size_t num_pairs, uint8_t *out_vertex, uint8_t *out_face)
+bool cli_defect_colors(const mt_face_list *list, const mt_mesh *mesh, const mt_face_pair *pairs,
+                       size_t num_pairs, uint8_t *out_vertex, uint8_t *out_face)
 {
     const uint32_t nv = list->num_verts, nf = list->num_faces;
     uint8_t *vrank = calloc((size_t)nv + 1, 1), *frank = calloc((size_t)nf + 1, 1);

@@ -21,7 +21,7 @@
  * side used by three or more faces, else blue when the other face of one
  * of its two-face sides runs that side the same way, else grey. false when
  * memory runs out. */
-bool mt_cli_defect_colors(const mt_face_list *list, const mt_mesh *mesh, const mt_face_pair *pairs,
-                          size_t num_pairs, uint8_t *out_vertex, uint8_t *out_face);
+bool cli_defect_colors(const mt_face_list *list, const mt_mesh *mesh, const mt_face_pair *pairs,
+                       size_t num_pairs, uint8_t *out_vertex, uint8_t *out_face);
 
 #endif

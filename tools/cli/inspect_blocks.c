@@ -19,7 +19,7 @@ static const char *diag_text(const mt_diag *diag, mt_status status)
 }
 
 /* The blocks end to end, unwelded (out-of-range entries as they are). */
-static mt_status concat_blocks(const mt_cli_block_set *set, mt_face_list *out, mt_diag *diag)
+static mt_status concat_blocks(const cli_block_set *set, mt_face_list *out, mt_diag *diag)
 {
     uint64_t nv = 0, nf = 0, ni = 0;
     for (size_t b = 0; b < set->count; b++) {
@@ -58,8 +58,8 @@ static mt_status concat_blocks(const mt_cli_block_set *set, mt_face_list *out, m
  * block copies was non-manifold in the blocks end to end, unwelded (what
  * --weld reports, with the blocks as the unwelded input). vids: the map id
  * of each list vertex. */
-static mt_status weld_news(const mt_cli_block_set *set, const mt_map *map, const uint32_t *vids,
-                           mt_cli_mesh *out, mt_diag *diag)
+static mt_status weld_news(const cli_block_set *set, const mt_map *map, const uint32_t *vids,
+                           cli_mesh *out, mt_diag *diag)
 {
     mt_face_list cat;
     mt_status st = concat_blocks(set, &cat, diag);
@@ -121,36 +121,36 @@ done:
     return st;
 }
 
-int mt_inspect_blocks_load(const char *path, const char *format_name, uint64_t max_input,
-                           double size, mt_cli_mesh *out)
+int inspect_blocks_load(const char *path, const char *format_name, uint64_t max_input, double size,
+                        cli_mesh *out)
 {
     memset(out, 0, sizeof *out);
-    double t0 = mt_cli_now_ms();
+    double t0 = cli_now_ms();
     mt_face_list file;
-    int code = mt_cli_face_list_read_bounded("inspect", path, format_name, max_input, &file);
-    out->read_ms = mt_cli_now_ms() - t0;
-    if (code != MT_CLI_EXIT_OK) return code;
+    int code = cli_face_list_read_bounded("inspect", path, format_name, max_input, &file);
+    out->read_ms = cli_now_ms() - t0;
+    if (code != CLI_EXIT_OK) return code;
     if (file.num_verts > 0 && !file.positions) {
-        mt_cli_error("inspect",
-                     "--blocks: %s has %u vertices but no positions; blocks are cut by "
-                     "position",
-                     path, (unsigned)file.num_verts);
+        cli_error("inspect",
+                  "--blocks: %s has %u vertices but no positions; blocks are cut by "
+                  "position",
+                  path, (unsigned)file.num_verts);
         mt_face_list_free(&file);
-        return MT_CLI_EXIT_BUILD;
+        return CLI_EXIT_BUILD;
     }
     mt_diag diag;
     mt_diag_clear(&diag);
-    mt_cli_block_set set;
-    mt_status st = mt_cli_blocks_split(&file, size, &set, &diag);
+    cli_block_set set;
+    mt_status st = cli_blocks_split(&file, size, &set, &diag);
     mt_face_list_free(&file);
     if (st != MT_OK) {
-        mt_cli_error("inspect", "--blocks: cannot split %s into blocks: %s", path,
-                     diag_text(&diag, st));
-        return MT_CLI_EXIT_BUILD;
+        cli_error("inspect", "--blocks: cannot split %s into blocks: %s", path,
+                  diag_text(&diag, st));
+        return CLI_EXIT_BUILD;
     }
 
     /* The map, block by block, as a mapper would send them. */
-    t0 = mt_cli_now_ms();
+    t0 = cli_now_ms();
     mt_map *map = NULL;
     uint32_t *vids = NULL, *fids = NULL;
     st = mt_map_create(NULL, &map, &diag);
@@ -159,11 +159,11 @@ int mt_inspect_blocks_load(const char *path, const char *format_name, uint64_t m
         st = mt_map_put(map, set.blocks[b].key, &set.blocks[b].list, NULL, NULL, &diag);
         sent += set.blocks[b].list.num_verts;
     }
-    out->build_ms = mt_cli_now_ms() - t0;
+    out->build_ms = cli_now_ms() - t0;
     if (st != MT_OK) {
-        mt_cli_error("inspect", "--blocks: cannot put %s's blocks into a map: %s", path,
-                     diag_text(&diag, st));
-        code = MT_CLI_EXIT_BUILD;
+        cli_error("inspect", "--blocks: cannot put %s's blocks into a map: %s", path,
+                  diag_text(&diag, st));
+        code = CLI_EXIT_BUILD;
         goto done;
     }
 
@@ -184,17 +184,17 @@ int mt_inspect_blocks_load(const char *path, const char *format_name, uint64_t m
         st = mt_mesh_build(&out->list, &build, &out->mesh, &diag);
     }
     if (st != MT_OK) {
-        mt_cli_error("inspect", "--blocks: cannot build the union of the map of %s: %s", path,
-                     diag_text(&diag, st));
-        code = MT_CLI_EXIT_BUILD;
+        cli_error("inspect", "--blocks: cannot build the union of the map of %s: %s", path,
+                  diag_text(&diag, st));
+        code = CLI_EXIT_BUILD;
         goto done;
     }
     if (mt_map_compare_report(map, mt_mesh_report(out->mesh), &diag) != MT_OK) {
-        mt_cli_error("inspect",
-                     "--blocks: the map's incremental counts of %s differ from a full build of "
-                     "its union (a bug in meshtopo's map): %s",
-                     path, diag.message);
-        code = MT_CLI_EXIT_BUILD;
+        cli_error("inspect",
+                  "--blocks: the map's incremental counts of %s differ from a full build of "
+                  "its union (a bug in meshtopo's map): %s",
+                  path, diag.message);
+        code = CLI_EXIT_BUILD;
         goto done;
     }
     out->weld.enabled = true;
@@ -206,15 +206,15 @@ int mt_inspect_blocks_load(const char *path, const char *format_name, uint64_t m
     out->weld.block_size = size;
     st = weld_news(&set, map, vids, out, &diag);
     if (st != MT_OK) {
-        mt_cli_error("inspect", "--blocks: cannot tell what the weld made non-manifold in %s: %s",
-                     path, diag_text(&diag, st));
-        code = MT_CLI_EXIT_BUILD;
+        cli_error("inspect", "--blocks: cannot tell what the weld made non-manifold in %s: %s",
+                  path, diag_text(&diag, st));
+        code = CLI_EXIT_BUILD;
     }
 done:
-    if (code != MT_CLI_EXIT_OK) mt_cli_mesh_free(out);
+    if (code != CLI_EXIT_OK) cli_mesh_free(out);
     free(vids);
     free(fids);
     mt_map_destroy(map);
-    mt_cli_block_set_free(&set);
+    cli_block_set_free(&set);
     return code;
 }

@@ -6,12 +6,12 @@
 
 #include "inspect.h"
 
-void mt_inspect_geometry_free(mt_inspect_geometry *g)
+void inspect_geometry_free(inspect_geometry *g)
 {
     free(g->pairs);
     free(g->faces);
     free(g->loops);
-    *g = (mt_inspect_geometry){0};
+    *g = (inspect_geometry){0};
 }
 
 /* One whole-mesh query answered into a new array of *out_count elements of
@@ -44,10 +44,10 @@ static mt_status answer(const mt_mesh *mesh, whole_mesh_query query, size_t elem
     return query(mesh, *out, *out_count, out_count, diag);
 }
 
-mt_status mt_inspect_geometry_compute(const mt_mesh *mesh, mt_inspect_geometry *g, mt_diag *diag)
+mt_status inspect_geometry_compute(const mt_mesh *mesh, inspect_geometry *g, mt_diag *diag)
 {
-    *g = (mt_inspect_geometry){0};
-    const double start = mt_cli_now_ms();
+    *g = (inspect_geometry){0};
+    const double start = cli_now_ms();
     void *pairs = NULL, *faces = NULL, *loops = NULL;
     mt_status s = answer(mesh, pairs_query, sizeof *g->pairs, &pairs, &g->num_pairs, diag);
     g->pairs = pairs;
@@ -55,12 +55,12 @@ mt_status mt_inspect_geometry_compute(const mt_mesh *mesh, mt_inspect_geometry *
     g->faces = faces;
     if (s == MT_OK) s = answer(mesh, loops_query, sizeof *g->loops, &loops, &g->num_loops, diag);
     g->loops = loops;
-    g->ms = mt_cli_now_ms() - start;
-    if (s != MT_OK) mt_inspect_geometry_free(g);
+    g->ms = cli_now_ms() - start;
+    if (s != MT_OK) inspect_geometry_free(g);
     return s;
 }
 
-size_t mt_inspect_geometry_findings(const mt_inspect_geometry *g)
+size_t inspect_geometry_findings(const inspect_geometry *g)
 {
     return g->num_pairs + g->num_faces + g->num_loops;
 }
@@ -80,7 +80,7 @@ static void json_pair(mt_json *j, uint32_t a, uint32_t b)
     mt_json_array_end(j);
 }
 
-void mt_inspect_geometry_json(mt_json *j, const mt_inspect_geometry *g)
+void inspect_geometry_json(mt_json *j, const inspect_geometry *g)
 {
     mt_json_key(j, "self_intersecting_pairs");
     mt_json_uint(j, g->num_pairs);
@@ -144,7 +144,7 @@ static void more(FILE *out, size_t count, size_t limit)
                 count - shown(count, limit));
 }
 
-void mt_inspect_geometry_text(FILE *out, const mt_inspect_geometry *g, size_t limit)
+void inspect_geometry_text(FILE *out, const inspect_geometry *g, size_t limit)
 {
     fprintf(out, "self-intersections: %zu face %s", g->num_pairs,
             g->num_pairs == 1 ? "pair" : "pairs");

@@ -32,9 +32,8 @@ static mt_status store_ids(const uint32_t *ids, size_t count, mt_id_list *out)
     return MT_OK;
 }
 
-mt_status mt_inspect_default_queries(const mt_mesh *mesh, bool want_vertices,
-                                     mt_id_list *out_vertices, bool want_faces,
-                                     mt_id_list *out_faces)
+mt_status inspect_default_queries(const mt_mesh *mesh, bool want_vertices, mt_id_list *out_vertices,
+                                  bool want_faces, mt_id_list *out_faces)
 {
     uint32_t verts[MT_REPORT_JSON_MAX_QUERIES], faces[MT_REPORT_JSON_MAX_QUERIES];
     size_t num_verts = 0, num_faces = 0;
@@ -49,7 +48,7 @@ mt_status mt_inspect_default_queries(const mt_mesh *mesh, bool want_vertices,
 }
 
 /* "weld": what --weld did (README, inspect's JSON keys). */
-static void write_weld(mt_json *j, const mt_cli_weld *w)
+static void write_weld(mt_json *j, const cli_weld *w)
 {
     mt_json_object_begin(j);
     mt_json_key(j, "mode");
@@ -67,7 +66,7 @@ static void write_weld(mt_json *j, const mt_cli_weld *w)
     mt_json_object_end(j);
 }
 
-int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
+int inspect_print_json(const inspect_request *req, FILE *out)
 {
     const mt_mesh *mesh = req->mesh->mesh;
     const mt_report *r = mt_mesh_report(mesh);
@@ -75,8 +74,8 @@ int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
     size_t doc_size = 0;
     FILE *mem = open_memstream(&doc, &doc_size);
     if (!mem) {
-        mt_cli_error("inspect", "out of memory");
-        return MT_CLI_EXIT_BUILD;
+        cli_error("inspect", "out of memory");
+        return CLI_EXIT_BUILD;
     }
     mt_json j;
     mt_json_init(&j, mem);
@@ -84,13 +83,13 @@ int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
     mt_diag diag;
     mt_status st = mt_report_json_write_inspect(&j, mesh, req->vertices.ids, req->vertices.count,
                                                 req->faces.ids, req->faces.count,
-                                                mt_cli_basename(req->path), &diag);
+                                                cli_basename(req->path), &diag);
     if (st == MT_OK) {
         if (req->mesh->weld.enabled) {
             mt_json_key(&j, "weld");
             write_weld(&j, &req->mesh->weld);
         }
-        if (req->geometry) mt_inspect_geometry_json(&j, req->geometry);
+        if (req->geometry) inspect_geometry_json(&j, req->geometry);
         if (req->json_defects) {
             mt_json_key(&j, "defects");
             mt_report_json_write_defects(&j, r->defects, r->num_defects);
@@ -99,19 +98,19 @@ int mt_inspect_print_json(const mt_inspect_request *req, FILE *out)
     }
     bool complete = st == MT_OK && mt_json_finish(&j);
     bool flushed = fclose(mem) == 0;
-    int code = MT_CLI_EXIT_OK;
+    int code = CLI_EXIT_OK;
     if (st != MT_OK) {
-        mt_cli_error("inspect", "%s", diag.message);
-        code = MT_CLI_EXIT_BUILD;
+        cli_error("inspect", "%s", diag.message);
+        code = CLI_EXIT_BUILD;
     } else if (!flushed) {
-        mt_cli_error("inspect", "out of memory while writing JSON");
-        code = MT_CLI_EXIT_BUILD;
+        cli_error("inspect", "out of memory while writing JSON");
+        code = CLI_EXIT_BUILD;
     } else if (!complete) {
-        mt_cli_error("inspect", "internal error: malformed JSON document");
-        code = MT_CLI_EXIT_BUILD;
+        cli_error("inspect", "internal error: malformed JSON document");
+        code = CLI_EXIT_BUILD;
     } else if (fwrite(doc, 1, doc_size, out) != doc_size) {
-        mt_cli_error("inspect", "cannot write the output");
-        code = MT_CLI_EXIT_BUILD;
+        cli_error("inspect", "cannot write the output");
+        code = CLI_EXIT_BUILD;
     }
     free(doc);
     return code;

@@ -11,7 +11,7 @@ static int compare_u32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-size_t mt_inspect_sort_unique(uint32_t *ids, size_t count)
+size_t inspect_sort_unique(uint32_t *ids, size_t count)
 {
     if (count == 0) return 0;
     qsort(ids, count, sizeof *ids, compare_u32);
@@ -29,9 +29,9 @@ static bool has_directed_side(const mt_face_corners *c, uint32_t a, uint32_t b)
     return false;
 }
 
-mt_status mt_inspect_side_use(const mt_mesh *mesh, const mt_face_corners *corners,
-                              const mt_face_adjacency *adj, size_t side, mt_face_corners *scratch,
-                              mt_side_use *out)
+mt_status inspect_side_use(const mt_mesh *mesh, const mt_face_corners *corners,
+                           const mt_face_adjacency *adj, size_t side, mt_face_corners *scratch,
+                           mt_side_use *out)
 {
     out->uses = 0;
     out->same_direction = false;

@@ -10,7 +10,7 @@
 #include "inspect.h"
 
 /* How many items a list shows before "and N more". */
-static size_t shown(const mt_inspect_request *req, size_t count)
+static size_t shown(const inspect_request *req, size_t count)
 {
     return req->limit == 0 || count < req->limit ? count : req->limit;
 }
@@ -75,7 +75,7 @@ static void print_edge_use(FILE *out, const mt_report *r)
     fputc('\n', out);
 }
 
-static void print_boundary(FILE *out, const mt_inspect_request *req, const mt_report *r)
+static void print_boundary(FILE *out, const inspect_request *req, const mt_report *r)
 {
     if (r->boundary_edges == 0) {
         fprintf(out, "boundary: none\n");
@@ -106,7 +106,7 @@ static void print_genus(FILE *out, int32_t genus, int32_t with_boundary, bool cl
         fprintf(out, "genus undefined");
 }
 
-static void print_components(FILE *out, const mt_inspect_request *req, const mt_report *r)
+static void print_components(FILE *out, const inspect_request *req, const mt_report *r)
 {
     fprintf(out,
             "components: %u joined by edges, %u when faces sharing only a vertex count as joined\n",
@@ -189,7 +189,7 @@ static void print_defect_headline(FILE *out, const mt_report *r, uint32_t kind, 
     }
 }
 
-static void print_defects(FILE *out, const mt_inspect_request *req, const mt_report *r)
+static void print_defects(FILE *out, const inspect_request *req, const mt_report *r)
 {
     if (r->num_defects == 0) {
         fprintf(out, "defects: none\n");
@@ -233,7 +233,7 @@ static mt_status count_boundary_edges(const mt_mesh *mesh, uint32_t v, const mt_
     uint32_t *nbrs = calloc(ring->num_neighbors + 1, sizeof *nbrs);
     if (!nbrs) return MT_ERR_NOMEM;
     if (ring->num_neighbors) memcpy(nbrs, ring->neighbors, ring->num_neighbors * sizeof *nbrs);
-    size_t n = mt_inspect_sort_unique(nbrs, ring->num_neighbors);
+    size_t n = inspect_sort_unique(nbrs, ring->num_neighbors);
     mt_status st = MT_OK;
     for (size_t i = 0; i < n && st == MT_OK; i++) {
         size_t uses = 0;
@@ -341,7 +341,7 @@ static mt_status print_face(FILE *out, const mt_mesh *mesh, uint32_t f, face_scr
         }
         const uint32_t *across = s->adj.faces + s->adj.offsets[i];
         mt_side_use use;
-        st = mt_inspect_side_use(mesh, &s->corners, &s->adj, i, &s->other, &use);
+        st = inspect_side_use(mesh, &s->corners, &s->adj, i, &s->other, &use);
         if (st != MT_OK) return st;
         fprintf(out, "shared with %s ", plural(n, "face", "faces"));
         print_id_run(out, across, n);
@@ -352,7 +352,7 @@ static mt_status print_face(FILE *out, const mt_mesh *mesh, uint32_t f, face_scr
     return MT_OK;
 }
 
-static int print_queries(FILE *out, const mt_inspect_request *req)
+static int print_queries(FILE *out, const inspect_request *req)
 {
     const mt_mesh *mesh = req->mesh->mesh;
     mt_status st = MT_OK;
@@ -382,17 +382,16 @@ static int print_queries(FILE *out, const mt_inspect_request *req)
         mt_face_adjacency_free(&s.adj);
     }
     if (st != MT_OK) {
-        mt_cli_error("inspect", "query of %s %u failed: %s", what, (unsigned)failed,
-                     mt_strerror(st));
-        return MT_CLI_EXIT_BUILD;
+        cli_error("inspect", "query of %s %u failed: %s", what, (unsigned)failed, mt_strerror(st));
+        return CLI_EXIT_BUILD;
     }
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
 /* --weld: what was merged and which vertices the weld made non-manifold. */
-static void print_weld(FILE *out, const mt_inspect_request *req)
+static void print_weld(FILE *out, const inspect_request *req)
 {
-    const mt_cli_weld *w = &req->mesh->weld;
+    const cli_weld *w = &req->mesh->weld;
     if (!w->enabled) return;
     if (w->blocks)
         fprintf(out,
@@ -415,7 +414,7 @@ static void print_weld(FILE *out, const mt_inspect_request *req)
     fputc('\n', out);
 }
 
-int mt_inspect_print_text(const mt_inspect_request *req, FILE *out)
+int inspect_print_text(const inspect_request *req, FILE *out)
 {
     const mt_mesh *mesh = req->mesh->mesh;
     const mt_report *r = mt_mesh_report(mesh);
@@ -446,6 +445,6 @@ int mt_inspect_print_text(const mt_inspect_request *req, FILE *out)
         fprintf(out, "genus: undefined%s\n",
                 r->connected_components != 1 ? " (not exactly one component)" : "");
     print_defects(out, req, r);
-    if (req->geometry) mt_inspect_geometry_text(out, req->geometry, req->limit);
+    if (req->geometry) inspect_geometry_text(out, req->geometry, req->limit);
     return print_queries(out, req);
 }

@@ -12,24 +12,24 @@
 #define MESHTOPO_VERSION "unknown"
 #endif
 
-static const mt_cli_command *const commands[] = {
-    &mt_cli_cmd_inspect, &mt_cli_cmd_send, &mt_cli_cmd_query, &mt_cli_cmd_list,
-    &mt_cli_cmd_watch,   &mt_cli_cmd_spy,  &mt_cli_cmd_bench,
+static const cli_command *const commands[] = {
+    &cli_cmd_inspect, &cli_cmd_send, &cli_cmd_query, &cli_cmd_list,
+    &cli_cmd_watch,   &cli_cmd_spy,  &cli_cmd_bench,
 };
 static const size_t num_commands = sizeof commands / sizeof commands[0];
 
 /* The command called `name`; NULL after printing why when it is none, or
  * when its module cannot be loaded (*out_unknown tells which). */
-static const mt_cli_command *command_find(const char *name, bool *out_unknown)
+static const cli_command *command_find(const char *name, bool *out_unknown)
 {
     *out_unknown = false;
     for (size_t i = 0; i < num_commands; i++)
         if (strcmp(commands[i]->name, name) == 0) return commands[i];
-    for (size_t i = 0; i < mt_cli_module_count(); i++) {
-        if (strcmp(mt_cli_module_name(i), name) != 0) continue;
+    for (size_t i = 0; i < cli_module_count(); i++) {
+        if (strcmp(cli_module_name(i), name) != 0) continue;
         char err[512];
-        const mt_cli_command *cmd = mt_cli_module_command(name, err, sizeof err);
-        if (!cmd) mt_cli_error(name, "%s", err);
+        const cli_command *cmd = cli_module_command(name, err, sizeof err);
+        if (!cmd) cli_error(name, "%s", err);
         return cmd;
     }
     *out_unknown = true;
@@ -46,10 +46,10 @@ static void print_usage(FILE *out)
             "commands:\n");
     for (size_t i = 0; i < num_commands; i++)
         fprintf(out, "  %-10s %s\n", commands[i]->name, commands[i]->summary);
-    for (size_t i = 0; i < mt_cli_module_count(); i++) {
+    for (size_t i = 0; i < cli_module_count(); i++) {
         char err[512];
-        const mt_cli_command *cmd = mt_cli_module_command(mt_cli_module_name(i), err, sizeof err);
-        fprintf(out, "  %-10s %s\n", mt_cli_module_name(i), cmd ? cmd->summary : err);
+        const cli_command *cmd = cli_module_command(cli_module_name(i), err, sizeof err);
+        fprintf(out, "  %-10s %s\n", cli_module_name(i), cmd ? cmd->summary : err);
     }
 }
 
@@ -75,24 +75,24 @@ static void print_help(FILE *out)
             "--prefix default to $MESHTOPO_LCM_URL and $MESHTOPO_PREFIX.\n");
 }
 
-static int run_command(const mt_cli_command *cmd, int argc, char **argv)
+static int run_command(const cli_command *cmd, int argc, char **argv)
 {
     if (cmd->run_raw) return cmd->run_raw(argc, argv);
-    mt_cli_args args;
+    cli_args args;
     bool help = false;
-    int code = mt_cli_args_parse(cmd, argc, argv, &args, &help);
-    if (code != MT_CLI_EXIT_OK) {
+    int code = cli_args_parse(cmd, argc, argv, &args, &help);
+    if (code != CLI_EXIT_OK) {
         fprintf(stderr, "usage: meshtopo %s %s (see meshtopo help %s)\n", cmd->name, cmd->synopsis,
                 cmd->name);
         return code;
     }
     if (help) {
-        mt_cli_print_command_help(cmd, stdout);
-        mt_cli_args_free(&args);
-        return MT_CLI_EXIT_OK;
+        cli_print_command_help(cmd, stdout);
+        cli_args_free(&args);
+        return CLI_EXIT_OK;
     }
     code = cmd->run(&args);
-    mt_cli_args_free(&args);
+    cli_args_free(&args);
     return code;
 }
 
@@ -100,43 +100,43 @@ int main(int argc, char **argv)
 {
     if (argc < 2) {
         print_usage(stderr);
-        return MT_CLI_EXIT_USAGE;
+        return CLI_EXIT_USAGE;
     }
     const char *name = argv[1];
     if (strcmp(name, "--help") == 0 || strcmp(name, "-h") == 0) {
         print_help(stdout);
-        return MT_CLI_EXIT_OK;
+        return CLI_EXIT_OK;
     }
     if (strcmp(name, "--version") == 0) {
         printf("meshtopo %s\n", MESHTOPO_VERSION);
-        return MT_CLI_EXIT_OK;
+        return CLI_EXIT_OK;
     }
     if (strcmp(name, "help") == 0) {
         if (argc == 2) {
             print_help(stdout);
-            return MT_CLI_EXIT_OK;
+            return CLI_EXIT_OK;
         }
         bool unknown;
-        const mt_cli_command *cmd = command_find(argv[2], &unknown);
-        if (!cmd && !unknown) return MT_CLI_EXIT_MISSING;
+        const cli_command *cmd = command_find(argv[2], &unknown);
+        if (!cmd && !unknown) return CLI_EXIT_MISSING;
         if (!cmd || argc > 3) {
             if (!cmd)
                 fprintf(stderr, "meshtopo: unknown command '%s'\n", argv[2]);
             else
                 fprintf(stderr, "meshtopo: help takes one command name\n");
             print_usage(stderr);
-            return MT_CLI_EXIT_USAGE;
+            return CLI_EXIT_USAGE;
         }
-        mt_cli_print_command_help(cmd, stdout);
-        return MT_CLI_EXIT_OK;
+        cli_print_command_help(cmd, stdout);
+        return CLI_EXIT_OK;
     }
     bool unknown;
-    const mt_cli_command *cmd = command_find(name, &unknown);
-    if (!cmd && !unknown) return MT_CLI_EXIT_MISSING;
+    const cli_command *cmd = command_find(name, &unknown);
+    if (!cmd && !unknown) return CLI_EXIT_MISSING;
     if (!cmd) {
         fprintf(stderr, "meshtopo: unknown command '%s'\n", name);
         print_usage(stderr);
-        return MT_CLI_EXIT_USAGE;
+        return CLI_EXIT_USAGE;
     }
     return run_command(cmd, argc - 2, argv + 2);
 }

@@ -8,19 +8,19 @@
 
 typedef struct heard {
     pthread_mutex_t lock;
-    mt_cli_members *members;
+    cli_members *members;
     int expected; /* the largest cluster_members a member reported */
 } heard;
 
 static void on_status(const meshtopo_status_t *st, void *user)
 {
     heard *h = user;
-    mt_cli_members *m = h->members;
+    cli_members *m = h->members;
     pthread_mutex_lock(&h->lock);
     if (m->count == 0) snprintf(m->cluster, sizeof m->cluster, "%s", st->cluster);
     int i = 0;
     while (i < m->count && strcmp(m->instances[i], st->instance) != 0) i++;
-    if (i == m->count && m->count < MT_CLI_MAX_MEMBERS && strcmp(st->cluster, m->cluster) == 0 &&
+    if (i == m->count && m->count < CLI_MAX_MEMBERS && strcmp(st->cluster, m->cluster) == 0 &&
         (m->cluster[0] || m->count == 0)) {
         snprintf(m->instances[i], sizeof m->instances[i], "%s", st->instance);
         snprintf(m->names[i], sizeof m->names[i], "%s", st->name);
@@ -36,7 +36,7 @@ static void sleep_ms(int ms)
     nanosleep(&ts, NULL);
 }
 
-void mt_cli_members_find(mt_client *client, int wait_ms, mt_cli_members *out)
+void cli_members_find(mt_client *client, int wait_ms, cli_members *out)
 {
     memset(out, 0, sizeof *out);
     heard h = {.members = out};

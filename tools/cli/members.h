@@ -6,18 +6,18 @@
 
 #include "meshtopo/client.h"
 
-#define MT_CLI_MAX_MEMBERS 64
+#define CLI_MAX_MEMBERS 64
 
-typedef struct mt_cli_members {
+typedef struct cli_members {
     char cluster[64]; /* "" for a daemon without a cluster */
     int count;        /* 0 when no heartbeat came */
-    char instances[MT_CLI_MAX_MEMBERS][MT_CLIENT_MAX_INSTANCE + 1];
-    char names[MT_CLI_MAX_MEMBERS][64];
-} mt_cli_members;
+    char instances[CLI_MAX_MEMBERS][MT_CLIENT_MAX_INSTANCE + 1];
+    char names[CLI_MAX_MEMBERS][64];
+} cli_members;
 
 /* Waits for a heartbeat (at most wait_ms); when it names a cluster, goes on
  * listening until as many members beat as the heartbeats say the cluster
  * has (at most wait_ms more). */
-void mt_cli_members_find(mt_client *client, int wait_ms, mt_cli_members *out);
+void cli_members_find(mt_client *client, int wait_ms, cli_members *out);
 
 #endif

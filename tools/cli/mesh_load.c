@@ -14,14 +14,14 @@
 #include "meshtopo/io.h"
 #include "meshtopo/report.h"
 
-double mt_cli_now_ms(void)
+double cli_now_ms(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
 }
 
-const char *mt_cli_basename(const char *path)
+const char *cli_basename(const char *path)
 {
     const char *slash = strrchr(path, '/');
     return slash ? slash + 1 : path;
@@ -48,7 +48,7 @@ static const char *diag_text(const mt_diag *diag, mt_status status)
     return diag->message[0] ? diag->message : mt_strerror(status);
 }
 
-/* mt_cli_face_list_read with an input limit (0: the library's default);
+/* cli_face_list_read with an input limit (0: the library's default);
  * `limit_option` names the option that sets it, for the message of an
  * input over the limit (NULL: none). */
 static int face_list_read(const char *command, const char *path, const char *format_name,
@@ -58,11 +58,11 @@ static int face_list_read(const char *command, const char *path, const char *for
     memset(out_list, 0, sizeof *out_list);
     mt_format format = MT_FORMAT_AUTO;
     if (format_name && !format_parse(format_name, &format)) {
-        mt_cli_error(command,
-                     "unknown format '%s' (auto, off, obj, ply-ascii, ply-le, ply-be, "
-                     "stl-ascii, stl-binary)",
-                     format_name);
-        return MT_CLI_EXIT_USAGE;
+        cli_error(command,
+                  "unknown format '%s' (auto, off, obj, ply-ascii, ply-le, ply-be, "
+                  "stl-ascii, stl-binary)",
+                  format_name);
+        return CLI_EXIT_USAGE;
     }
     mt_diag diag;
     mt_diag_clear(&diag);
@@ -80,28 +80,28 @@ static int face_list_read(const char *command, const char *path, const char *for
         if (st == MT_ERR_TOO_LARGE && limit_option && strstr(text, "input limit"))
             snprintf(hint, sizeof hint, " (%s raises it)", limit_option);
         if (strstr(text, from_stdin ? "standard input" : path))
-            mt_cli_error(command, "%s%s", text, hint);
+            cli_error(command, "%s%s", text, hint);
         else
-            mt_cli_error(command, "cannot read %s: %s%s", path, text, hint);
-        return MT_CLI_EXIT_READ;
+            cli_error(command, "cannot read %s: %s%s", path, text, hint);
+        return CLI_EXIT_READ;
     }
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
-int mt_cli_face_list_read(const char *command, const char *path, const char *format_name,
-                          mt_face_list *out_list)
+int cli_face_list_read(const char *command, const char *path, const char *format_name,
+                       mt_face_list *out_list)
 {
     return face_list_read(command, path, format_name, 0, NULL, out_list);
 }
 
-int mt_cli_face_list_read_bounded(const char *command, const char *path, const char *format_name,
-                                  uint64_t max_input_bytes, mt_face_list *out_list)
+int cli_face_list_read_bounded(const char *command, const char *path, const char *format_name,
+                               uint64_t max_input_bytes, mt_face_list *out_list)
 {
     return face_list_read(command, path, format_name, max_input_bytes, "--max-input-bytes",
                           out_list);
 }
 
-bool mt_cli_byte_count_parse(const char *text, uint64_t *out)
+bool cli_byte_count_parse(const char *text, uint64_t *out)
 {
     uint64_t v = 0;
     const char *p = text;
@@ -122,7 +122,7 @@ bool mt_cli_byte_count_parse(const char *text, uint64_t *out)
     return true;
 }
 
-bool mt_cli_weld_parse(const char *text, double *out_eps)
+bool cli_weld_parse(const char *text, double *out_eps)
 {
     if (strcmp(text, "exact") == 0) {
         *out_eps = 0;
@@ -152,10 +152,10 @@ static void mark_nonmanifold(const mt_mesh *mesh, unsigned char *flags, uint32_t
  * the counts in out->weld and sets *out_was (malloc'd, one byte per welded
  * vertex) to 2 where a vertex merged into it was non-manifold unwelded:
  * that is no news. The welded mesh is built by the caller (weld_news). */
-static int weld_list(const char *command, const char *path, double eps, mt_cli_mesh *out,
+static int weld_list(const char *command, const char *path, double eps, cli_mesh *out,
                      unsigned char **out_was)
 {
-    mt_cli_weld *w = &out->weld;
+    cli_weld *w = &out->weld;
     w->enabled = true;
     w->eps = eps;
     uint32_t n = out->list.num_verts;
@@ -166,9 +166,9 @@ static int weld_list(const char *command, const char *path, double eps, mt_cli_m
     mt_mesh *before = NULL;
     mt_status st = mt_mesh_build(&out->list, &plain, &before, &diag);
     if (st != MT_OK) {
-        mt_cli_error(command, "cannot build the unwelded mesh from %s: %s", path,
-                     diag_text(&diag, st));
-        return MT_CLI_EXIT_BUILD;
+        cli_error(command, "cannot build the unwelded mesh from %s: %s", path,
+                  diag_text(&diag, st));
+        return CLI_EXIT_BUILD;
     }
     unsigned char *was = calloc(n ? n : 1, 1);
     uint32_t *map = malloc((n ? n : 1) * sizeof(uint32_t));
@@ -176,8 +176,8 @@ static int weld_list(const char *command, const char *path, double eps, mt_cli_m
         mt_mesh_destroy(before);
         free(was);
         free(map);
-        mt_cli_error(command, "out of memory welding %s", path);
-        return MT_CLI_EXIT_BUILD;
+        cli_error(command, "out of memory welding %s", path);
+        return CLI_EXIT_BUILD;
     }
     mark_nonmanifold(before, was, n, 1);
     mt_mesh_destroy(before);
@@ -186,8 +186,8 @@ static int weld_list(const char *command, const char *path, double eps, mt_cli_m
     if (st != MT_OK) {
         free(was);
         free(map);
-        mt_cli_error(command, "cannot weld %s: %s", path, diag_text(&diag, st));
-        return MT_CLI_EXIT_BUILD;
+        cli_error(command, "cannot weld %s: %s", path, diag_text(&diag, st));
+        return CLI_EXIT_BUILD;
     }
     w->vertices_before = stats.vertices_before;
     w->vertices_after = stats.vertices_after;
@@ -198,12 +198,12 @@ static int weld_list(const char *command, const char *path, double eps, mt_cli_m
     for (uint32_t v = 0; v < stats.vertices_after; v++) was[v] = (unsigned char)(was[v] & 2);
     free(map);
     *out_was = was;
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
 /* The welded mesh's non-manifold vertices that were not before (`was`, as
  * weld_list left it); frees `was`. */
-static bool weld_news(mt_cli_mesh *out, unsigned char *was)
+static bool weld_news(cli_mesh *out, unsigned char *was)
 {
     uint32_t n = out->weld.vertices_after;
     mark_nonmanifold(out->mesh, was, n, 1);
@@ -223,20 +223,20 @@ static bool weld_news(mt_cli_mesh *out, unsigned char *was)
     return true;
 }
 
-int mt_cli_mesh_load(const char *command, const char *path, const char *format_name,
-                     uint64_t max_input_bytes, const double *weld_eps,
-                     const mt_build_options *options, bool keep_positions, mt_cli_mesh *out)
+int cli_mesh_load(const char *command, const char *path, const char *format_name,
+                  uint64_t max_input_bytes, const double *weld_eps, const mt_build_options *options,
+                  bool keep_positions, cli_mesh *out)
 {
     memset(out, 0, sizeof *out);
-    double t0 = mt_cli_now_ms();
+    double t0 = cli_now_ms();
     int code = face_list_read(command, path, format_name, max_input_bytes, "--max-input-bytes",
                               &out->list);
-    out->read_ms = mt_cli_now_ms() - t0;
-    if (code != MT_CLI_EXIT_OK) return code;
+    out->read_ms = cli_now_ms() - t0;
+    if (code != CLI_EXIT_OK) return code;
     unsigned char *was = NULL;
     if (weld_eps) {
         code = weld_list(command, path, *weld_eps, out, &was);
-        if (code != MT_CLI_EXIT_OK) {
+        if (code != CLI_EXIT_OK) {
             mt_face_list_free(&out->list);
             return code;
         }
@@ -244,28 +244,28 @@ int mt_cli_mesh_load(const char *command, const char *path, const char *format_n
 
     mt_diag diag;
     mt_diag_clear(&diag);
-    t0 = mt_cli_now_ms();
+    t0 = cli_now_ms();
     mt_status st = keep_positions
                        ? mt_mesh_build(&out->list, options, &out->mesh, &diag)
                        : mt_mesh_build_taking_positions(&out->list, options, &out->mesh, &diag);
-    out->build_ms = mt_cli_now_ms() - t0;
+    out->build_ms = cli_now_ms() - t0;
     if (st != MT_OK) {
-        mt_cli_error(command, "cannot build a mesh from %s%s: %s", weld_eps ? "the welded " : "",
-                     path, diag_text(&diag, st));
+        cli_error(command, "cannot build a mesh from %s%s: %s", weld_eps ? "the welded " : "", path,
+                  diag_text(&diag, st));
         out->mesh = NULL;
         free(was);
         mt_face_list_free(&out->list);
-        return MT_CLI_EXIT_BUILD;
+        return CLI_EXIT_BUILD;
     }
     if (was && !weld_news(out, was)) {
-        mt_cli_error(command, "out of memory welding %s", path);
-        mt_cli_mesh_free(out);
-        return MT_CLI_EXIT_BUILD;
+        cli_error(command, "out of memory welding %s", path);
+        cli_mesh_free(out);
+        return CLI_EXIT_BUILD;
     }
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
-void mt_cli_mesh_free(mt_cli_mesh *m)
+void cli_mesh_free(cli_mesh *m)
 {
     mt_mesh_destroy(m->mesh);
     m->mesh = NULL;

@@ -8,7 +8,7 @@
 
 #include "remote.h"
 
-bool mt_cli_parse_int(const char *text, int *out)
+bool cli_parse_int(const char *text, int *out)
 {
     if (!text[0] || text[0] == '-' || text[0] == '+') return false;
     char *end = NULL;
@@ -18,46 +18,45 @@ bool mt_cli_parse_int(const char *text, int *out)
     return true;
 }
 
-int mt_cli_remote_parse(const mt_cli_args *args, mt_cli_remote *out)
+int cli_remote_parse(const cli_args *args, cli_remote *out)
 {
     memset(out, 0, sizeof *out);
-    out->lcm_url = mt_cli_arg(args, "lcm-url");
-    if (!out->lcm_url) out->lcm_url = getenv(MT_CLI_ENV_LCM_URL);
+    out->lcm_url = cli_arg(args, "lcm-url");
+    if (!out->lcm_url) out->lcm_url = getenv(CLI_ENV_LCM_URL);
     if (out->lcm_url && !out->lcm_url[0]) out->lcm_url = NULL;
-    out->prefix = mt_cli_arg(args, "prefix");
-    if (!out->prefix) out->prefix = getenv(MT_CLI_ENV_PREFIX);
+    out->prefix = cli_arg(args, "prefix");
+    if (!out->prefix) out->prefix = getenv(CLI_ENV_PREFIX);
     if (!out->prefix || !out->prefix[0]) out->prefix = MT_CLIENT_DEFAULT_PREFIX;
     if (strlen(out->prefix) > MT_CLIENT_MAX_PREFIX) {
-        mt_cli_error(args->command, "--prefix: at most %d characters, got '%s'",
-                     MT_CLIENT_MAX_PREFIX, out->prefix);
-        return MT_CLI_EXIT_USAGE;
+        cli_error(args->command, "--prefix: at most %d characters, got '%s'", MT_CLIENT_MAX_PREFIX,
+                  out->prefix);
+        return CLI_EXIT_USAGE;
     }
     out->timeout_ms = MT_CLIENT_DEFAULT_TIMEOUT_MS;
     out->retries = MT_CLIENT_DEFAULT_RETRIES;
-    const char *text = mt_cli_arg(args, "timeout-ms");
+    const char *text = cli_arg(args, "timeout-ms");
     if (text) {
-        if (!mt_cli_parse_int(text, &out->timeout_ms) || out->timeout_ms == 0) {
-            mt_cli_error(args->command, "--timeout-ms: expected a positive count, got '%s'", text);
-            return MT_CLI_EXIT_USAGE;
+        if (!cli_parse_int(text, &out->timeout_ms) || out->timeout_ms == 0) {
+            cli_error(args->command, "--timeout-ms: expected a positive count, got '%s'", text);
+            return CLI_EXIT_USAGE;
         }
         out->timeout_given = true;
     }
-    text = mt_cli_arg(args, "retries");
-    if (text && !mt_cli_parse_int(text, &out->retries)) {
-        mt_cli_error(args->command, "--retries: expected a count, got '%s'", text);
-        return MT_CLI_EXIT_USAGE;
+    text = cli_arg(args, "retries");
+    if (text && !cli_parse_int(text, &out->retries)) {
+        cli_error(args->command, "--retries: expected a count, got '%s'", text);
+        return CLI_EXIT_USAGE;
     }
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
-int mt_cli_client_create(const char *command, const mt_cli_remote *remote, mt_client **out)
+int cli_client_create(const char *command, const cli_remote *remote, mt_client **out)
 {
-    return mt_cli_client_create_progress(command, remote, NULL, NULL, out);
+    return cli_client_create_progress(command, remote, NULL, NULL, out);
 }
 
-int mt_cli_client_create_progress(const char *command, const mt_cli_remote *remote,
-                                  mt_client_progress_fn progress, void *progress_user,
-                                  mt_client **out)
+int cli_client_create_progress(const char *command, const cli_remote *remote,
+                               mt_client_progress_fn progress, void *progress_user, mt_client **out)
 {
     mt_client_options opts;
     memset(&opts, 0, sizeof opts);
@@ -71,55 +70,55 @@ int mt_cli_client_create_progress(const char *command, const mt_cli_remote *remo
     mt_diag diag;
     mt_diag_clear(&diag);
     mt_status st = mt_client_create(&opts, out, &diag);
-    if (st == MT_OK) return MT_CLI_EXIT_OK;
+    if (st == MT_OK) return CLI_EXIT_OK;
     const char *why = diag.message[0] ? diag.message : mt_strerror(st);
     if (st == MT_ERR_INVALID_ARG) {
-        mt_cli_error(command, "%s", why);
-        return MT_CLI_EXIT_USAGE;
+        cli_error(command, "%s", why);
+        return CLI_EXIT_USAGE;
     }
-    mt_cli_error(command, "cannot talk LCM (%s): %s",
-                 remote->lcm_url ? remote->lcm_url : "default URL", why);
-    return MT_CLI_EXIT_NO_ANSWER;
+    cli_error(command, "cannot talk LCM (%s): %s",
+              remote->lcm_url ? remote->lcm_url : "default URL", why);
+    return CLI_EXIT_NO_ANSWER;
 }
 
-void mt_cli_client_destroy(const char *command, const mt_cli_remote *remote, mt_client *client)
+void cli_client_destroy(const char *command, const cli_remote *remote, mt_client *client)
 {
     if (!client) return;
     mt_client_stats stats;
     mt_client_get_stats(client, &stats);
     if (stats.conflicting_answers > 0)
-        mt_cli_error(command,
-                     "warning: %llu request(s) got two different answers: two meshtopod answer "
-                     "prefix %s (meshtopo watch shows their heartbeats; give each its own "
-                     "--prefix)",
-                     (unsigned long long)stats.conflicting_answers, remote->prefix);
+        cli_error(command,
+                  "warning: %llu request(s) got two different answers: two meshtopod answer "
+                  "prefix %s (meshtopo watch shows their heartbeats; give each its own "
+                  "--prefix)",
+                  (unsigned long long)stats.conflicting_answers, remote->prefix);
     mt_client_destroy(client);
 }
 
-int mt_cli_call_failed(const char *command, const char *mesh_id, const mt_cli_remote *remote,
-                       mt_status status, bool answered, const mt_diag *diag)
+int cli_call_failed(const char *command, const char *mesh_id, const cli_remote *remote,
+                    mt_status status, bool answered, const mt_diag *diag)
 {
     const char *why = diag->message[0] ? diag->message : mt_strerror(status);
     char subject[300] = "";
     if (mesh_id) snprintf(subject, sizeof subject, "mesh '%s': ", mesh_id);
     if (answered) {
-        mt_cli_error(command, "%smeshtopod refused: %s", subject, why);
-        return MT_CLI_EXIT_REFUSED;
+        cli_error(command, "%smeshtopod refused: %s", subject, why);
+        return CLI_EXIT_REFUSED;
     }
     if (strncmp(diag->message, "timeout:", 8) == 0) {
-        mt_cli_error(command,
-                     "%sno answer from meshtopod on %s* after %d attempt(s) of %d ms "
-                     "(is it running with this --prefix and --lcm-url?)",
-                     subject, remote->prefix, remote->retries + 1, remote->timeout_ms);
-        return MT_CLI_EXIT_NO_ANSWER;
+        cli_error(command,
+                  "%sno answer from meshtopod on %s* after %d attempt(s) of %d ms "
+                  "(is it running with this --prefix and --lcm-url?)",
+                  subject, remote->prefix, remote->retries + 1, remote->timeout_ms);
+        return CLI_EXIT_NO_ANSWER;
     }
-    mt_cli_error(command, "%s%s", subject, why);
-    if (status == MT_ERR_INVALID_ARG) return MT_CLI_EXIT_USAGE;
-    if (status == MT_ERR_TOO_LARGE) return MT_CLI_EXIT_BUILD;
-    return MT_CLI_EXIT_NO_ANSWER;
+    cli_error(command, "%s%s", subject, why);
+    if (status == MT_ERR_INVALID_ARG) return CLI_EXIT_USAGE;
+    if (status == MT_ERR_TOO_LARGE) return CLI_EXIT_BUILD;
+    return CLI_EXIT_NO_ANSWER;
 }
 
-const char *mt_cli_hash_text(int64_t hash, char *buf, size_t size)
+const char *cli_hash_text(int64_t hash, char *buf, size_t size)
 {
     snprintf(buf, size, "%016llx", (unsigned long long)(uint64_t)hash);
     return buf;

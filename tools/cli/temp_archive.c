@@ -12,7 +12,7 @@
 
 #include "temp_archive.h"
 
-bool mt_cli_is_archive_path(const char *path)
+bool cli_is_archive_path(const char *path)
 {
     static const char *const suffixes[] = {MT_ARCHIVE_SUFFIX, MT_ARCHIVE_SUFFIX_LEGACY};
     size_t len = strlen(path);
@@ -30,19 +30,19 @@ static int64_t now_us(void)
     return (int64_t)tv.tv_sec * 1000000 + tv.tv_usec;
 }
 
-int mt_cli_temp_archive_write(const char *command, const mt_face_list *list, const mt_mesh *mesh,
-                              const mt_archive_meta *meta, bool self_intersections,
-                              mt_cli_temp_archive *out)
+int cli_temp_archive_write(const char *command, const mt_face_list *list, const mt_mesh *mesh,
+                           const mt_archive_meta *meta, bool self_intersections,
+                           cli_temp_archive *out)
 {
     memset(out, 0, sizeof *out);
     const char *tmp = getenv("TMPDIR");
     if (!tmp || !tmp[0]) tmp = "/tmp";
     int n = snprintf(out->dir, sizeof out->dir, "%s/meshtopo-vtk-XXXXXX", tmp);
     if (n < 0 || (size_t)n >= sizeof out->dir || !mkdtemp(out->dir)) {
-        mt_cli_error(command, "cannot make a temporary directory in %s: %s", tmp,
-                     n > 0 && (size_t)n < sizeof out->dir ? strerror(errno) : "name too long");
+        cli_error(command, "cannot make a temporary directory in %s: %s", tmp,
+                  n > 0 && (size_t)n < sizeof out->dir ? strerror(errno) : "name too long");
         out->dir[0] = '\0';
-        return MT_CLI_EXIT_READ;
+        return CLI_EXIT_READ;
     }
     mt_archive_meta own = {
         .mesh_id = "mesh", .version = 1, .utime = now_us(), .source = "meshtopo"};
@@ -61,29 +61,29 @@ int mt_cli_temp_archive_write(const char *command, const mt_face_list *list, con
     if (st == MT_OK) st = mt_archive_write_with(archive, meta, list, mesh, &options, NULL, &diag);
     mt_archive_close(archive);
     if (st != MT_OK) {
-        mt_cli_error(command, "%s", diag.message);
-        mt_cli_temp_archive_remove(out);
-        return MT_CLI_EXIT_READ;
+        cli_error(command, "%s", diag.message);
+        cli_temp_archive_remove(out);
+        return CLI_EXIT_READ;
     }
     mt_archive_file_name(meta->mesh_id, meta->version, name, sizeof name);
     snprintf(out->path, sizeof out->path, "%s/%s", out->dir, name);
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }
 
-void mt_cli_temp_archive_remove(mt_cli_temp_archive *temp)
+void cli_temp_archive_remove(cli_temp_archive *temp)
 {
     if (temp->path[0]) unlink(temp->path);
     if (temp->dir[0]) rmdir(temp->dir);
     temp->path[0] = temp->dir[0] = '\0';
 }
 
-int mt_cli_temp_archive_copy(const char *command, const mt_cli_temp_archive *temp, const char *out)
+int cli_temp_archive_copy(const char *command, const cli_temp_archive *temp, const char *out)
 {
     char part[4200];
     int n = snprintf(part, sizeof part, "%s.part-%ld", out, (long)getpid());
     if (n < 0 || (size_t)n >= sizeof part) {
-        mt_cli_error(command, "%s: name too long", out);
-        return MT_CLI_EXIT_USAGE;
+        cli_error(command, "%s: name too long", out);
+        return CLI_EXIT_USAGE;
     }
     int from = open(temp->path, O_RDONLY | O_CLOEXEC);
     int to = open(part, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
@@ -121,8 +121,8 @@ int mt_cli_temp_archive_copy(const char *command, const mt_cli_temp_archive *tem
     }
     if (failed) {
         if (to >= 0) unlink(part);
-        mt_cli_error(command, "%s: %s", failed, strerror(err));
-        return MT_CLI_EXIT_READ;
+        cli_error(command, "%s: %s", failed, strerror(err));
+        return CLI_EXIT_READ;
     }
-    return MT_CLI_EXIT_OK;
+    return CLI_EXIT_OK;
 }

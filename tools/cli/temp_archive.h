@@ -11,29 +11,29 @@
 #include "meshtopo/archive.h"
 
 /* A one-file archive in a fresh private directory ($TMPDIR or /tmp). */
-typedef struct mt_cli_temp_archive {
+typedef struct cli_temp_archive {
     char dir[4096];
     char path[4096 + MT_ARCHIVE_FILE_NAME_MAX + 2]; /* the file */
-} mt_cli_temp_archive;
+} cli_temp_archive;
 
 /* Archives mesh (list's build) as meta says (NULL: id "mesh", version 1,
  * now, source "meshtopo", its content hash) into a new temporary
  * directory, with CellData/self_intersecting computed when asked. Returns
- * MT_CLI_EXIT_OK, or MT_CLI_EXIT_READ after printing why (nothing is then
+ * CLI_EXIT_OK, or CLI_EXIT_READ after printing why (nothing is then
  * left behind). */
-int mt_cli_temp_archive_write(const char *command, const mt_face_list *list, const mt_mesh *mesh,
-                              const mt_archive_meta *meta, bool self_intersections,
-                              mt_cli_temp_archive *out);
+int cli_temp_archive_write(const char *command, const mt_face_list *list, const mt_mesh *mesh,
+                           const mt_archive_meta *meta, bool self_intersections,
+                           cli_temp_archive *out);
 
 /* Removes the file and the directory. */
-void mt_cli_temp_archive_remove(mt_cli_temp_archive *temp);
+void cli_temp_archive_remove(cli_temp_archive *temp);
 
 /* Copies the archive file to `out` (written to a temporary name beside it
- * and renamed into place). MT_CLI_EXIT_OK or MT_CLI_EXIT_READ after
+ * and renamed into place). CLI_EXIT_OK or CLI_EXIT_READ after
  * printing why. */
-int mt_cli_temp_archive_copy(const char *command, const mt_cli_temp_archive *temp, const char *out);
+int cli_temp_archive_copy(const char *command, const cli_temp_archive *temp, const char *out);
 
 /* Whether path names an archive file by its suffix (".hdf", ".vtkhdf"). */
-bool mt_cli_is_archive_path(const char *path);
+bool cli_is_archive_path(const char *path);
 
 #endif

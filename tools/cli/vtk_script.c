@@ -41,11 +41,10 @@ static bool readable_in(const char *dir, const char *script, char *out, size_t s
 /* The script's path into out; false after printing where it was looked for. */
 static bool script_find(const char *command, const char *script, char *out, size_t size)
 {
-    const char *env = getenv(MT_CLI_ENV_VTK_SCRIPTS);
+    const char *env = getenv(CLI_ENV_VTK_SCRIPTS);
     if (env && env[0]) {
         if (readable_in(env, script, out, size)) return true;
-        mt_cli_error(command, "$%s is %s, which has no readable %s", MT_CLI_ENV_VTK_SCRIPTS, env,
-                     script);
+        cli_error(command, "$%s is %s, which has no readable %s", CLI_ENV_VTK_SCRIPTS, env, script);
         return false;
     }
     char exe[PATH_MAX], dir[PATH_MAX + 32];
@@ -61,26 +60,26 @@ static bool script_find(const char *command, const char *script, char *out, size
     }
     if (readable_in(MESHTOPO_VTK_SCRIPTS_BUILD, script, out, size)) return true;
     if (readable_in(MESHTOPO_VTK_SCRIPTS_INSTALLED, script, out, size)) return true;
-    mt_cli_error(command,
-                 "%s not found: looked in ../share/meshtopo beside the executable%s%s and %s "
-                 "(set $%s to its directory)",
-                 script, MESHTOPO_VTK_SCRIPTS_BUILD[0] ? ", " : "", MESHTOPO_VTK_SCRIPTS_BUILD,
-                 MESHTOPO_VTK_SCRIPTS_INSTALLED, MT_CLI_ENV_VTK_SCRIPTS);
+    cli_error(command,
+              "%s not found: looked in ../share/meshtopo beside the executable%s%s and %s "
+              "(set $%s to its directory)",
+              script, MESHTOPO_VTK_SCRIPTS_BUILD[0] ? ", " : "", MESHTOPO_VTK_SCRIPTS_BUILD,
+              MESHTOPO_VTK_SCRIPTS_INSTALLED, CLI_ENV_VTK_SCRIPTS);
     return false;
 }
 
-int mt_cli_vtk_script_run(const char *command, const char *script, const char *const *args)
+int cli_vtk_script_run(const char *command, const char *script, const char *const *args)
 {
     char path[PATH_MAX];
-    if (!script_find(command, script, path, sizeof path)) return MT_CLI_EXIT_READ;
-    const char *python = getenv(MT_CLI_ENV_PYTHON);
+    if (!script_find(command, script, path, sizeof path)) return CLI_EXIT_READ;
+    const char *python = getenv(CLI_ENV_PYTHON);
     if (!python || !python[0]) python = MESHTOPO_PYTHON;
     size_t count = 0;
     while (args[count]) count++;
     const char **argv = calloc(count + 3, sizeof *argv);
     if (!argv) {
-        mt_cli_error(command, "out of memory");
-        return MT_CLI_EXIT_READ;
+        cli_error(command, "out of memory");
+        return CLI_EXIT_READ;
     }
     argv[0] = python;
     argv[1] = path;
@@ -92,28 +91,27 @@ int mt_cli_vtk_script_run(const char *command, const char *script, const char *c
         fprintf(stderr,
                 "meshtopo %s: cannot run %s: %s (Debian: python3 and python3-vtk9; $%s "
                 "names another python)\n",
-                command, python, strerror(errno), MT_CLI_ENV_PYTHON);
+                command, python, strerror(errno), CLI_ENV_PYTHON);
         _exit(EXEC_FAILED);
     }
     free(argv);
     if (pid < 0) {
-        mt_cli_error(command, "cannot start %s: %s", python, strerror(errno));
-        return MT_CLI_EXIT_READ;
+        cli_error(command, "cannot start %s: %s", python, strerror(errno));
+        return CLI_EXIT_READ;
     }
     int status = 0;
     while (waitpid(pid, &status, 0) < 0) {
         if (errno != EINTR) {
-            mt_cli_error(command, "waiting for %s: %s", script, strerror(errno));
-            return MT_CLI_EXIT_READ;
+            cli_error(command, "waiting for %s: %s", script, strerror(errno));
+            return CLI_EXIT_READ;
         }
     }
     if (WIFSIGNALED(status)) {
-        mt_cli_error(command, "%s was killed by signal %d", script, WTERMSIG(status));
-        return MT_CLI_EXIT_READ;
+        cli_error(command, "%s was killed by signal %d", script, WTERMSIG(status));
+        return CLI_EXIT_READ;
     }
     int code = WEXITSTATUS(status);
-    if (code == MT_CLI_EXIT_OK || code == MT_CLI_EXIT_USAGE || code == MT_CLI_EXIT_READ)
-        return code;
-    if (code != EXEC_FAILED) mt_cli_error(command, "%s failed (exit code %d)", script, code);
-    return MT_CLI_EXIT_READ;
+    if (code == CLI_EXIT_OK || code == CLI_EXIT_USAGE || code == CLI_EXIT_READ) return code;
+    if (code != EXEC_FAILED) cli_error(command, "%s failed (exit code %d)", script, code);
+    return CLI_EXIT_READ;
 }
