@@ -18,6 +18,7 @@
 #include "log.h"
 #include "meshtopo/content_hash.h"
 #include "meshtopo/mesh.h"
+#include "meshtopo/protocol.h"
 #include "meshtopo/report.h"
 #include "topology.h"
 
@@ -110,20 +111,6 @@ static int32_t check_mesh(const mtd_config *config, const meshtopo_mesh_t *m, ch
         return MESHTOPO_STATUS_CODE_T_BAD_REQUEST;
     }
     return MESHTOPO_STATUS_CODE_T_OK;
-}
-
-static int32_t status_of_build(mt_status s)
-{
-    switch (s) {
-        case MT_ERR_TOO_LARGE:
-            return MESHTOPO_STATUS_CODE_T_TOO_LARGE;
-        case MT_ERR_INVALID_ARG:
-            return MESHTOPO_STATUS_CODE_T_BAD_REQUEST;
-        case MT_ERR_NOMEM:
-            return MESHTOPO_STATUS_CODE_T_INTERNAL;
-        default:
-            return MESHTOPO_STATUS_CODE_T_BUILD_FAILED;
-    }
 }
 
 /* Sends an ack carrying a report (OK or DEFECT_REFUSED). */
@@ -219,7 +206,7 @@ static void build_job(void *arg, bool cancelled)
     if (s != MT_OK) {
         snprintf(error, sizeof error, "build failed: %.400s", diag.message);
         mtd_reply_ack_error(replies, m->reply_channel, m->request_id, m->mesh_id, true,
-                            status_of_build(s), error);
+                            mt_msgs_code_of_status(s, MESHTOPO_STATUS_CODE_T_BUILD_FAILED), error);
         free_job(job);
         return;
     }

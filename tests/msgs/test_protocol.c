@@ -9,6 +9,7 @@
 #include "meshtopo/channels.h"
 #include "meshtopo/msgs.h"
 #include "meshtopo/protocol.h"
+#include "meshtopo/query_kinds.h"
 
 static void expect_refused(const char *id, uint64_t byte_offset, const char *needle, int line)
 {
@@ -72,6 +73,62 @@ static void status_codes(void)
     CHECK_EQ(mt_msgs_status_of_code(MESHTOPO_STATUS_CODE_T_NO_GEOMETRY), MT_ERR_NO_GEOMETRY);
     CHECK_EQ(mt_msgs_status_of_code(MESHTOPO_STATUS_CODE_T_BUSY), MT_ERR_IO);
     CHECK_EQ(mt_msgs_status_of_code(999), MT_ERR_IO);
+}
+
+static void status_codes_both_ways(void)
+{
+    /* What the daemon sends for a library status: the table's codes, else
+     * the caller's. */
+    const int32_t other = MESHTOPO_STATUS_CODE_T_BUILD_FAILED;
+    CHECK_EQ(mt_msgs_code_of_status(MT_OK, other), MESHTOPO_STATUS_CODE_T_OK);
+    CHECK_EQ(mt_msgs_code_of_status(MT_ERR_INVALID_ARG, other), MESHTOPO_STATUS_CODE_T_BAD_REQUEST);
+    CHECK_EQ(mt_msgs_code_of_status(MT_ERR_TOO_LARGE, other), MESHTOPO_STATUS_CODE_T_TOO_LARGE);
+    CHECK_EQ(mt_msgs_code_of_status(MT_ERR_NOMEM, other), MESHTOPO_STATUS_CODE_T_INTERNAL);
+    CHECK_EQ(mt_msgs_code_of_status(MT_ERR_NO_GEOMETRY, other), MESHTOPO_STATUS_CODE_T_NO_GEOMETRY);
+    CHECK_EQ(mt_msgs_code_of_status(MT_ERR_CORRUPT, other), other);
+    CHECK_EQ(mt_msgs_code_of_status(MT_ERR_IO, MESHTOPO_STATUS_CODE_T_INTERNAL),
+             MESHTOPO_STATUS_CODE_T_INTERNAL);
+    /* Every status sent as a code reads back as itself. */
+    for (int s = MT_OK; s <= MT_ERR_NO_GEOMETRY; s++) {
+        int32_t code = mt_msgs_code_of_status((mt_status)s, -1);
+        if (code >= 0 && s != MT_ERR_NOMEM) CHECK_EQ(mt_msgs_status_of_code(code), (mt_status)s);
+    }
+}
+
+static void query_kinds_table(void)
+{
+    /* One row per query_t constant, numbered from VERTEX_RING to
+     * SELF_INTERSECTIONS without gaps; names unique and found again. */
+    size_t n = mt_msgs_query_kind_count();
+    CHECK_EQ(mt_msgs_query_kind_first(), MESHTOPO_QUERY_T_VERTEX_RING);
+    CHECK_EQ(mt_msgs_query_kind_last(), MESHTOPO_QUERY_T_SELF_INTERSECTIONS);
+    CHECK_EQ(n, (size_t)(mt_msgs_query_kind_last() - mt_msgs_query_kind_first() + 1));
+    CHECK(mt_msgs_query_kind_at(n) == NULL);
+    CHECK(mt_msgs_query_kind_of(mt_msgs_query_kind_first() - 1) == NULL);
+    CHECK(mt_msgs_query_kind_of(mt_msgs_query_kind_last() + 1) == NULL);
+    CHECK(mt_msgs_query_kind_named("no-such-kind") == NULL);
+    CHECK(mt_msgs_query_kind_named(NULL) == NULL);
+    for (size_t i = 0; i < n; i++) {
+        const mt_msgs_query_kind *k = mt_msgs_query_kind_at(i);
+        CHECK(mt_msgs_query_kind_of(k->kind) == k);
+        CHECK(mt_msgs_query_kind_named(k->name) == k);
+        for (size_t j = 0; j < i; j++) {
+            CHECK(mt_msgs_query_kind_at(j)->kind != k->kind);
+            CHECK(strcmp(mt_msgs_query_kind_at(j)->wire_name, k->wire_name) != 0);
+        }
+        /* The columns agree with each other. */
+        CHECK_EQ(k->ids == MT_MSGS_IDS_NONE, k->space == MT_MSGS_ID_NONE);
+        if (k->pairs) CHECK_EQ(k->space, MT_MSGS_ID_VERTEX);
+        if (k->reply == MT_MSGS_REPLY_PER_ID) CHECK(k->ids != MT_MSGS_IDS_NONE);
+        if (k->on_worker) CHECK_EQ(k->reply, MT_MSGS_REPLY_MESH);
+        CHECK(strcmp(mt_msgs_ids_rule_name(k->ids), "?") != 0);
+        CHECK(strcmp(mt_msgs_id_space_name(k->space), "?") != 0);
+        CHECK(strcmp(mt_msgs_reply_shape_name(k->reply), "?") != 0);
+    }
+    const mt_msgs_query_kind *ring = mt_msgs_query_kind_of(MESHTOPO_QUERY_T_VERTEX_RING);
+    CHECK(strcmp(ring->wire_name, "VERTEX_RING") == 0 && strcmp(ring->name, "ring") == 0);
+    CHECK(mt_msgs_query_kind_of(MESHTOPO_QUERY_T_EDGE_FACES)->pairs);
+    CHECK(mt_msgs_query_kind_of(MESHTOPO_QUERY_T_SELF_INTERSECTIONS)->on_worker);
 }
 
 /* A string of n 'c' bytes (the longest channel or id a message carries). */
@@ -149,6 +206,8 @@ static const mt_test_case cases[] = {
     {"reply_channel_allowed", reply_channel_allowed},
     {"mesh_id_rule", mesh_id_rule},
     {"status_codes", status_codes},
+    {"status_codes_both_ways", status_codes_both_ways},
+    {"query_kinds_table", query_kinds_table},
     {"limits_fit_one_datagram", limits_fit_one_datagram},
 };
 const mt_test_table mt_tests_protocol = {cases, sizeof cases / sizeof cases[0]};

@@ -39,6 +39,14 @@ size_t mt_msgs_cluster_owner(const uint64_t *seeds, size_t num_members, const ch
  * table does not know: a newer daemon's). */
 mt_status mt_msgs_status_of_code(int32_t code);
 
+/* The status_code_t value that sends a library status: MT_OK is OK,
+ * MT_ERR_INVALID_ARG BAD_REQUEST, MT_ERR_TOO_LARGE TOO_LARGE,
+ * MT_ERR_NO_GEOMETRY NO_GEOMETRY, MT_ERR_NOMEM INTERNAL; any other status
+ * gives `otherwise`, the code of the failure the caller met (BUILD_FAILED
+ * for a build, INTERNAL for a query the daemon had checked). The same table
+ * as mt_msgs_status_of_code, read the other way. */
+int32_t mt_msgs_code_of_status(mt_status status, int32_t otherwise);
+
 /* The name of a status_code_t value ("OK", "BAD_REQUEST", ...), or
  * "UNKNOWN_CODE". */
 const char *mt_msgs_code_name(int32_t code);
