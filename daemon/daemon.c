@@ -17,7 +17,7 @@
 #include "error_log.h"
 #include "handlers.h"
 #include "heartbeat.h"
-#include "query.h"
+#include "query_route.h"
 #include "reply.h"
 #include "submit.h"
 #include "transfer.h"

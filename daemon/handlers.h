@@ -16,7 +16,7 @@
 
 #include "archiver.h"
 #include "cluster.h"
-#include "query.h"
+#include "query_route.h"
 #include "reply.h"
 #include "submit.h"
 #include "transfer.h"

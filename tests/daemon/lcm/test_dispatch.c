@@ -1,7 +1,7 @@
 /* meshtopod's dispatch over in-process LCM (memq://): submissions are built,
  * stored and acknowledged; every query kind answers what the core library
- * answers, computed here with the core API independently of daemon/query.c
- * (geometry kinds included);
+ * answers, computed here with the core API independently of the daemon's
+ * answerers (daemon/answer_*.c; geometry kinds included);
  * every kind of bad message gets an error reply naming the problem while the
  * daemon keeps serving; a retried request id is answered from the cache. */
 #include <dirent.h>
@@ -22,6 +22,8 @@
 #include "meshtopo/core.h"
 #include "meshtopo/io.h"
 #include "meshtopo/msgs.h"
+#include "meshtopo/query_kinds.h"
+#include "query_route.h"
 
 #define REPLY_CHANNEL "TEST_REPLY"
 #define MAX_RECEIVED 64
@@ -641,6 +643,14 @@ static void fixture_with_cube(fixture *fx)
 }
 
 /* ---- tests ---- */
+
+/* Every kind of the query-kind table has an answerer in the daemon. */
+static void test_every_kind_has_an_answerer(void)
+{
+    for (size_t i = 0; i < mt_msgs_query_kind_count(); i++)
+        CHECK(mtd_query_answerer(mt_msgs_query_kind_at(i)->kind) != NULL);
+    CHECK(mtd_query_answerer(mt_msgs_query_kind_last() + 1) == NULL);
+}
 
 static void test_generated_every_kind(void)
 {
@@ -1892,6 +1902,7 @@ static void test_cluster_in_process(void)
 }
 
 static const mt_test_case cases[] = {
+    {"every_kind_has_an_answerer", test_every_kind_has_an_answerer},
     {"generated_every_kind", test_generated_every_kind},
     {"corpus_every_kind", test_corpus_every_kind},
     {"versions_and_list", test_versions_and_list},

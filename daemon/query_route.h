@@ -1,19 +1,19 @@
-/* meshtopod's queries: one query_t answered with one reply_t (every kind of
- * msgs/query_t.lcm, the same answers as the core library). Runs on the LCM
- * thread against immutable store entries, so a build never holds it up; a
- * query whose version must first be loaded from the store's backing (the
- * archive) is handed to a worker, which loads it and answers. */
-#ifndef MESHTOPOD_QUERY_H
-#define MESHTOPOD_QUERY_H
+/* meshtopod's query routing: one query_t answered with one reply_t (every
+ * kind of msgs/query_t.lcm, the same answers as the core library), checked
+ * (query_check.h) and handed to its kind's answerer (answer.h) by the
+ * query-kind table. Runs on the LCM thread against immutable store entries,
+ * so a build never holds it up; a query whose version must first be loaded
+ * from the store's backing (the archive), or whose kind the table says a
+ * worker answers, is handed to a worker. */
+#ifndef MESHTOPOD_QUERY_ROUTE_H
+#define MESHTOPOD_QUERY_ROUTE_H
 
+#include "answer.h"
 #include "cluster.h"
 #include "mesh_store.h"
 #include "meshtopo/msgs.h"
 #include "reply.h"
 #include "worker_pool.h"
-
-/* A reply whose arrays would exceed this many bytes is refused (TOO_LARGE). */
-#define MTD_REPLY_MAX_BYTES (64u << 20)
 
 typedef struct mtd_queries mtd_queries;
 
@@ -28,5 +28,9 @@ void mtd_queries_destroy(mtd_queries *queries);
 
 /* Answers one decoded query_t whose request was new (mtd_reply_begin). */
 void mtd_query_handle(mtd_queries *queries, const meshtopo_query_t *msg);
+
+/* The answerer of a query_t kind, NULL for a kind without one (every kind
+ * of the table has one; tests check it). */
+mtd_answerer *mtd_query_answerer(int32_t kind);
 
 #endif
