@@ -7,11 +7,13 @@
  * (meshtopo/client_reply.h), which the client checked before handing it out. */
 #include <inttypes.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "inspect.h"
 #include "meshtopo/geometry.h"
+#include "meshtopo/query_kinds.h"
 #include "meshtopo/report.h"
 #include "meshtopo/report_json.h"
 #include "remote.h"
@@ -19,50 +21,22 @@
 /* Most ids one command line may expand to (the daemon has its own limit). */
 #define MAX_QUERY_IDS ((size_t)1 << 24)
 
-typedef enum { IDS_NEEDED, IDS_OPTIONAL, IDS_NONE } ids_rule;
-
-typedef struct query_kind {
-    const char *name;
-    int32_t kind;   /* query_t kind */
-    ids_rule ids;   /* whether it takes ids */
-    const char *of; /* what an id names, for labels: "vertex", "face", ... */
-} query_kind;
-
-static const query_kind kinds[] = {
-    {"ring", MESHTOPO_QUERY_T_VERTEX_RING, IDS_NEEDED, "vertex"},
-    {"valence", MESHTOPO_QUERY_T_VALENCE, IDS_NEEDED, "vertex"},
-    {"face-neighbors", MESHTOPO_QUERY_T_FACE_NEIGHBORS, IDS_NEEDED, "face"},
-    {"edge-faces", MESHTOPO_QUERY_T_EDGE_FACES, IDS_NEEDED, "edge"},
-    {"boundary-loops", MESHTOPO_QUERY_T_BOUNDARY_LOOPS, IDS_NONE, "loop"},
-    {"components", MESHTOPO_QUERY_T_COMPONENTS, IDS_OPTIONAL, "face"},
-    {"report", MESHTOPO_QUERY_T_REPORT, IDS_NONE, ""},
-    {"defects", MESHTOPO_QUERY_T_DEFECTS, IDS_OPTIONAL, "kind"},
-    {"dihedral", MESHTOPO_QUERY_T_DIHEDRAL_ANGLES, IDS_NEEDED, "edge"},
-    {"deficit", MESHTOPO_QUERY_T_ANGLE_DEFICITS, IDS_NEEDED, "vertex"},
-    {"convexity", MESHTOPO_QUERY_T_CONVEXITY, IDS_NONE, "mesh"},
-    {"self-intersections", MESHTOPO_QUERY_T_SELF_INTERSECTIONS, IDS_NONE, "mesh"},
-};
+/* The kinds come from the query-kind table (meshtopo/query_kinds.h): their
+ * names, the ids they take, what an item names and what the reply holds. */
+typedef mt_msgs_query_kind query_kind;
 
 /* Kinds answered by one item about the whole mesh. */
-static bool about_mesh(int32_t kind)
+static bool about_mesh(const query_kind *qk)
 {
-    return kind == MESHTOPO_QUERY_T_CONVEXITY || kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS;
+    return qk->reply == MT_MSGS_REPLY_MESH;
 }
 
-/* Kinds whose ids are vertex pairs naming edges. */
-static bool takes_pairs(int32_t kind)
+/* Whether `meshtopo query` takes the kind: all but the listing, which is
+ * `meshtopo list`'s. */
+static bool queried(const query_kind *qk)
 {
-    return kind == MESHTOPO_QUERY_T_EDGE_FACES || kind == MESHTOPO_QUERY_T_DIHEDRAL_ANGLES;
+    return qk->reply != MT_MSGS_REPLY_LIST;
 }
-
-/* Real values a reply of this kind carries for num_items items. */
-static int32_t expected_reals(int32_t kind, int32_t num_items)
-{
-    if (kind == MESHTOPO_QUERY_T_DIHEDRAL_ANGLES || kind == MESHTOPO_QUERY_T_ANGLE_DEFICITS)
-        return num_items;
-    return kind == MESHTOPO_QUERY_T_CONVEXITY ? 1 : 0;
-}
-static const size_t num_kinds = sizeof kinds / sizeof kinds[0];
 
 static const cli_option options[] = {
     {"version", "N", "query this version of the mesh (default: the latest)"},
@@ -77,12 +51,12 @@ static const cli_option options[] = {
 static bool reply_fits(const meshtopo_reply_t *r, const query_kind *qk, const mt_id_list *ids)
 {
     size_t items = mt_client_reply_num_items(r);
-    if (qk->kind == MESHTOPO_QUERY_T_REPORT && r->num_reports != 1) return false;
-    if (takes_pairs(qk->kind) && items * 2 != ids->count) return false;
-    if (ids->count > 0 && !takes_pairs(qk->kind) && items != ids->count) return false;
-    if (about_mesh(qk->kind) && items != 1) return false;
-    if (qk->kind == MESHTOPO_QUERY_T_SELF_INTERSECTIONS) return true; /* checked when read */
-    return r->num_reals == expected_reals(qk->kind, r->num_items);
+    if (qk->reply == MT_MSGS_REPLY_REPORT && r->num_reports != 1) return false;
+    if (qk->pairs && items * 2 != ids->count) return false;
+    if (ids->count > 0 && !qk->pairs && items != ids->count) return false;
+    if (about_mesh(qk) && items != 1) return false;
+    if (qk->reals_per_item == MT_MSGS_REALS_VARY) return true; /* checked when read */
+    return (int64_t)r->num_reals == (int64_t)qk->reals_per_item * r->num_items;
 }
 
 /* Group k of an item, or an empty one when the item has fewer groups. */
@@ -110,9 +84,9 @@ static const char *defect_name(int64_t kind)
 
 /* The element an item answers: the queried id, or its position when the
  * kind lists every element (boundary loops, components or defects without ids). */
-static int64_t item_subject(const mt_id_list *ids, int32_t kind, size_t i)
+static int64_t item_subject(const mt_id_list *ids, const query_kind *qk, size_t i)
 {
-    if (takes_pairs(kind)) return ids->ids[2 * i];
+    if (qk->pairs) return ids->ids[2 * i];
     if (i < ids->count) return ids->ids[i];
     return (int64_t)i;
 }
@@ -225,12 +199,12 @@ static bool print_geometry_text(const meshtopo_reply_t *r, int32_t kind, size_t 
 static void print_item_text(const meshtopo_reply_t *r, const query_kind *qk, const mt_id_list *ids,
                             size_t i)
 {
-    int64_t subject = item_subject(ids, qk->kind, i);
-    if (takes_pairs(qk->kind))
+    int64_t subject = item_subject(ids, qk, i);
+    if (qk->pairs)
         printf("edge %" PRId64 "-%" PRIu32 ":", subject, ids->ids[2 * i + 1]);
-    else if (about_mesh(qk->kind))
+    else if (about_mesh(qk))
         printf("mesh:");
-    else if (qk->kind == MESHTOPO_QUERY_T_DEFECTS)
+    else if (qk->space == MT_MSGS_ID_DEFECT_KIND)
         printf("%s:", defect_name(subject));
     else
         printf("%s %" PRId64 ":", qk->of, subject);
@@ -364,20 +338,20 @@ static bool write_geometry_json(mt_json *j, const meshtopo_reply_t *r, int32_t k
 static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_kind *qk,
                             const mt_id_list *ids, size_t i)
 {
-    int64_t subject = item_subject(ids, qk->kind, i);
+    int64_t subject = item_subject(ids, qk, i);
     mt_json_object_begin(j);
-    if (takes_pairs(qk->kind)) {
+    if (qk->pairs) {
         mt_json_key(j, "edge");
         mt_json_array_begin(j);
         mt_json_int(j, subject);
         mt_json_uint(j, ids->ids[2 * i + 1]);
         mt_json_array_end(j);
-    } else if (qk->kind == MESHTOPO_QUERY_T_DEFECTS) {
+    } else if (qk->space == MT_MSGS_ID_DEFECT_KIND) {
         mt_json_key(j, "kind");
         mt_json_string(j, defect_name(subject));
         mt_json_key(j, "kind_id");
         mt_json_int(j, subject);
-    } else if (!about_mesh(qk->kind)) {
+    } else if (!about_mesh(qk)) {
         mt_json_key(j, qk->of);
         mt_json_int(j, subject);
     }
@@ -486,9 +460,22 @@ static void print_json(const meshtopo_reply_t *r, const query_kind *qk, const mt
 
 static const query_kind *kind_find(const char *name)
 {
-    for (size_t i = 0; i < num_kinds; i++)
-        if (strcmp(kinds[i].name, name) == 0) return &kinds[i];
-    return NULL;
+    const query_kind *qk = mt_msgs_query_kind_named(name);
+    return qk && queried(qk) ? qk : NULL;
+}
+
+/* The names kind_find takes, "ring, valence, ...", into text. */
+static void kind_names(char *text, size_t size)
+{
+    size_t used = 0;
+    text[0] = '\0';
+    for (size_t i = 0; i < mt_msgs_query_kind_count(); i++) {
+        const query_kind *qk = mt_msgs_query_kind_at(i);
+        if (!queried(qk)) continue;
+        int n = snprintf(text + used, size - used, "%s%s", used ? ", " : "", qk->name);
+        if (n < 0 || (size_t)n >= size - used) break;
+        used += (size_t)n;
+    }
 }
 
 /* Appends the ids of every positional from the third on to *out. */
@@ -524,11 +511,9 @@ static int run_query(const cli_args *args)
     const char *mesh_id = args->positionals[0];
     const query_kind *qk = kind_find(args->positionals[1]);
     if (!qk) {
-        cli_error("query",
-                  "unknown kind '%s' (ring, valence, face-neighbors, edge-faces, "
-                  "boundary-loops, components, report, defects, dihedral, deficit, "
-                  "convexity, self-intersections)",
-                  args->positionals[1]);
+        char names[512];
+        kind_names(names, sizeof names);
+        cli_error("query", "unknown kind '%s' (%s)", args->positionals[1], names);
         return CLI_EXIT_USAGE;
     }
     int version = 0;
@@ -543,14 +528,13 @@ static int run_query(const cli_args *args)
     mt_id_list ids;
     code = parse_ids(args, &ids);
     if (code != CLI_EXIT_OK) return code;
-    if (qk->ids == IDS_NEEDED && ids.count == 0) {
-        cli_error("query", "%s needs %s ids", qk->name,
-                  takes_pairs(qk->kind) ? "vertex pair" : qk->of);
+    if (qk->ids == MT_MSGS_IDS_NEEDED && ids.count == 0) {
+        cli_error("query", "%s needs %s ids", qk->name, qk->pairs ? "vertex pair" : qk->of);
         code = CLI_EXIT_USAGE;
-    } else if (qk->ids == IDS_NONE && ids.count > 0) {
+    } else if (qk->ids == MT_MSGS_IDS_NONE && ids.count > 0) {
         cli_error("query", "%s takes no ids", qk->name);
         code = CLI_EXIT_USAGE;
-    } else if (takes_pairs(qk->kind) && ids.count % 2 != 0) {
+    } else if (qk->pairs && ids.count % 2 != 0) {
         cli_error("query", "%s takes vertex pairs: an even number of ids, got %zu", qk->name,
                   ids.count);
         code = CLI_EXIT_USAGE;
@@ -582,7 +566,7 @@ static int run_query(const cli_args *args)
         code = CLI_EXIT_REFUSED;
     } else if (st != MT_OK) {
         code = cli_call_failed("query", mesh_id, &remote, st, answered, &diag);
-    } else if (qk->kind == MESHTOPO_QUERY_T_REPORT) {
+    } else if (qk->reply == MT_MSGS_REPLY_REPORT) {
         code = cli_report_take("query", &reply.reports[0], &report);
         if (code == CLI_EXIT_OK && json)
             print_json(&reply, qk, &ids, &report);

@@ -1,11 +1,13 @@
 /* The client's calls: argument checks, encoding of mesh_t and query_t with a
  * fresh request id (kept for every retry), waiting or calling back. Nothing is sent for a call
- * whose arguments are wrong: it fails with MT_ERR_INVALID_ARG and a message. */
+ * whose arguments are wrong (a kind not in the query-kind table, meshtopo/query_kinds.h,
+ * among them): it fails with MT_ERR_INVALID_ARG and a message. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "client_internal.h"
 #include "meshtopo/content_hash.h"
+#include "meshtopo/query_kinds.h"
 
 /* ---- Freeing results ---------------------------------------------------- */
 
@@ -44,7 +46,7 @@ static mt_status check_query(const char *mesh_id, int32_t version, int32_t kind,
     if (version < 0)
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "version %d is negative (0 = latest)",
                                (int)version);
-    if (kind < MESHTOPO_QUERY_T_VERTEX_RING || kind > MESHTOPO_QUERY_T_SELF_INTERSECTIONS)
+    if (!mt_msgs_query_kind_of(kind))
         return mt__client_fail(diag, MT_ERR_INVALID_ARG, "query kind %d is not one of query_t's",
                                (int)kind);
     if (num_ids > 0 && !ids)

@@ -17,6 +17,7 @@
 #include "meshtopo/face_list.h"
 #include "meshtopo/msgs.h"
 #include "meshtopo/protocol.h"
+#include "meshtopo/query_kinds.h"
 #include "meshtopo/status.h"
 
 #ifdef __cplusplus
@@ -193,8 +194,11 @@ mt_status mt_client_content_hash(const mt_face_list *list, uint64_t *out_hash, m
 mt_status mt_client_submit(mt_client *client, const char *mesh_id, const mt_face_list *list,
                            int strict, mt_client_ack *out_ack, mt_diag *diag);
 
-/* Sends one query (kind: MESHTOPO_QUERY_T_VERTEX_RING, ...; version 0 = the
- * latest) with a batch of element ids and waits for the reply. ids may be
+/* Sends one query (kind: MESHTOPO_QUERY_T_VERTEX_RING, ..., any kind of the
+ * query-kind table, meshtopo/query_kinds.h, which also says what ids it
+ * takes and what its reply holds, e.g. mt_msgs_query_kind_named("ring");
+ * version 0 = the latest) with a batch of element ids and waits for the
+ * reply. ids may be
  * NULL when num_ids is 0; ids are sent as the int32 of the same bits.
  * A reply too large for one datagram arrives in parts that the client pulls,
  * recovers when lost and reassembles (any size up to max_reply_bytes).
