@@ -12,7 +12,7 @@ by other means safely (decode_message, through the C decoder).
 """
 from . import _lib
 from .arrays import COMPACT_DEFECT_DTYPE, COMPONENT_DTYPE, DEFECT_DTYPE, FAN_DTYPE
-from .client import Ack, Client, Reply
+from .client import QUERY_KINDS, Ack, Client, QueryKind, Reply, query_kind
 from .errors import STATUS, Error
 from .face_list import FaceList, read_face_list
 from .mesh import Mesh, Ring, read
@@ -43,4 +43,4 @@ for _name, _dtype in (("mt_defect", COMPACT_DEFECT_DTYPE), ("mt_defect_record", 
 __all__ = ["Mesh", "FaceList", "Ring", "Client", "Ack", "Reply", "Error", "read",
            "read_face_list", "STATUS", "NONE", "DEFECT_KINDS", "DEFECT_DTYPE",
            "COMPONENT_DTYPE", "FAN_DTYPE", "decode_message", "message_type", "channel_type",
-           "answer_hash"]
+           "answer_hash", "QUERY_KINDS", "QueryKind", "query_kind"]

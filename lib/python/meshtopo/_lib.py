@@ -1,11 +1,14 @@
 """Loading libmeshtopo-python.so with ctypes and declaring the C functions and
 structs the package calls (meshtopo/core.h, io.h, report_json.h, client.h,
-msgs.h and lib/python/src/python_api.h). Nothing is compiled at import time.
+msgs.h, query_kinds.h and lib/python/src/python_api.h). Nothing is compiled at
+import time. The query kinds and status codes are read from the library's
+tables (meshtopo/query_kinds.h, meshtopo/protocol.h), never written here.
 
 The shared object is looked up, in order: the path in the environment variable
 MESHTOPO_PYTHON_LIBRARY (a build tree's lib/python/libmeshtopo-python.so);
 next to this file (an installed package); the dynamic loader's search path.
 """
+import collections
 import ctypes
 import os
 
@@ -14,18 +17,6 @@ LIBRARY_ENV = "MESHTOPO_PYTHON_LIBRARY"
 
 # The sentinel of "no element" (MT_NONE in meshtopo/status.h).
 NONE = 0xFFFFFFFF
-
-# Query kinds of msgs/query_t.lcm.
-QUERY_VERTEX_RING = 1
-QUERY_VALENCE = 2
-QUERY_FACE_NEIGHBORS = 3
-QUERY_EDGE_FACES = 4
-QUERY_BOUNDARY_LOOPS = 5
-QUERY_COMPONENTS = 6
-QUERY_REPORT = 7
-QUERY_DEFECTS = 8
-QUERY_LIST_MESHES = 9
-
 
 def _find_library():
     path = os.environ.get(LIBRARY_ENV)
@@ -116,6 +107,13 @@ class LcmField(ctypes.Structure):
                 ("data", c_ptr)]
 
 
+class QueryKindStruct(ctypes.Structure):
+    """mt_msgs_query_kind (meshtopo/query_kinds.h): one row of the query-kind table."""
+    _fields_ = [("kind", c_i32), ("wire_name", c_char_p), ("name", c_char_p), ("ids", c_int),
+                ("pairs", c_bool), ("space", c_int), ("of", c_char_p), ("reply", c_int),
+                ("reals_per_item", c_i32), ("geometry", c_bool), ("on_worker", c_bool)]
+
+
 def _declare(name, restype, *argtypes):
     fn = getattr(lib, name)
     fn.restype = restype
@@ -186,6 +184,49 @@ mt_py_msgs_decode = _declare("mt_py_msgs_decode", c_int, c_ptr, c_char_p, c_size
                              P(Diag))
 mt_py_msgs_free = _declare("mt_py_msgs_free", None, c_ptr, c_ptr)
 
+# The protocol's tables (meshtopo/query_kinds.h, meshtopo/protocol.h).
+mt_msgs_query_kind_count = _declare("mt_msgs_query_kind_count", c_size)
+mt_msgs_query_kind_at = _declare("mt_msgs_query_kind_at", P(QueryKindStruct), c_size)
+mt_msgs_ids_rule_name = _declare("mt_msgs_ids_rule_name", c_char_p, c_int)
+mt_msgs_id_space_name = _declare("mt_msgs_id_space_name", c_char_p, c_int)
+mt_msgs_reply_shape_name = _declare("mt_msgs_reply_shape_name", c_char_p, c_int)
+mt_msgs_code_name = _declare("mt_msgs_code_name", c_char_p, c_i32)
+
+# One query kind, as the C table has it: number (query_t's constant),
+# wire_name ("VERTEX_RING"), name ("ring", as `meshtopo query` takes it), ids
+# ("needed", "optional", "none"), pairs (ids are vertex pairs naming edges),
+# space (what bounds an id: "vertex", "face", "defect_kind", "none"), of (what
+# an item names), reply ("per_id", "per_loop", "mesh", "report", "list"),
+# reals_per_item (None: it varies), geometry (needs positions), on_worker.
+QueryKind = collections.namedtuple(
+    "QueryKind", "number wire_name name ids pairs space of reply reals_per_item geometry "
+    "on_worker")
+
+
+def _query_kinds():
+    kinds = []
+    for i in range(mt_msgs_query_kind_count()):
+        k = mt_msgs_query_kind_at(i).contents
+        kinds.append(QueryKind(
+            k.kind, k.wire_name.decode(), k.name.decode(),
+            mt_msgs_ids_rule_name(k.ids).decode(), bool(k.pairs),
+            mt_msgs_id_space_name(k.space).decode(), k.of.decode(),
+            mt_msgs_reply_shape_name(k.reply).decode(),
+            None if k.reals_per_item < 0 else k.reals_per_item, bool(k.geometry),
+            bool(k.on_worker)))
+    return tuple(kinds)
+
+
+def _status_codes():
+    codes = {}
+    code = 0
+    while True:
+        name = mt_msgs_code_name(code).decode()
+        if name == "UNKNOWN_CODE" or code > 1024:
+            return codes
+        codes[name] = code
+        code += 1
+
 
 def check_layout(name, size):
     """Raises ImportError when a mirrored struct's size differs from the C one."""
@@ -199,5 +240,14 @@ def check_layout(name, size):
 for _name, _struct in (("mt_diag", Diag), ("mt_face_list", FaceListStruct),
                        ("mt_build_options", BuildOptions), ("mt_ring", RingStruct),
                        ("mt_mesh_view", MeshView), ("mt_report", ReportStruct),
-                       ("lcm_field_t", LcmField)):
+                       ("lcm_field_t", LcmField), ("mt_msgs_query_kind", QueryKindStruct)):
     check_layout(_name, ctypes.sizeof(_struct))
+
+# Every query kind of the C table, in query_t order, and QUERY_<WIRE_NAME> =
+# its number for each (QUERY_VERTEX_RING, ...).
+QUERY_KINDS = _query_kinds()
+for _kind in QUERY_KINDS:
+    globals()["QUERY_" + _kind.wire_name] = _kind.number
+
+# status_code_t values by name ("OK": 0, "NOT_FOUND": ...), from the C table.
+STATUS_CODES = _status_codes()

@@ -20,7 +20,23 @@ from .mesh import Ring, defect_records
 # summary of `meshtopo send --json`'s "report", with "num_defects"), or None.
 Ack = collections.namedtuple("Ack", "version content_hash report")
 
-_NOT_FOUND = 6  # status_code_t NOT_FOUND of an item (msgs/status_code_t.lcm)
+_NOT_FOUND = _lib.STATUS_CODES["NOT_FOUND"]  # an item's status_code_t (msgs/status_code_t.lcm)
+
+# Every query kind (meshtopo.QueryKind), from the C library's table
+# (meshtopo/query_kinds.h), in query_t order.
+QUERY_KINDS = _lib.QUERY_KINDS
+QueryKind = _lib.QueryKind
+
+
+def query_kind(key):
+    """The QueryKind named key: its name ("ring", as `meshtopo query` takes
+    it), its query_t constant's name ("VERTEX_RING") or its number. Raises
+    ValueError for any other key."""
+    for k in QUERY_KINDS:
+        if key in (k.name, k.wire_name) or (not isinstance(key, str) and key == k.number):
+            return k
+    raise ValueError("meshtopo: no query kind %r (kinds: %s)"
+                     % (key, ", ".join(k.name for k in QUERY_KINDS)))
 
 
 class Reply:
@@ -145,8 +161,12 @@ class Client:
         return Ack(version.value, content_hash.value & 0xFFFFFFFFFFFFFFFF, parsed)
 
     def query(self, mesh_id, kind, ids=(), version=0):
-        """Sends one query (kind: a query_t kind number, e.g. 1 VERTEX_RING)
-        for a batch of ids and returns its Reply."""
+        """Sends one query for a batch of ids and returns its Reply. kind: a
+        kind of meshtopo.QUERY_KINDS by name ("ring", or "VERTEX_RING") or
+        number; its `ids` and `pairs` say what ids it takes, its `reply`
+        what the Reply holds."""
+        if isinstance(kind, str):
+            kind = query_kind(kind).number
         ids = np.ascontiguousarray(np.asarray(ids, dtype=np.int64).astype(np.uint32)) \
             if len(ids) else np.empty(0, np.uint32)
         pointer = _lib.c_ptr()

@@ -90,8 +90,11 @@ mt_status mt_py_client_query(mt_client *client, const char *mesh_id, int32_t ver
     *out_reply = NULL;
     mt_py_reply *r = calloc(1, sizeof *r);
     if (!r) return mt_diag_set(diag, MT_ERR_NOMEM, "out of memory");
+    /* A listing (mesh_id "" or NULL: every mesh) through mt_client_list;
+     * with ids it goes as asked, for the daemon to refuse. */
+    const mt_msgs_query_kind *k = mt_msgs_query_kind_of(kind);
     mt_status st =
-        kind == MESHTOPO_QUERY_T_LIST_MESHES
+        k && k->reply == MT_MSGS_REPLY_LIST && num_ids == 0
             ? mt_client_list(client, mesh_id, &r->reply, diag)
             : mt_client_query(client, mesh_id, version, kind, ids, num_ids, &r->reply, diag);
     /* A reply that arrived, even with an error status, is handed out. */

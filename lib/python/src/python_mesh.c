@@ -39,6 +39,7 @@ size_t mt_py_sizeof(const char *type_name)
         {"mt_mesh_view", sizeof(mt_mesh_view)},
         {"mt_report", sizeof(mt_report)},
         {"mt_ring", sizeof(mt_ring)},
+        {"mt_msgs_query_kind", sizeof(mt_msgs_query_kind)},
         {"lcm_field_t", sizeof(lcm_field_t)},
     };
     if (!type_name) return 0;
