@@ -260,9 +260,17 @@ static void print_item_text(const meshtopo_reply_t *r, const query_kind *qk, con
                     printf("%s %s", d ? ";" : ":", text);
                 }
                 break;
-            default: /* EDGE_FACES */
+            case MESHTOPO_QUERY_T_EDGE_FACES:
                 printf(" faces");
                 print_values(g.values, g.num_values);
+                break;
+            default: /* a kind without a printer of its own: its groups as they come */
+                printf("%s values", sep);
+                print_values(g.values, g.num_values);
+                if (g.num_values2) {
+                    printf("; values2");
+                    print_values(g.values2, g.num_values2);
+                }
                 break;
         }
     }
@@ -408,11 +416,13 @@ static void write_item_json(mt_json *j, const meshtopo_reply_t *r, const query_k
             mt_json_array_end(j);
             break;
         default: {
-            /* one group of plain values */
-            const char *key = qk->kind == MESHTOPO_QUERY_T_VALENCE      ? "valence"
-                              : qk->kind == MESHTOPO_QUERY_T_COMPONENTS ? "component"
-                              : qk->kind == MESHTOPO_QUERY_T_EDGE_FACES ? "faces"
-                                                                        : "vertices";
+            /* one group of plain values (the first, for a kind without a
+             * printer of its own) */
+            const char *key = qk->kind == MESHTOPO_QUERY_T_VALENCE          ? "valence"
+                              : qk->kind == MESHTOPO_QUERY_T_COMPONENTS     ? "component"
+                              : qk->kind == MESHTOPO_QUERY_T_EDGE_FACES     ? "faces"
+                              : qk->kind == MESHTOPO_QUERY_T_BOUNDARY_LOOPS ? "vertices"
+                                                                            : "values";
             bool scalar =
                 qk->kind == MESHTOPO_QUERY_T_VALENCE || qk->kind == MESHTOPO_QUERY_T_COMPONENTS;
             mt_client_group g = group_of(r, &item, 0);
