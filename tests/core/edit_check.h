@@ -7,7 +7,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "mesh_internal.h"
+#include "mesh/mesh_internal.h"
 #include "meshtopo/face_list.h"
 
 /* Builds a mesh from a face list (and frees the list); ends the test program

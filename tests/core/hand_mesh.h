@@ -7,7 +7,7 @@
 
 #include <stdint.h>
 
-#include "mesh_internal.h"
+#include "mesh/mesh_internal.h"
 
 /* Everything a hand mesh is made of; arrays are copied by hand_mesh_new. */
 typedef struct hand_spec {

@@ -8,7 +8,7 @@
 #include <assert.h>
 #include <math.h>
 
-#include "geometry_internal.h"
+#include "geometry/geometry_internal.h"
 
 uint32_t sx_num_candidates(uint32_t n)
 {

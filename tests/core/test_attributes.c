@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "harness.h"
-#include "mesh_internal.h"
+#include "mesh/mesh_internal.h"
 #include "meshtopo/core.h"
 
 static mt_mesh *grid_mesh(uint32_t nx, uint32_t ny, bool triangles)

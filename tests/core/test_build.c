@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "harness.h"
-#include "mesh_internal.h"
+#include "mesh/mesh_internal.h"
 #include "meshtopo/core.h"
 
 /* A face list over caller arrays (no allocation). */

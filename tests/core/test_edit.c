@@ -10,7 +10,7 @@
 
 #include "edit_check.h"
 #include "harness.h"
-#include "mesh_internal.h"
+#include "mesh/mesh_internal.h"
 #include "meshtopo/edit.h"
 #include "meshtopo/generate.h"
 #include "meshtopo/mesh.h"

@@ -13,7 +13,7 @@
 
 #include "harness.h"
 #include "map_split.h"
-#include "mesh_internal.h"
+#include "mesh/mesh_internal.h"
 #include "meshtopo/generate.h"
 #include "meshtopo/map.h"
 

@@ -8,7 +8,7 @@
 #include <time.h>
 
 #include "harness.h"
-#include "mesh_internal.h"
+#include "mesh/mesh_internal.h"
 
 typedef struct parts_seen {
     atomic_int runs[MT__MAX_THREADS];

@@ -12,7 +12,7 @@
 
 #include "hand_mesh.h"
 #include "harness.h"
-#include "mesh_internal.h"
+#include "mesh/mesh_internal.h"
 #include "meshtopo/generate.h"
 #include "meshtopo/mesh.h"
 #include "meshtopo/query.h"
