@@ -1,17 +1,19 @@
 /* Allocation for the core library: every allocation of the builder and the
- * edits goes through here so that tests can make the Nth one fail and check
- * that each failure path cleans up (the SQLite fail-after-N technique).
+ * edits goes through here. In the test build of the core (MT_TEST_HOOKS,
+ * the meshtopo_core_testing objects tests/ link), tests can make the Nth
+ * allocation fail and check that each failure path cleans up (the SQLite
+ * fail-after-N technique); the library itself has no such hook.
  * Large arrays are not advised for transparent huge pages: where freed
- * memory goes back to a virtual machine's host, first touches of huge
- * pages cost far more than of 4 KiB ones (meshtopo-bench all: a
- * new shuffled 4M-triangle mesh took 446 to 468 ms to build instead of
- * 280), and a program that builds often keeps its memory in a build
- * workspace, where the page size made no difference. */
+ * memory goes back to a virtual machine's host, first touches of huge pages
+ * cost far more than of 4 KiB ones (docs/performance/ has the measurements),
+ * and a program that builds often keeps its memory in a build workspace,
+ * where the page size made no difference. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/base.h"
 
+#ifdef MT_TEST_HOOKS
 /* Allocations left before one fails; negative means never. Test-only knob,
  * not thread safe by design (tests set it on a single thread). */
 static long fail_countdown = -1;
@@ -28,6 +30,12 @@ static int should_fail(void)
     fail_countdown--;
     return 0;
 }
+#else
+static inline int should_fail(void)
+{
+    return 0;
+}
+#endif
 
 void *mt__malloc(size_t bytes)
 {

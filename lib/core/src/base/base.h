@@ -1,4 +1,5 @@
-/* The low level every family of the core stands on: allocation, growable arrays,
+/* The low level every family of the core stands on: allocation (with the
+ * tests' fail-after-N hook in test builds only), growable arrays,
  * overflow-checked sizes, diagnostics and running work on several threads.
  * Knows nothing of meshes. */
 #ifndef MESHTOPO_BASE_H
@@ -34,13 +35,17 @@ void mt__in_parallel(uint32_t parts, mt__part_fn fn, void *ctx);
 /* [*first, *end): part `part` of `parts` equal shares of n items. */
 void mt__part_range(uint32_t n, uint32_t part, uint32_t parts, uint32_t *first, uint32_t *end);
 
-/* Allocation (alloc.c): plain malloc family with a test hook that makes the
- * Nth allocation fail. Sizes of 0 allocate 1 byte so NULL always means failure. */
+/* Allocation (alloc.c): the plain malloc family. Sizes of 0 allocate 1 byte
+ * so NULL always means failure. */
 void *mt__malloc(size_t bytes);
 void *mt__calloc(size_t count, size_t size);
 void *mt__realloc(void *ptr, size_t bytes);
 void mt__free(void *ptr);
-void mt__test_fail_alloc_after(long count); /* -1 = never */
+#ifdef MT_TEST_HOOKS
+/* Makes the allocation after `count` more fail (-1 = never). Only in the
+ * test build of the core (meshtopo_core_testing), never in the library. */
+void mt__test_fail_alloc_after(long count);
+#endif
 
 /* A growable array of fixed-size elements (geometric growth, so pushing n
  * elements costs O(log n) allocations). Zero-initialise with elem_size set. */
