@@ -1,48 +1,15 @@
-/* mt_mesh_build: runs the build phases (see build_internal.h); a mesh is
- * freed by mesh_lifetime.c. The "links" phase lives here: one pass over the
- * valid faces sets the next of every face half-edge. A build makes a fixed
- * number of allocations whatever the mesh size (plus O(log n) for defect and
- * bundle lists, which grow geometrically). */
-#include <stdatomic.h>
+/* mt_mesh_build: checks the input, plans the parts, allocates the mesh's
+ * arrays and runs the phases in order (faces, edges, links, fans, then the
+ * report; see build/build_state.h); a mesh is freed by mesh/mesh_lifetime.c.
+ * A build makes a fixed number of allocations whatever the mesh size (plus
+ * O(log n) for defect and bundle lists, which grow geometrically). */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
-#include "build/build_state.h"
+#include "build/build_phases.h"
 #include "meshtopo/report.h"
-
-/* Phase "links": next of every face half-edge, each face's first
- * half-edge and, for the fans, one face half-edge leaving each vertex; split
- * by face range (each part writes only the half-edges of its own corners;
- * two parts may both offer a vertex's fan start, and either will do). */
-static void link_part(mt__build *b, uint32_t t)
-{
-    const mt__part *p = &b->part[t];
-    mt_mesh *m = b->m;
-    const uint32_t *sizes = b->in->face_sizes, *indices = b->in->face_indices, *c2h = b->c2h;
-    uint32_t *he_next = m->he_next;
-    _Atomic uint32_t *fan_start = b->fan_start;
-    uint32_t offset = p->index_begin;
-    for (uint32_t f = p->face_begin; f < p->face_end; f++) {
-        const uint32_t n = sizes[f];
-        if (m->face_he[f] == MT_NONE) {
-            offset += n;
-            continue;
-        }
-        const uint32_t *idx = indices + offset;
-        const uint32_t *hs = c2h + offset;
-        const uint32_t first = mt__edge_gap(b, hs[0]);
-        uint32_t h = first;
-        for (uint32_t i = 0; i < n; i++) {
-            const uint32_t next_i = i + 1 < n ? i + 1 : 0;
-            const uint32_t hn = next_i ? mt__edge_gap(b, hs[next_i]) : first;
-            he_next[h] = hn;
-            atomic_store_explicit(&fan_start[idx[i]], h, memory_order_relaxed);
-            h = hn;
-        }
-        m->face_he[f] = first;
-        offset += n;
-    }
-}
+#include "report/report_internal.h"
 
 /* A mesh array of count * elem bytes, every byte 0xff if asked: an array
  * the workspace kept from a recycled mesh when one fits, else new memory. */
@@ -131,14 +98,20 @@ static mt_status strict_refusal(mt__build *b)
                     r->num_defects == 1 ? "" : "s");
 }
 
+/* Online processor cores (at least 1). */
+static uint32_t online_cores(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n > 0 ? (uint32_t)n : 1u;
+}
+
 /* Splits faces (by corner count) and vertices into parts for the parallel
  * phases; one part for small meshes or when asked for one thread. */
 static void plan_parts(mt__build *b, uint32_t threads)
 {
     const mt_face_list *in = b->in;
     uint32_t parts = threads;
-    if (threads == 0)
-        parts = in->num_indices < MT__PARALLEL_MIN_CORNERS ? 1 : (uint32_t)mt__online_cores();
+    if (threads == 0) parts = in->num_indices < MT__PARALLEL_MIN_CORNERS ? 1 : online_cores();
     if (parts > MT__MAX_PARTS) parts = MT__MAX_PARTS;
     b->parts = parts;
     uint32_t f = 0;
@@ -205,7 +178,7 @@ static mt_status build(mt__build *b)
     b->vert_capacity = in->num_verts;
     b->fan_start = mt__scratch_get(b, MT__SCRATCH_FAN_START, in->num_verts, sizeof(uint32_t), 0);
     if (!m->vert_he || !b->fan_start) return MT_ERR_NOMEM;
-    mt__parallel_run(b, link_part);
+    mt__build_links(b);
     mt__scratch_put(b, b->c2h);
     b->c2h = NULL;
 

@@ -20,7 +20,7 @@
  * those of a single pass. */
 #include <string.h>
 
-#include "build/build_state.h"
+#include "build/build_phases.h"
 
 /* Sides of one smaller vertex up to which they are sorted by insertion;
  * more are heap-sorted. */

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "build/build_state.h"
+#include "build/build_phases.h"
 
 static int compare_u32(const void *pa, const void *pb)
 {

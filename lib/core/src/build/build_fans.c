@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "build/build_state.h"
+#include "build/build_phases.h"
 
 /* vert_he of a vertex that several boundary half-edges leave, and of one
  * waiting for the general case, while the fans are made. Half-edge ids stay

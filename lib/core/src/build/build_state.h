@@ -1,18 +1,22 @@
-/* State shared by the build phases (build.c orchestrates them):
+/* State shared by the build phases; build.c orchestrates them and is the
+ * only file that includes their entry points (build_phases.h and
+ * report/report_internal.h):
  *   faces   (build_faces.c)  classify records, count corners per vertex and
  *                            sides per block of smaller vertices
  *   edges   (build_edges.c)  twin matching block by block: heads and faces
  *                            of all half-edges, the half-edge of each corner
- *   links   (build.c)        next of every face half-edge
+ *   links   (build_links.c)  next of every face half-edge
  *   fans    (build_fans.c)   boundary rings, one internal vertex per fan
- *   report  (report_*.c)     components, loops, links, genus, duplicates
+ *   report  (report/)        components, loops, links, genus, duplicates
  * Every phase is a fixed number of passes over flat arrays. The first four
  * run on up to MT__MAX_PARTS threads, each owning a range of faces, blocks or
  * vertices and writing only elements its range owns (except the fan starts
- * of the links phase, see build.c); the result does not depend on the
- * number of threads. */
-#ifndef MESHTOPO_BUILD_INTERNAL_H
-#define MESHTOPO_BUILD_INTERNAL_H
+ * of the links phase, see build_links.c); the result does not depend on the
+ * number of threads. This header is below every phase: it holds the state,
+ * the scratch arrays (build_workspace.c), and the helpers each phase uses to
+ * run on its parts and record defects. */
+#ifndef MESHTOPO_BUILD_STATE_H
+#define MESHTOPO_BUILD_STATE_H
 
 #include <stdint.h>
 
@@ -190,26 +194,25 @@ void mt__scratch_put(mt__build *b, void *array);
  * workspace is NULL. Contents are undefined. */
 void *mt__kept_array_take(mt_build_workspace *workspace, size_t bytes);
 
-/* Online processor cores (at least 1). */
-long mt__online_cores(void);
+/* A phase function and its build, for mt__parallel_run. */
+typedef struct mt__phase {
+    void (*fn)(mt__build *, uint32_t);
+    mt__build *b;
+} mt__phase;
 
-/* Runs fn(b, t) for every part t, part 0 on the calling thread. */
-void mt__parallel_run(mt__build *b, void (*fn)(mt__build *, uint32_t));
+static inline void mt__phase_part(void *ctx, uint32_t part, uint32_t parts)
+{
+    (void)parts;
+    const mt__phase *p = ctx;
+    p->fn(p->b, part);
+}
 
-mt_status mt__build_faces(mt__build *b);
-mt_status mt__build_edges(mt__build *b);
-/* Moves the heads and faces of the half-edges, left in the blocks by
- * mt__build_edges, into the mesh's arrays (allocated meanwhile). */
-void mt__build_edges_publish(mt__build *b);
-mt_status mt__build_fans(mt__build *b);
-mt_status mt__build_report(mt__build *b);
-
-/* Parts of the report (report_*.c), called by mt__build_report in order. */
-mt_status mt__report_components(mt__build *b);  /* components, per-component counts */
-mt_status mt__report_boundary(mt__build *b);    /* boundary-edge graph: loops, lengths */
-mt_status mt__report_links(mt__build *b);       /* vertex links: non-manifold, bowtie */
-mt_status mt__report_orientation(mt__build *b); /* orientability per component */
-mt_status mt__report_duplicates(mt__build *b);  /* duplicate faces */
+/* Runs fn(b, t) for every part t, part 0 on the calling thread (base/parallel.c). */
+static inline void mt__parallel_run(mt__build *b, void (*fn)(mt__build *, uint32_t))
+{
+    mt__phase p = {fn, b};
+    mt__in_parallel(b->parts, mt__phase_part, &p);
+}
 
 /* Union-find with path halving over a parent array. */
 static inline uint32_t mt__uf_find(uint32_t *parent, uint32_t x)
@@ -231,11 +234,20 @@ static inline void mt__uf_union(uint32_t *parent, uint32_t x, uint32_t y)
         parent[x] = y;
 }
 
-/* Adds a defect entry to a list; MT_ERR_NOMEM on failure (build_defects.c). */
-mt_status mt__push_defect(mt__vec *defects, mt_defect_kind kind, uint32_t x, uint32_t y,
-                          uint32_t z);
+/* Adds a defect entry to a list (a part's own, in the parallel phases);
+ * MT_ERR_NOMEM on failure. */
+static inline mt_status mt__push_defect(mt__vec *defects, mt_defect_kind kind, uint32_t x,
+                                        uint32_t y, uint32_t z)
+{
+    mt_defect d = {(uint32_t)kind, x, y, z};
+    return mt__vec_push(defects, &d);
+}
 
-/* The same into the build's merged list (sequential phases). */
-mt_status mt__add_defect(mt__build *b, mt_defect_kind kind, uint32_t x, uint32_t y, uint32_t z);
+/* The same into the build's merged list (sequential phases, the report). */
+static inline mt_status mt__add_defect(mt__build *b, mt_defect_kind kind, uint32_t x, uint32_t y,
+                                       uint32_t z)
+{
+    return mt__push_defect(&b->defects, kind, x, y, z);
+}
 
 #endif

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "build/build_state.h"
+#include "report/report_internal.h"
 
 static int compare_u32(const void *pa, const void *pb)
 {

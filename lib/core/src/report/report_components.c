@@ -6,7 +6,7 @@
 #include <stdatomic.h>
 #include <string.h>
 
-#include "build/build_state.h"
+#include "report/report_internal.h"
 
 /* Vertex-connected components: components joined through vertex copies. */
 static mt_status count_vertex_components(mt__build *b)

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "build/build_state.h"
+#include "report/report_internal.h"
 
 typedef struct keyed_face {
     uint64_t hash;

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "build/build_state.h"
+#include "report/report_internal.h"
 
 typedef struct link_edge {
     uint32_t p, q, comp;

@@ -5,7 +5,7 @@
  * same way) says "opposite flip"; a contradiction makes the component
  * non-orientable. Without any same-direction pair every constraint is "same
  * flip", so the pass is skipped. */
-#include "build/build_state.h"
+#include "report/report_internal.h"
 
 /* Root of x; *out_parity gets x's flip relative to the root. */
 static uint32_t find_parity(uint32_t *parent, uint8_t *parity, uint32_t x, uint8_t *out_parity)
