@@ -32,16 +32,11 @@ static mt_status vert_sum(const mt_mesh *m, uint32_t v, vert_sums *out)
     out->normal[0] = out->normal[1] = out->normal[2] = 0.0;
     out->angles = 0.0;
     out->has_face = out->boundary = false;
-    const uint32_t *copies;
-    uint32_t num_copies = mt__vert_copies(m, v, &copies);
-    for (uint32_t i = 0; i <= num_copies; i++) {
-        uint32_t u = mt__vert_fan_owner(m, v, copies, i);
-        if (u == MT_NONE) return MT_ERR_CORRUPT;
-        uint32_t start = m->vert_he[u];
-        if (start == MT_NONE) continue;
-        if (!mt__he_ok(m, start)) return MT_ERR_CORRUPT;
-        uint32_t h = start, steps = 0;
+    mt__vert_walk w;
+    mt__vert_walk_begin(&w, m, v);
+    while (mt__vert_walk_fan(&w)) {
         do {
+            const uint32_t h = w.he;
             if (boundary_edge(m, h)) out->boundary = true;
             uint32_t f = m->he_face[h];
             if (f != MT_NONE) {
@@ -57,10 +52,9 @@ static mt_status vert_sum(const mt_mesh *m, uint32_t v, vert_sums *out)
                 if (ok)
                     for (int k = 0; k < 3; k++) out->normal[k] += angle * n[k];
             }
-            if (!mt__rotate_step(m, &h, &steps)) return MT_ERR_CORRUPT;
-        } while (h != start);
+        } while (mt__vert_walk_step(&w));
     }
-    return MT_OK;
+    return w.status;
 }
 
 static mt_status vert_check(const mt_mesh *m, uint32_t v, const void *out, const char *what,

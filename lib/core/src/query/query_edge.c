@@ -15,24 +15,17 @@
 static mt_status find_side(const mt_mesh *m, uint32_t a, uint32_t b, uint32_t *out_he)
 {
     *out_he = MT_NONE;
-    const uint32_t *copies;
-    uint32_t num_copies = mt__vert_copies(m, a, &copies);
-    for (uint32_t i = 0; i <= num_copies; i++) {
-        uint32_t u = mt__vert_fan_owner(m, a, copies, i);
-        if (u == MT_NONE) return MT_ERR_CORRUPT;
-        uint32_t start = m->vert_he[u];
-        if (start == MT_NONE) continue;
-        if (!mt__he_ok(m, start)) return MT_ERR_CORRUPT;
-        uint32_t h = start, steps = 0;
+    mt__vert_walk w;
+    mt__vert_walk_begin(&w, m, a);
+    while (mt__vert_walk_fan(&w)) {
         do {
-            if (mt__original_checked(m, m->he_head[h]) == b) {
-                *out_he = h;
+            if (mt__original_checked(m, m->he_head[w.he]) == b) {
+                *out_he = w.he;
                 return MT_OK;
             }
-            if (!mt__rotate_step(m, &h, &steps)) return MT_ERR_CORRUPT;
-        } while (h != start);
+        } while (mt__vert_walk_step(&w));
     }
-    return MT_OK;
+    return w.status;
 }
 
 /* Faces on the edge of half-edge h (its bundle's when bundled), but none

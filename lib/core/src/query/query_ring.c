@@ -36,25 +36,22 @@ static bool face_shown(const mt_mesh *m, const skipped *sk, uint32_t f)
 }
 
 /* Sizes of the ring of caller vertex v; MT_ERR_CORRUPT on a broken fan. */
-static mt_status ring_count(const mt_mesh *m, uint32_t v, const uint32_t *copies,
-                            uint32_t num_copies, const skipped *sk, mt_ring *ring)
+static mt_status ring_count(const mt_mesh *m, uint32_t v, const skipped *sk, mt_ring *ring)
 {
     size_t nb = 0, nf = 0, fans = 0;
-    for (uint32_t i = 0; i <= num_copies; i++) {
-        uint32_t u = mt__vert_fan_owner(m, v, copies, i);
-        if (u == MT_NONE) return MT_ERR_CORRUPT;
-        uint32_t start = m->vert_he[u];
-        if (start == MT_NONE) continue;
-        if (!mt__he_ok(m, start)) return MT_ERR_CORRUPT;
+    mt__vert_walk w;
+    mt__vert_walk_begin(&w, m, v);
+    while (mt__vert_walk_fan(&w)) {
         const size_t fan_first = nb + nf;
-        uint32_t h = start, steps = 0;
         do {
+            const uint32_t h = w.he;
             if (neighbor_shown(m, sk, h, mt__original_checked(m, m->he_head[h]))) nb++;
             if (face_shown(m, sk, m->he_face[h ^ 1u])) nf++;
-            if (!mt__rotate_step(m, &h, &steps)) return MT_ERR_CORRUPT;
-        } while (h != start);
+        } while (mt__vert_walk_step(&w));
+        if (w.status != MT_OK) return w.status;
         if (nb + nf > fan_first) fans++; /* a fan everything was left out of is not listed */
     }
+    if (w.status != MT_OK) return w.status;
     ring->num_neighbors = nb;
     ring->num_faces = nf;
     ring->num_fans = fans;
@@ -77,27 +74,25 @@ static void reverse_u32(uint32_t *a, size_t n)
  * than neighbours. Reversing both lists (an open fan whole, a closed one
  * after its first neighbour) keeps that pairing and turns the order
  * counter-clockwise. */
-static mt_status ring_fill(const mt_mesh *m, uint32_t v, const uint32_t *copies,
-                           uint32_t num_copies, const skipped *sk, mt_ring *ring)
+static mt_status ring_fill(const mt_mesh *m, uint32_t v, const skipped *sk, mt_ring *ring)
 {
     size_t nb = 0, nf = 0, fans = 0;
-    for (uint32_t i = 0; i <= num_copies; i++) {
-        uint32_t u = mt__vert_fan_owner(m, v, copies, i);
-        uint32_t start = m->vert_he[u];
-        if (start == MT_NONE) continue;
+    mt__vert_walk w;
+    mt__vert_walk_begin(&w, m, v);
+    while (mt__vert_walk_fan(&w)) {
         mt_fan fan;
         fan.neighbor_begin = (uint32_t)nb;
         fan.face_begin = (uint32_t)nf;
-        fan.boundary = m->he_face[start] == MT_NONE;
-        uint32_t h = start, steps = 0;
+        fan.boundary = m->he_face[w.start] == MT_NONE;
         do {
-            uint32_t w = mt__original_checked(m, m->he_head[h]);
-            if (w == MT_NONE) return MT_ERR_CORRUPT;
-            if (neighbor_shown(m, sk, h, w)) ring->neighbors[nb++] = w;
+            const uint32_t h = w.he;
+            const uint32_t nv = mt__original_checked(m, m->he_head[h]);
+            if (nv == MT_NONE) return MT_ERR_CORRUPT;
+            if (neighbor_shown(m, sk, h, nv)) ring->neighbors[nb++] = nv;
             uint32_t f = m->he_face[h ^ 1u];
             if (face_shown(m, sk, f)) ring->faces[nf++] = f;
-            if (!mt__rotate_step(m, &h, &steps)) return MT_ERR_CORRUPT;
-        } while (h != start);
+        } while (mt__vert_walk_step(&w));
+        if (w.status != MT_OK) return w.status;
         fan.neighbor_count = (uint32_t)(nb - fan.neighbor_begin);
         fan.face_count = (uint32_t)(nf - fan.face_begin);
         if (fan.neighbor_count == 0 && fan.face_count == 0) continue;
@@ -106,17 +101,15 @@ static mt_status ring_fill(const mt_mesh *m, uint32_t v, const uint32_t *copies,
         if (fan.face_count > 0) reverse_u32(ring->faces + fan.face_begin, fan.face_count);
         ring->fans[fans++] = fan;
     }
-    return MT_OK;
+    return w.status;
 }
 
 mt_status mt_vert_ring(const mt_mesh *mesh, uint32_t vert, mt_ring *ring)
 {
     if (!mesh || !ring) return MT_ERR_INVALID_ARG;
     if (vert >= mesh->num_verts) return MT_ERR_OUT_OF_RANGE;
-    const uint32_t *copies;
-    uint32_t num_copies = mt__vert_copies(mesh, vert, &copies);
     const skipped sk = skipped_of(mesh);
-    mt_status s = ring_count(mesh, vert, copies, num_copies, &sk, ring);
+    mt_status s = ring_count(mesh, vert, &sk, ring);
     if (s != MT_OK) return s;
     if (mt__buffer_absent(ring->neighbors, ring->neighbors_capacity) &&
         mt__buffer_absent(ring->faces, ring->faces_capacity) &&
@@ -126,7 +119,7 @@ mt_status mt_vert_ring(const mt_mesh *mesh, uint32_t vert, mt_ring *ring)
         !mt__buffer_fits(ring->faces, ring->faces_capacity, ring->num_faces) ||
         !mt__buffer_fits(ring->fans, ring->fans_capacity, ring->num_fans))
         return MT_ERR_BUFFER_TOO_SMALL;
-    return ring_fill(mesh, vert, copies, num_copies, &sk, ring);
+    return ring_fill(mesh, vert, &sk, ring);
 }
 
 /* Every caller edge at the vertex is one internal edge, except a bundle,
@@ -136,18 +129,13 @@ mt_status mt_vert_valence(const mt_mesh *mesh, uint32_t vert, uint32_t *out_vale
 {
     if (!mesh || !out_valence) return MT_ERR_INVALID_ARG;
     if (vert >= mesh->num_verts) return MT_ERR_OUT_OF_RANGE;
-    const uint32_t *copies;
-    uint32_t num_copies = mt__vert_copies(mesh, vert, &copies);
     const skipped sk = skipped_of(mesh);
     uint32_t valence = 0;
-    for (uint32_t i = 0; i <= num_copies; i++) {
-        uint32_t u = mt__vert_fan_owner(mesh, vert, copies, i);
-        if (u == MT_NONE) return MT_ERR_CORRUPT;
-        uint32_t start = mesh->vert_he[u];
-        if (start == MT_NONE) continue;
-        if (!mt__he_ok(mesh, start)) return MT_ERR_CORRUPT;
-        uint32_t h = start, steps = 0;
+    mt__vert_walk w;
+    mt__vert_walk_begin(&w, mesh, vert);
+    while (mt__vert_walk_fan(&w)) {
         do {
+            const uint32_t h = w.he;
             const uint32_t e = h >> 1, b = mt__edge_bundle(mesh, e);
             /* A neighbour the ring leaves out is not counted. */
             const bool shown =
@@ -159,9 +147,9 @@ mt_status mt_vert_valence(const mt_mesh *mesh, uint32_t vert, uint32_t *out_vale
                 if (!mt__bundle_range(mesh, b, &begin, &end) || begin == end) return MT_ERR_CORRUPT;
                 if (mesh->bundle_edges[begin] == e) valence++;
             }
-            if (!mt__rotate_step(mesh, &h, &steps)) return MT_ERR_CORRUPT;
-        } while (h != start);
+        } while (mt__vert_walk_step(&w));
     }
+    if (w.status != MT_OK) return w.status;
     *out_valence = valence;
     return MT_OK;
 }
