@@ -9,7 +9,13 @@ needs a symbol b defines. Two rules, per unit (a library, or daemon/ as one):
            cycle: each unit's file graph must be acyclic, so every file can be
            read, tested and replaced bottom-up;
   upward   a library object references a symbol defined in daemon/ or tools/
-           (role `daemon` or `tools` in the object list).
+           (role `daemon` or `tools` in the object list);
+  order    in a unit whose files are ordered in families (FAMILY_ORDERS: the
+           core's folders, base < mesh < build < report < ...), a file
+           references a symbol of, or includes a header of, a family it may
+           not use, or lies outside every family. Includes are read from the
+           sources (--root); a file's family is its folder, or the file
+           itself where FAMILY_ORDERS names it.
 
 The object list (tests/layering/CMakeLists.txt writes it with file(GENERATE)
 from $<TARGET_OBJECTS:...>) has one object per line, tab-separated:
@@ -20,7 +26,7 @@ role is `library`, `daemon` or `tools`; source-prefix is the target's source
 directory relative to the project, and the object's path below
 CMakeFiles/<target>.dir/ is its source's path below that directory.
 
-usage: check_layering.py --objects LIST [--nm NM] [--unit UNIT]... [--json]
+usage: check_layering.py --objects LIST [--nm NM] [--root DIR] [--unit UNIT]... [--json]
 exit status: 0 no problem, 1 problems (printed), 2 the list or nm failed, or
 an object of a checked unit is not built (other units' are skipped, with a
 warning).
@@ -28,6 +34,7 @@ warning).
 import argparse
 import json
 import os
+import re
 import subprocess
 import sys
 
@@ -43,6 +50,35 @@ IGNORED_PREFIXES = ("__asan", "___asan", "__odr_asan", "__ubsan", "__sanitizer",
 # undefined. Any other uppercase type (T, D, B, R, C, W, V, ...) is a global
 # definition; other lowercase types are local symbols, which link nothing.
 UNDEFINED_TYPES = ("U", "w", "v")
+
+# Units whose files form families in a fixed order: the unit's source folder
+# (relative to the project) and its families, lowest first, each with the
+# folders or files it holds (relative to that folder; the longest match
+# wins) and the families it may use besides itself. A use is a reference to
+# a symbol another file defines or an #include "..." of another file.
+#
+# The core (lib/core/README.md): base < mesh < build < report < build.c <
+# query < geometry < edit < generate, and map beside them on base and mesh.
+# build.c runs the build's phases, the report last, so it sits above report
+# while the state and phases of build/ sit below it.
+FAMILY_ORDERS = {
+    "core": ("lib/core/src", [
+        ("base", ("base/",), ()),
+        ("mesh", ("mesh/",), ("base",)),
+        ("build", ("build/",), ("base", "mesh")),
+        ("report", ("report/",), ("base", "mesh", "build")),
+        ("build.c", ("build/build.c",), ("base", "mesh", "build", "report")),
+        ("query", ("query/",), ("base", "mesh")),
+        ("geometry", ("geometry/",), ("base", "mesh", "query")),
+        ("edit", ("edit/",),
+         ("base", "mesh", "build", "report", "build.c", "query", "geometry")),
+        ("generate", ("generate/",),
+         ("base", "mesh", "build", "report", "build.c", "query", "geometry", "edit")),
+        ("map", ("map/",), ("base", "mesh")),
+    ]),
+}
+INCLUDE_SUFFIXES = (".c", ".h")
+INCLUDE_RE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 
 
 class Fail(Exception):
@@ -238,7 +274,99 @@ def example_cycle(component, edges):
     return [start]
 
 
-def check_unit(unit, objs, definers):
+def family_of(order, source):
+    """The family of a source file (relative to the project) in a unit's
+    order: None when the file is not below the order's folder, "" when it is
+    but no family holds it."""
+    root, families = order
+    prefix = root.rstrip("/") + "/"
+    if not source.startswith(prefix):
+        return None
+    rel = source[len(prefix):]
+    best, best_len = "", -1
+    for name, places, _ in families:
+        for place in places:
+            matches = rel.startswith(place) if place.endswith("/") else rel == place
+            if matches and len(place) > best_len:
+                best, best_len = name, len(place)
+    return best
+
+
+def order_text(order):
+    """The order in one line: `base < mesh < ...; map uses base, mesh`."""
+    lines = []
+    for name, _, uses in order[1]:
+        lines.append("%s (uses %s)" % (name, ", ".join(uses)) if uses else name)
+    return " < ".join(lines)
+
+
+def read_includes(root_dir, order):
+    """The C files below the order's folder and their #include "...":
+    (files, [(file, line, text, target)]), target the included file relative
+    to the project, or None when it is not found there (a public header)."""
+    folder = os.path.join(root_dir, order[0])
+    if not os.path.isdir(folder):
+        raise Fail("no folder %s: --root must be the project's source directory" % folder)
+    files = []
+    found = []
+    for dirpath, dirnames, filenames in os.walk(folder):
+        dirnames.sort()
+        for filename in sorted(filenames):
+            if not filename.endswith(INCLUDE_SUFFIXES):
+                continue
+            path = os.path.join(dirpath, filename)
+            source = os.path.relpath(path, root_dir).replace(os.sep, "/")
+            files.append(source)
+            try:
+                with open(path, encoding="utf-8", errors="replace") as f:
+                    lines = f.read().splitlines()
+            except OSError as e:
+                raise Fail("cannot read %s: %s" % (path, e))
+            for number, line in enumerate(lines, 1):
+                m = INCLUDE_RE.match(line)
+                if not m:
+                    continue
+                target = None
+                # As the compiler looks: the including file's folder, then the
+                # unit's source folder (its include directory).
+                for base in (dirpath, folder):
+                    candidate = os.path.normpath(os.path.join(base, m.group(1)))
+                    if os.path.isfile(candidate):
+                        target = os.path.relpath(candidate, root_dir).replace(os.sep, "/")
+                        break
+                found.append((source, number, m.group(1), target))
+    return files, found
+
+
+def check_order(unit, mine, edges, symbols, root_dir):
+    """The uses against the unit's family order: calls (edges between its
+    objects) and includes (read below root_dir); [] when it has no order."""
+    order = FAMILY_ORDERS[unit]
+    allowed = {name: set(uses) | {name} for name, _, uses in order[1]}
+    problems = []
+    if root_dir is None:
+        raise Fail("unit %s has a family order: --root is needed to read its includes" % unit)
+    files, includes = read_includes(root_dir, order)
+    for source in sorted({o.source for o in mine} | set(files)):
+        if family_of(order, source) == "":
+            problems.append({"kind": "outside", "from": source})
+    for a in sorted(edges):
+        fa = family_of(order, a)
+        for b in sorted(edges[a]):
+            fb = family_of(order, b)
+            if fa and fb and fb not in allowed[fa]:
+                problems.append({"kind": "call", "from": a, "from_family": fa, "to": b,
+                                 "to_family": fb, "symbols": sorted(symbols[(a, b)])})
+    for source, line, text, target in includes:
+        fa = family_of(order, source)
+        fb = family_of(order, target) if target else None
+        if fa and fb and fb not in allowed[fa]:
+            problems.append({"kind": "include", "from": source, "from_family": fa,
+                             "to": target, "to_family": fb, "line": line, "include": text})
+    return problems
+
+
+def check_unit(unit, objs, definers, root_dir=None):
     """The problems of one unit: {"files", "links", "cycles", "upward"}."""
     mine = [o for o in objs if o.unit == unit]
     role = mine[0].role
@@ -263,7 +391,7 @@ def check_unit(unit, objs, definers):
         cycles.append({"files": component, "example": example_cycle(component, edges),
                        "links": links})
     cycles.sort(key=lambda c: c["files"])
-    return {
+    result = {
         "role": role,
         "files": len(nodes),
         "links": len(symbols),
@@ -271,20 +399,47 @@ def check_unit(unit, objs, definers):
         "upward": [{"from": a, "to": b, "unit": u, "symbols": sorted(s)}
                    for (a, b, u), s in sorted(upward.items())],
     }
+    if unit in FAMILY_ORDERS:
+        result["order"] = order_text(FAMILY_ORDERS[unit])
+        result["against_order"] = check_order(unit, mine, edges, symbols, root_dir)
+    return result
+
+
+def failed(result):
+    return bool(result["cycles"] or result["upward"] or result.get("against_order"))
 
 
 def print_unit(unit, result, out):
     cycles, upward = result["cycles"], result["upward"]
-    if not cycles and not upward:
+    against = result.get("against_order", [])
+    if not failed(result):
         extra = "; no references into daemon/ or tools/" if result["role"] == "library" else ""
+        if "order" in result:
+            extra += "; families in order: %s" % result["order"]
         out.write("layering %s: OK: %d files, %d links between them, no cycle%s\n"
                   % (unit, result["files"], result["links"], extra))
         return
     upward_count = ""
     if result["role"] == "library":
         upward_count = ", %d reference(s) into daemon/ or tools/" % len(upward)
+    if "order" in result:
+        upward_count += ", %d use(s) against the family order" % len(against)
     out.write("layering %s: FAIL: %d files, %d cycle(s)%s\n"
               % (unit, result["files"], len(cycles), upward_count))
+    if against:
+        out.write("  family order: %s\n" % result["order"])
+    for use in against:
+        if use["kind"] == "outside":
+            out.write("  %s is in no family of the order: add its folder to FAMILY_ORDERS\n"
+                      % use["from"])
+        elif use["kind"] == "call":
+            out.write("  %s (%s) calls %s (%s), a family it may not use: %s\n"
+                      % (use["from"], use["from_family"], use["to"], use["to_family"],
+                         " ".join(use["symbols"])))
+        else:
+            out.write("  %s:%d (%s) includes \"%s\" (%s), a family it may not use\n"
+                      % (use["from"], use["line"], use["from_family"], use["include"],
+                         use["to_family"]))
     for number, cycle in enumerate(cycles, 1):
         out.write("  cycle %d: %d files reference each other: %s\n"
                   % (number, len(cycle["files"]), " ".join(cycle["files"])))
@@ -303,6 +458,9 @@ def main(argv):
     parser.add_argument("--unit", action="append", default=[],
                         help="check this unit only (repeatable; default: every library "
                              "and daemon unit)")
+    parser.add_argument("--root", default=None,
+                        help="the project's source directory, where the includes of a unit "
+                             "with a family order are read (default: not read)")
     parser.add_argument("--json", action="store_true", help="print the result as JSON")
     args = parser.parse_args(argv)
     try:
@@ -321,15 +479,19 @@ def main(argv):
     for o in objs:
         for name in o.defined:
             definers.setdefault(name, []).append(o)
-    results = {unit: check_unit(unit, objs, definers) for unit in (args.unit or checked)}
+    try:
+        results = {unit: check_unit(unit, objs, definers, args.root)
+                   for unit in (args.unit or checked)}
+    except Fail as e:
+        sys.stderr.write("check_layering: %s\n" % e)
+        return 2
     if args.json:
         json.dump(results, sys.stdout, indent=2, sort_keys=True)
         sys.stdout.write("\n")
     else:
         for unit, result in results.items():
             print_unit(unit, result, sys.stdout)
-    failed = any(r["cycles"] or r["upward"] for r in results.values())
-    return 1 if failed else 0
+    return 1 if any(failed(r) for r in results.values()) else 0
 
 
 if __name__ == "__main__":

@@ -9,6 +9,12 @@ object list for them and runs the checker:
            targets. The checker must report exactly these, and nothing about
            the library `other` that calls `lib`, nor about main.c or tools/.
   clean    the same files without the back-calls: every unit passes.
+  core     the core's family order (FAMILY_ORDERS in the checker), on files
+           laid out as lib/core/src/<family>/: planted, base/ calls map/,
+           report/ calls build/build.c (the orchestrator above it), base/'s
+           header includes mesh/'s, and a file sits in no family; none of
+           them closes a cycle, so only the order can refuse them, and it
+           must refuse all four; the same families used downwards pass.
 
 usage: self_test.py --cc CC --nm NM --checker check_layering.py
 """
@@ -102,6 +108,43 @@ CLEAN_EXPECTED = {
     "other": no_problem("library", 1, 0),
 }
 
+# The core's families: (path below lib/core/src, text); .c files are compiled.
+CORE_COMMON = [
+    ("mesh/mesh_internal.h", "int mesh_count(int);\n"),
+    ("mesh/mesh.c", "#include \"mesh/mesh_internal.h\"\nint base_alloc(int);\n"
+     "int mesh_count(int x) { return base_alloc(x) + 1; }\n"),
+    ("build/build.c", "int report_phase(int);\nint mesh_count(int);\n"
+     "int core_build(int x) { return report_phase(mesh_count(x)); }\n"),
+    ("map/map.c", "int mesh_count(int);\nint map_fn(int x) { return mesh_count(x); }\n"),
+]
+CORE_PLANTED = CORE_COMMON + [
+    ("base/base.h", "#include \"mesh/mesh_internal.h\"\nint base_alloc(int);\n"),
+    ("base/alloc.c", "int base_alloc(int x) { return x; }\n"),
+    ("base/extra.c", "int map_fn(int);\nint base_more(int x) { return map_fn(x); }\n"),
+    ("report/report.c", "#include \"mesh/mesh_internal.h\"\n"
+     "int report_phase(int x) { return mesh_count(x); }\n"),
+    ("report/report_text.c", "int core_build(int);\n"
+     "int report_again(int x) { return core_build(x); }\n"),
+    ("stray.c", "int stray_fn(int x) { return x; }\n"),
+]
+CORE_CLEAN = CORE_COMMON + [
+    ("base/base.h", "int base_alloc(int);\n"),
+    ("base/alloc.c", "int base_alloc(int x) { return x; }\n"),
+    ("report/report.c", "#include \"mesh/mesh_internal.h\"\n"
+     "int report_phase(int x) { return mesh_count(x); }\n"),
+]
+CORE = "lib/core/src/"
+CORE_EXPECTED_AGAINST = [
+    {"kind": "outside", "from": CORE + "stray.c"},
+    {"kind": "call", "from": CORE + "base/extra.c", "from_family": "base",
+     "to": CORE + "map/map.c", "to_family": "map", "symbols": ["map_fn"]},
+    {"kind": "call", "from": CORE + "report/report_text.c", "from_family": "report",
+     "to": CORE + "build/build.c", "to_family": "build.c", "symbols": ["core_build"]},
+    {"kind": "include", "from": CORE + "base/base.h", "from_family": "base",
+     "to": CORE + "mesh/mesh_internal.h", "to_family": "mesh", "line": 1,
+     "include": "mesh/mesh_internal.h"},
+]
+
 failures = []
 
 
@@ -134,6 +177,72 @@ def build(cc, root, files):
     return list_path
 
 
+def build_core(cc, root, files):
+    """The core's files under root/lib/core/src, objects where CMake puts
+    them; returns the object list's path."""
+    lines = []
+    for source, text in files:
+        src = os.path.join(root, "lib", "core", "src", source)
+        os.makedirs(os.path.dirname(src), exist_ok=True)
+        with open(src, "w", encoding="utf-8") as f:
+            f.write(text)
+    for source, _ in files:
+        if not source.endswith(".c"):
+            continue
+        src = os.path.join(root, "lib", "core", "src", source)
+        obj = os.path.join(root, "build", "lib", "core", "CMakeFiles", "meshtopo_core.dir", "src",
+                           source + ".o")
+        os.makedirs(os.path.dirname(obj), exist_ok=True)
+        subprocess.run([cc, "-std=c11", "-O0", "-fno-common", "-I",
+                        os.path.join(root, "lib", "core", "src"), "-c", "-o", obj, src], check=True)
+        lines.append("\t".join(["library", "core", "meshtopo_core", "lib/core", obj]))
+    list_path = os.path.join(root, "objects.txt")
+    with open(list_path, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines) + "\n")
+    return list_path
+
+
+def check_core(args, tmp):
+    planted_root = os.path.join(tmp, "core-planted")
+    clean_root = os.path.join(tmp, "core-clean")
+    planted = build_core(args.cc, planted_root, CORE_PLANTED)
+    clean = build_core(args.cc, clean_root, CORE_CLEAN)
+
+    status, out, err = run(args, planted, "--unit", "core", "--root", planted_root, "--json")
+    check(status == 1, "core planted: exit status %d (expected 1) %s" % (status, err.strip()))
+    try:
+        got = json.loads(out)["core"]
+    except (json.JSONDecodeError, KeyError):
+        got = {}
+    check(got.get("against_order") == CORE_EXPECTED_AGAINST,
+          "core planted: exactly the uses against the family order")
+    check("cycles" in got and not got["cycles"] and not got["upward"],
+          "core planted: no cycle, nothing upward: the order alone refuses it")
+    if got.get("against_order") != CORE_EXPECTED_AGAINST:
+        print("expected:\n%s\ngot:\n%s" % (json.dumps(CORE_EXPECTED_AGAINST, indent=2), out))
+
+    status, out, _ = run(args, planted, "--unit", "core", "--root", planted_root)
+    print(out, end="")
+    check(status == 1, "core planted fails as text")
+    for text in ("layering core: FAIL", "4 use(s) against the family order",
+                 "family order: base < mesh (uses base) < build (uses base, mesh) < report",
+                 "%sbase/extra.c (base) calls %smap/map.c (map), a family it may not use: map_fn"
+                 % (CORE, CORE),
+                 "%sreport/report_text.c (report) calls %sbuild/build.c (build.c), a family it may "
+                 "not use: core_build" % (CORE, CORE),
+                 "%sbase/base.h:1 (base) includes \"mesh/mesh_internal.h\" (mesh), a family it "
+                 "may not use" % CORE,
+                 "%sstray.c is in no family of the order" % CORE):
+        check(text in out, "core planted prints %r" % text)
+
+    status, out, err = run(args, clean, "--unit", "core", "--root", clean_root)
+    print(out, end="")
+    check(status == 0 and out.startswith("layering core: OK") and "families in order: base <" in out,
+          "core clean passes: the same families used downwards %s" % err.strip())
+    status, _, err = run(args, clean, "--unit", "core")
+    check(status == 2 and "--root is needed" in err, "core without --root: exit 2")
+
+
 def run(args, list_path, *extra):
     proc = subprocess.run([sys.executable, args.checker, "--objects", list_path, "--nm", args.nm,
                            *extra], capture_output=True, text=True, timeout=60)
@@ -162,6 +271,8 @@ def main():
     with tempfile.TemporaryDirectory(prefix="layering-self-test-") as tmp:
         planted = build(args.cc, os.path.join(tmp, "planted"), PLANTED)
         clean = build(args.cc, os.path.join(tmp, "clean"), CLEAN)
+
+        check_core(args, tmp)
 
         run_json(args, planted, "planted", 1, PLANTED_EXPECTED)
         run_json(args, clean, "clean", 0, CLEAN_EXPECTED)
