@@ -2,7 +2,7 @@
  * segments and triangles tested in GMP integers, on coordinates that are
  * the mesh's doubles converted exactly (mpq_set_d) and scaled by one power
  * of two so that every one is an integer. Written apart from
- * lib/core/src/intersect.c on purpose: Cramer's rule and parameter ranges
+ * lib/core/src/geometry/intersect.c on purpose: Cramer's rule and parameter ranges
  * instead of orientation signs, no projections, every case spelled out. */
 #ifndef MESHTOPO_TESTS_SELFX_EXACT_H
 #define MESHTOPO_TESTS_SELFX_EXACT_H

@@ -1,4 +1,4 @@
-/* mt__in_parallel (lib/core/src/parallel.c): every part runs once, and a
+/* mt__in_parallel (lib/core/src/base/parallel.c): every part runs once, and a
  * part's thread starts on another CPU than the caller's, even after the
  * caller has been idle, then may run anywhere the caller may. */
 #define _GNU_SOURCE /* cpu_set_t, sched_getcpu */

@@ -1,4 +1,5 @@
-/* Bounds-checked steps shared by the query files (query_*.c). Queries trust
+/* Bounds-checked steps shared by the query files (query_*.c) and the
+ * families above them (geometry/, edit/, generate/). Queries trust
  * the structure only as far as these checks go: every index read from the
  * mesh is range-checked before it is followed and every walk is bounded by
  * the number of half-edges, so a corrupted mesh gives MT_ERR_CORRUPT, never an
