@@ -293,7 +293,7 @@ def family_of(order, source):
 
 
 def order_text(order):
-    """The order in one line: `base < mesh < ...; map uses base, mesh`."""
+    """The order in one line: `base < mesh (uses base) < ...`, lowest first."""
     lines = []
     for name, _, uses in order[1]:
         lines.append("%s (uses %s)" % (name, ", ".join(uses)) if uses else name)
