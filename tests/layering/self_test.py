@@ -237,7 +237,8 @@ def check_core(args, tmp):
 
     status, out, err = run(args, clean, "--unit", "core", "--root", clean_root)
     print(out, end="")
-    check(status == 0 and out.startswith("layering core: OK") and "families in order: base <" in out,
+    check(status == 0 and out.startswith("layering core: OK") and
+          "families in order: base <" in out,
           "core clean passes: the same families used downwards %s" % err.strip())
     status, _, err = run(args, clean, "--unit", "core")
     check(status == 2 and "--root is needed" in err, "core without --root: exit 2")
