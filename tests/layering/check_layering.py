@@ -74,7 +74,7 @@ FAMILY_ORDERS = {
          ("base", "mesh", "build", "report", "build.c", "query", "geometry")),
         ("generate", ("generate/",),
          ("base", "mesh", "build", "report", "build.c", "query", "geometry", "edit")),
-        ("map", ("map/",), ("base", "mesh")),
+        ("map", ("map/",), ("base", "mesh", "build.c", "query")),
     ]),
 }
 INCLUDE_SUFFIXES = (".c", ".h")

@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "map_internal.h"
+#include "map/map_internal.h"
 #include "meshtopo/query.h"
 
 /* The map's faces around some vertices, built: local ids are ranks of map
