@@ -311,9 +311,9 @@ static void flag_table_make(flag_table *t)
     for (size_t i = 0; i < NUM_SETTINGS; i++) {
         const bool is_switch = settings[i].kind == KIND_SWITCH;
         t->options[i] =
-            (mt__option){settings[i].flag, is_switch ? NULL : "VALUE", settings[i].help, is_switch};
+            (mt__option){settings[i].flag, is_switch ? NULL : "VALUE", settings[i].help};
     }
-    t->options[NUM_SETTINGS] = (mt__option){"version", NULL, "print the version", false};
+    t->options[NUM_SETTINGS] = (mt__option){"version", NULL, "print the version"};
 }
 
 static mt_status fail_args(const mt__args *args, mt_diag *diag)
@@ -323,6 +323,8 @@ static mt_status fail_args(const mt__args *args, mt_diag *diag)
             return fail(diag, "option", args->at, "unknown (see --help)");
         case MT__ARGS_MISSING_VALUE:
             return fail(diag, "option", args->at, "needs a value");
+        case MT__ARGS_UNEXPECTED_VALUE:
+            return fail(diag, "option", args->at, "takes no value");
         case MT__ARGS_TOO_MANY_ARGUMENTS:
             return fail(diag, "argument", args->at, "meshtopod takes no positional arguments");
         case MT__ARGS_NO_MEMORY:
@@ -363,7 +365,7 @@ mt_status mtd_config_parse(int argc, char **argv, mtd_config *out, mtd_config_ac
     for (size_t i = 0; i < NUM_SETTINGS; i++) {
         const char *value = args.values[i];
         if (!value) continue;
-        if (settings[i].kind == KIND_SWITCH && value[0] == '\0') value = "1";
+        if (settings[i].kind == KIND_SWITCH) value = "1"; /* given as a flag */
         snprintf(origin, sizeof origin, "option --%s", settings[i].flag);
         mt_status st = apply(&settings[i], value, origin, out, diag);
         if (st != MT_OK) {

@@ -7,9 +7,8 @@
 #include "meshtopo/args.h"
 
 static const mt__option options[] = {
-    {"json", NULL, "print JSON", false},
-    {"faces", "N", "triangles", false},
-    {"preload", NULL, "load at start", true},
+    {"json", NULL, "print JSON"},
+    {"faces", "N", "triangles"},
 };
 #define NUM_OPTIONS (sizeof options / sizeof options[0])
 
@@ -30,7 +29,6 @@ static void test_values_flags_and_positionals(void)
     CHECK_EQ(parse("in.off --faces 12 out --json", 1, 2, &a), MT__ARGS_OK);
     CHECK(strcmp(mt__args_value(&a, "faces"), "12") == 0);
     CHECK(mt__args_flag(&a, "json"));
-    CHECK(!mt__args_flag(&a, "preload"));
     CHECK_EQ(a.num_positionals, 2);
     CHECK(strcmp(a.positionals[0], "in.off") == 0 && strcmp(a.positionals[1], "out") == 0);
     CHECK(!a.help);
@@ -44,12 +42,9 @@ static void test_values_flags_and_positionals(void)
     CHECK(strcmp(a.positionals[0], "-") == 0 && strcmp(a.positionals[1], "--json") == 0);
     mt__args_free(&a);
 
-    /* A flag with inline_value takes --name=VALUE; alone it is "". */
-    CHECK_EQ(parse("--preload=no", 0, 0, &a), MT__ARGS_OK);
-    CHECK(strcmp(mt__args_value(&a, "preload"), "no") == 0);
-    mt__args_free(&a);
-    CHECK_EQ(parse("--preload", 0, 0, &a), MT__ARGS_OK);
-    CHECK(strcmp(mt__args_value(&a, "preload"), "") == 0);
+    /* A flag given alone is "". */
+    CHECK_EQ(parse("--json", 0, 0, &a), MT__ARGS_OK);
+    CHECK(strcmp(mt__args_value(&a, "json"), "") == 0);
     mt__args_free(&a);
 }
 
@@ -78,6 +73,7 @@ static void test_refusals_name_the_argument(void)
     mt__args_free(&a);
     CHECK_EQ(parse("--json=yes", 0, 1, &a), MT__ARGS_UNEXPECTED_VALUE);
     CHECK(a.option == &options[0]);
+    CHECK(strcmp(a.at, "--json") == 0);
     mt__args_free(&a);
     CHECK_EQ(parse("--json", 1, 1, &a), MT__ARGS_TOO_FEW_ARGUMENTS);
     mt__args_free(&a);

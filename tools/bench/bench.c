@@ -86,14 +86,11 @@ static int parse_options(int argc, char **argv, mt__bench_options *o)
 {
     /* The options usage() describes. */
     static const mt__option option_table[] = {
-        {"quick", NULL, NULL, false},   {"no-reserve", NULL, NULL, false},
-        {"faces", "N", NULL, false},    {"torus-faces", "N", NULL, false},
-        {"reps", "N", NULL, false},     {"threads", "N", NULL, false},
-        {"idle-ms", "N", NULL, false},  {"seed", "N", NULL, false},
-        {"csv", "FILE", NULL, false},   {"markdown", "FILE", NULL, false},
-        {"svg", "FILE", NULL, false},   {"out", "DIR", NULL, false},
-        {"corpus", "DIR", NULL, false}, {"peer-dir", "DIR", NULL, false},
-        {"tmpdir", "DIR", NULL, false},
+        {"quick", NULL, NULL},      {"no-reserve", NULL, NULL}, {"faces", "N", NULL},
+        {"torus-faces", "N", NULL}, {"reps", "N", NULL},        {"threads", "N", NULL},
+        {"idle-ms", "N", NULL},     {"seed", "N", NULL},        {"csv", "FILE", NULL},
+        {"markdown", "FILE", NULL}, {"svg", "FILE", NULL},      {"out", "DIR", NULL},
+        {"corpus", "DIR", NULL},    {"peer-dir", "DIR", NULL},  {"tmpdir", "DIR", NULL},
     };
     static const char program[] = "meshtopo-bench";
     memset(o, 0, sizeof *o);

@@ -74,8 +74,8 @@ static int parse_options(int argc, char **argv, options *o)
 {
     /* The options usage() names. */
     static const mt__option option_table[] = {
-        {"quick", NULL, NULL, false}, {"scan", NULL, NULL, false}, {"keep", NULL, NULL, false},
-        {"faces", "N", NULL, false},  {"reps", "N", NULL, false},  {"dir", "DIR", NULL, false},
+        {"quick", NULL, NULL}, {"scan", NULL, NULL}, {"keep", NULL, NULL},
+        {"faces", "N", NULL},  {"reps", "N", NULL},  {"dir", "DIR", NULL},
     };
     static const char program[] = "meshtopo-bench archive";
     *o = (options){1000000, 5, NULL, false, false};

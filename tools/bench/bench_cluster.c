@@ -74,9 +74,8 @@ static int parse_options(int argc, char **argv, options *o)
 {
     /* The options usage() describes. */
     static const mt__option option_table[] = {
-        {"quick", NULL, NULL, false},    {"daemon", "PATH", NULL, false},
-        {"archive", "DIR", NULL, false}, {"triangles", "N", NULL, false},
-        {"meshes", "N", NULL, false},    {"reps", "N", NULL, false},
+        {"quick", NULL, NULL},    {"daemon", "PATH", NULL}, {"archive", "DIR", NULL},
+        {"triangles", "N", NULL}, {"meshes", "N", NULL},    {"reps", "N", NULL},
     };
     static const char program[] = "meshtopo-bench cluster";
     memset(o, 0, sizeof *o);

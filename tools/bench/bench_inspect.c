@@ -99,11 +99,9 @@ static int parse_options(int argc, char **argv, options *o)
 {
     /* The options usage() describes. */
     static const mt__option option_table[] = {
-        {"quick", NULL, NULL, false},      {"faces", "N", NULL, false},
-        {"torus-faces", "N", NULL, false}, {"reps", "N", NULL, false},
-        {"seed", "N", NULL, false},        {"meshtopo", "PATH", NULL, false},
-        {"peer-dir", "DIR", NULL, false},  {"tmpdir", "DIR", NULL, false},
-        {"markdown", "FILE", NULL, false},
+        {"quick", NULL, NULL},     {"faces", "N", NULL},    {"torus-faces", "N", NULL},
+        {"reps", "N", NULL},       {"seed", "N", NULL},     {"meshtopo", "PATH", NULL},
+        {"peer-dir", "DIR", NULL}, {"tmpdir", "DIR", NULL}, {"markdown", "FILE", NULL},
     };
     static const char program[] = "meshtopo-bench inspect";
     memset(o, 0, sizeof *o);

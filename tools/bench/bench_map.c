@@ -81,8 +81,8 @@ static void usage(FILE *out)
 
 /* The options usage() describes. */
 static const mt__option option_table[] = {
-    {"faces", "N", NULL, false},  {"steps", "N", NULL, false},     {"seed", "N", NULL, false},
-    {"quick", NULL, NULL, false}, {"no-peers", NULL, NULL, false}, {"peer-dir", "DIR", NULL, false},
+    {"faces", "N", NULL},  {"steps", "N", NULL},     {"seed", "N", NULL},
+    {"quick", NULL, NULL}, {"no-peers", NULL, NULL}, {"peer-dir", "DIR", NULL},
 };
 
 /* Returns 0, 1 (--help) or 2 (usage error, printed). */

@@ -103,10 +103,9 @@ static int parse_options(int argc, char **argv, options *o)
 {
     /* The options usage() describes. */
     static const mt__option option_table[] = {
-        {"quick", NULL, NULL, false},   {"faces", "N", NULL, false},
-        {"reps", "N", NULL, false},     {"seed", "N", NULL, false},
-        {"mesh", "NAME", NULL, false},  {"peer-dir", "DIR", NULL, false},
-        {"tmpdir", "DIR", NULL, false},
+        {"quick", NULL, NULL},   {"faces", "N", NULL},   {"reps", "N", NULL},
+        {"seed", "N", NULL},     {"mesh", "NAME", NULL}, {"peer-dir", "DIR", NULL},
+        {"tmpdir", "DIR", NULL},
     };
     static const char program[] = "meshtopo-bench selfx";
     memset(o, 0, sizeof *o);

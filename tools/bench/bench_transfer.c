@@ -73,10 +73,9 @@ static int parse_options(int argc, char **argv, options *o)
 {
     /* The options usage() describes. */
     static const mt__option option_table[] = {
-        {"quick", NULL, NULL, false},    {"daemon", "PATH", NULL, false},
-        {"triangles", "N", NULL, false}, {"reps", "N", NULL, false},
-        {"window", "N", NULL, false},    {"loss", "PERCENT", NULL, false},
-        {"csv", "FILE", NULL, false},
+        {"quick", NULL, NULL}, {"daemon", "PATH", NULL}, {"triangles", "N", NULL},
+        {"reps", "N", NULL},   {"window", "N", NULL},    {"loss", "PERCENT", NULL},
+        {"csv", "FILE", NULL},
     };
     static const char program[] = "meshtopo-bench transfer";
     memset(o, 0, sizeof *o);

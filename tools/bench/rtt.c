@@ -61,12 +61,10 @@ static int parse_options(int argc, char **argv, mt__rtt_options *o)
 {
     /* The options usage() describes. */
     static const mt__option option_table[] = {
-        {"quick", NULL, NULL, false},  {"daemon", "PATH", NULL, false},
-        {"grid", "N", NULL, false},    {"round-trips", "N", NULL, false},
-        {"reps", "N", NULL, false},    {"seconds", "S", NULL, false},
-        {"clients", "N", NULL, false}, {"batch", "N", NULL, false},
-        {"window", "N", NULL, false},  {"seed", "N", NULL, false},
-        {"csv", "FILE", NULL, false},  {"markdown", "FILE", NULL, false},
+        {"quick", NULL, NULL},      {"daemon", "PATH", NULL}, {"grid", "N", NULL},
+        {"round-trips", "N", NULL}, {"reps", "N", NULL},      {"seconds", "S", NULL},
+        {"clients", "N", NULL},     {"batch", "N", NULL},     {"window", "N", NULL},
+        {"seed", "N", NULL},        {"csv", "FILE", NULL},    {"markdown", "FILE", NULL},
     };
     static const char program[] = "meshtopo-bench rtt";
     memset(o, 0, sizeof *o);

@@ -93,9 +93,9 @@ static int parse_options(int argc, char **argv, options *o)
 {
     /* The options usage() describes. */
     static const mt__option option_table[] = {
-        {"seconds", "S", NULL, false},
-        {"clients", "N", NULL, false},
-        {"daemon", "PATH", NULL, false},
+        {"seconds", "S", NULL},
+        {"clients", "N", NULL},
+        {"daemon", "PATH", NULL},
     };
     static const char program[] = "meshtopo-bench soak";
     o->seconds = 600;

@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "meshtopo/args.h"
 #include "meshtopo/face_list.h"
 #include "meshtopo/mesh.h"
 
@@ -26,12 +27,9 @@ enum {
     CLI_EXIT_MISSING = 7    /* a part of meshtopo could not be loaded (broken installation) */
 };
 
-/* One option of a command: `--name` (a flag) or `--name VALUE` / `--name=VALUE`. */
-typedef struct cli_option {
-    const char *name;       /* without the dashes: "vertices" */
-    const char *value_name; /* NULL for a flag, else shown in help: "LIST" */
-    const char *help;       /* one line */
-} cli_option;
+/* One option of a command: `--name` (a flag) or `--name VALUE` / `--name=VALUE`
+ * (meshtopo/args.h: name, value_name NULL for a flag, one line of help). */
+typedef mt__option cli_option;
 
 /* A command line after parsing against a command's options: values[i] is the
  * value of options[i] ("" for a flag that was given), NULL when absent. */

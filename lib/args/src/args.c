@@ -63,9 +63,8 @@ mt__args_error mt__args_parse(const mt__option *options, size_t num_options, siz
         const mt__option *opt = option_find(options, num_options, name, name_len, &index);
         if (!opt) return refuse(out, MT__ARGS_UNKNOWN_OPTION, NULL, arg, name_len + 2);
         if (!opt->value_name) {
-            if (eq && !opt->inline_value)
-                return refuse(out, MT__ARGS_UNEXPECTED_VALUE, opt, arg, strlen(arg));
-            out->values[index] = eq ? eq + 1 : "";
+            if (eq) return refuse(out, MT__ARGS_UNEXPECTED_VALUE, opt, arg, name_len + 2);
+            out->values[index] = "";
         } else if (eq) {
             out->values[index] = eq + 1;
         } else if (i + 1 < argc) {

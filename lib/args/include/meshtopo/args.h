@@ -17,7 +17,6 @@ typedef struct mt__option {
     const char *name;       /* without the dashes: "vertices" */
     const char *value_name; /* NULL for a flag, else shown in help: "LIST" */
     const char *help;       /* one line */
-    bool inline_value;      /* a flag that may also be given as --name=VALUE */
 } mt__option;
 
 typedef enum mt__args_error {
