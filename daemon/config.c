@@ -195,19 +195,14 @@ static mt_status fail(mt_diag *diag, const char *origin, const char *value, cons
 
 static mt_status fail(mt_diag *diag, const char *origin, const char *value, const char *fmt, ...)
 {
-    if (!diag) return MT_ERR_INVALID_ARG;
-    mt_diag_clear(diag);
-    diag->status = MT_ERR_INVALID_ARG;
     char problem[256];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(problem, sizeof problem, fmt, ap);
     va_end(ap);
     if (value)
-        snprintf(diag->message, sizeof diag->message, "%s '%.200s': %s", origin, value, problem);
-    else
-        snprintf(diag->message, sizeof diag->message, "%s: %s", origin, problem);
-    return MT_ERR_INVALID_ARG;
+        return mt_diag_set(diag, MT_ERR_INVALID_ARG, "%s '%.200s': %s", origin, value, problem);
+    return mt_diag_set(diag, MT_ERR_INVALID_ARG, "%s: %s", origin, problem);
 }
 
 /* Parses a decimal count with an optional binary suffix k, M or G. */

@@ -72,24 +72,15 @@ static mt_status name_channels(mtd_daemon *d, mt_diag *diag)
     return MT_OK;
 }
 
-static mt_status fail_nomem(mt_diag *diag, const char *what)
-{
-    if (diag) {
-        mt_diag_clear(diag);
-        diag->status = MT_ERR_NOMEM;
-        snprintf(diag->message, sizeof diag->message, "cannot create the %s", what);
-    }
-    return MT_ERR_NOMEM;
-}
-
 /* Creates the modules, each after those it uses. */
 static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
 {
     const mtd_config *c = &d->config;
-    if (mtd_error_log_create(&d->errors) != MT_OK) return fail_nomem(diag, "error log");
+    if (mtd_error_log_create(&d->errors) != MT_OK)
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "error log");
     if (mtd_content_pool_create(&d->contents) != MT_OK ||
         mtd_workspace_pool_create(&d->workspaces) != MT_OK)
-        return fail_nomem(diag, "kept buffers");
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "kept buffers");
     if (c->prepare_faces) {
         const int64_t start = mtd_now_utime();
         if (mtd_workspace_pool_prepare(d->workspaces, c->prepare_faces, diag) != MT_OK)
@@ -103,11 +94,12 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
         .dispose_mesh = mtd_workspace_recycle_mesh,
         .dispose_mesh_ctx = d->workspaces,
     };
-    if (mtd_store_create(&store_options, &d->store) != MT_OK) return fail_nomem(diag, "mesh store");
+    if (mtd_store_create(&store_options, &d->store) != MT_OK)
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "mesh store");
     if (mtd_pool_create(c->workers, BUILD_QUEUE_CAPACITY, &d->pool) != MT_OK)
-        return fail_nomem(diag, "worker pool");
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "worker pool");
     if (mtd_replies_create(d->lcm, c->channel_prefix, d->errors, &d->replies) != MT_OK)
-        return fail_nomem(diag, "request cache");
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "request cache");
     mt_status s = mtd_archiver_open(c, d->store, d->errors, &d->archiver, diag);
     if (s != MT_OK) return s;
     mtd_admission_limits limits = {
@@ -115,7 +107,8 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
         .max_archive_bytes = c->archive_dir[0] ? c->max_archive_bytes : 0,
         .max_claim_ratio = c->max_claim_ratio,
         .builds_per_sender = BUILDS_PER_SENDER};
-    if (mtd_admission_create(&limits, &d->admission) != MT_OK) return fail_nomem(diag, "admission");
+    if (mtd_admission_create(&limits, &d->admission) != MT_OK)
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "admission");
     mtd_submit_deps submit = {.config = c,
                               .lcm = d->lcm,
                               .topology_channel = d->channels[MT_MSGS_CHANNEL_TOPOLOGY],
@@ -126,16 +119,17 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
                               .admission = d->admission,
                               .workspaces = d->workspaces,
                               .contents = d->contents};
-    if (mtd_submitter_create(&submit, &d->submitter) != MT_OK) return fail_nomem(diag, "submitter");
+    if (mtd_submitter_create(&submit, &d->submitter) != MT_OK)
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "submitter");
     mtd_transfer_deps transfer = {.config = c,
                                   .replies = d->replies,
                                   .submitter = d->submitter,
                                   .contents = d->contents,
                                   .cluster = d->cluster};
     if (mtd_transfers_create(&transfer, &d->transfers) != MT_OK)
-        return fail_nomem(diag, "transfer table");
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "transfer table");
     if (mtd_queries_create(d->store, d->pool, d->replies, d->cluster, &d->queries) != MT_OK)
-        return fail_nomem(diag, "query handler");
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "query handler");
     mtd_handler_deps handlers = {.lcm = d->lcm,
                                  .prefix = c->channel_prefix,
                                  .instance = d->instance,
@@ -146,10 +140,10 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
                                  .cluster = d->cluster,
                                  .archiver = d->archiver};
     if (mtd_handlers_subscribe(&handlers, &d->handlers) != MT_OK)
-        return fail_nomem(diag, "LCM subscriptions");
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "LCM subscriptions");
     if (mtd_peers_create(d->lcm, d->channels[MT_MSGS_CHANNEL_STATUS], d->instance, d->start_utime,
                          d->errors, d->cluster, &d->peers) != MT_OK)
-        return fail_nomem(diag, "watch for other daemons");
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "watch for other daemons");
     return MT_OK;
 }
 
@@ -180,7 +174,7 @@ mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_cluster *c
     mtd_daemon *d = calloc(1, sizeof *d);
     if (!d) {
         mtd_cluster_destroy(cluster);
-        return fail_nomem(diag, "daemon");
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "daemon");
     }
     d->config = *config;
     d->lcm = lcm;
@@ -193,7 +187,7 @@ mt_status mtd_daemon_create(const mtd_config *config, lcm_t *lcm, mtd_cluster *c
         mtd_daemon_instance_name(d->start_utime, d->instance, sizeof d->instance);
     if (!d->cluster && mtd_daemon_cluster_create(config, d->instance, &d->cluster) != MT_OK) {
         free(d);
-        return fail_nomem(diag, "cluster membership");
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "cluster membership");
     }
     /* lcm-gen's fingerprints are computed lazily without a lock: do it now,
      * before any worker thread encodes. */

@@ -55,16 +55,6 @@ static mt_map_key cell_of(const mt_face_list *list, const uint32_t *idx, uint32_
     return (mt_map_key){q[0], q[1], q[2]};
 }
 
-static mt_status fail(mt_diag *diag, mt_status st, const char *text)
-{
-    if (diag) {
-        mt_diag_clear(diag);
-        diag->status = st;
-        snprintf(diag->message, sizeof diag->message, "%s", text);
-    }
-    return st;
-}
-
 void cli_block_set_free(cli_block_set *set)
 {
     if (!set) return;
@@ -101,7 +91,7 @@ static mt_status fill_block(const mt_face_list *list, const uint64_t *first, con
     mt_status st = mt_face_list_alloc(&out->list, nv, nf, ni, diag);
     if (st != MT_OK) return st;
     out->source = malloc((nv ? nv : 1) * sizeof *out->source);
-    if (!out->source) return fail(diag, MT_ERR_NOMEM, "out of memory splitting into blocks");
+    if (!out->source) return mt_diag_set(diag, MT_ERR_NOMEM, "out of memory splitting into blocks");
     const uint32_t fill = mark + 1; /* a second mark: this block's vertices get local ids */
     uint32_t at_v = 0, at_f = 0;
     uint64_t at = 0;
@@ -145,9 +135,9 @@ mt_status cli_blocks_split(const mt_face_list *list, double size, cli_block_set 
 {
     memset(out, 0, sizeof *out);
     if (!(size > 0) || !isfinite(size))
-        return fail(diag, MT_ERR_INVALID_ARG, "the block size must be finite and positive");
+        return mt_diag_set(diag, MT_ERR_INVALID_ARG, "the block size must be finite and positive");
     if (list->num_verts > 0 && !list->positions)
-        return fail(diag, MT_ERR_INVALID_ARG, "the vertices have no positions");
+        return mt_diag_set(diag, MT_ERR_INVALID_ARG, "the vertices have no positions");
     const uint32_t nf = list->num_faces, nv = list->num_verts;
     uint64_t *first = malloc(((size_t)nf + 1) * sizeof *first);
     unsigned char *used = calloc(nv ? nv : 1, 1);
@@ -156,7 +146,7 @@ mt_status cli_blocks_split(const mt_face_list *list, double size, cli_block_set 
     item *items = malloc(((size_t)nf + nv + 1) * sizeof *items);
     mt_status st = MT_OK;
     if (!first || !used || !stamp || !local || !items) {
-        st = fail(diag, MT_ERR_NOMEM, "out of memory splitting into blocks");
+        st = mt_diag_set(diag, MT_ERR_NOMEM, "out of memory splitting into blocks");
         goto done;
     }
     first[0] = 0;
@@ -175,7 +165,7 @@ mt_status cli_blocks_split(const mt_face_list *list, double size, cli_block_set 
     for (size_t i = 0; i < n; i++) groups += i == 0 || key_cmp(items[i].key, items[i - 1].key);
     out->blocks = calloc(groups ? groups : 1, sizeof *out->blocks);
     if (!out->blocks) {
-        st = fail(diag, MT_ERR_NOMEM, "out of memory splitting into blocks");
+        st = mt_diag_set(diag, MT_ERR_NOMEM, "out of memory splitting into blocks");
         goto done;
     }
     for (size_t a = 0; a < n && st == MT_OK;) {
