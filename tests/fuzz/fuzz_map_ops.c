@@ -8,8 +8,11 @@
  * replaced since the last clear, when map.h promises that equality), as
  * tests/core/test_map_random.c checks; in eps mode also map.h's guarantees
  * (block vertices within eps of their map vertex, live vertices more than
- * eps apart). A refused operation must leave the counts unchanged. Any
- * disagreement calls abort() so the fuzzer keeps the input. *
+ * eps apart), and every vertex's ring, edge faces and every face's
+ * neighbours asked of the map must be the build's (map ids). A refused
+ * operation must leave the counts unchanged. Any disagreement calls abort()
+ * so the fuzzer keeps the input.
+ *
  * Input layout (missing bytes read as 0; at most MAX_OPS operations):
  *   per op     op byte % 8: 0-4 put, 5 remove, 6 clear, 7 compact
  *   put        key byte (% NUM_KEYS), V = byte % 9, F = byte % 9,
@@ -38,6 +41,7 @@
 #define MAX_BLOCK_FACES 8
 #define MAX_FACE_SIZE 6
 #define NUM_KEYS 6
+#define EDGE_FACES_MAX 64 /* more than all faces of NUM_KEYS blocks */
 #define NUM_IDS 24
 #define EPS 0.3
 
@@ -341,6 +345,72 @@ static void check_eps(const mt_map *map, const model *m)
     }
 }
 
+/* Every vertex's ring, the faces of every edge at it and every face's
+ * neighbours, asked of the map and of a build of list (the map's union,
+ * vids and fids its map ids): the map's answers are the build's. */
+static void check_queries(const mt_map *map, const mt_face_list *list, const uint32_t *vids,
+                          const uint32_t *fids)
+{
+    mt_build_options opts = {0};
+    opts.threads = 1;
+    mt_mesh *mesh = NULL;
+    mt_diag d;
+    REQUIRE(mt_mesh_build(list, &opts, &mesh, &d) == MT_OK);
+    mt_ring full, mine;
+    memset(&full, 0, sizeof full);
+    for (uint32_t k = 0; k < list->num_verts; k++) {
+        REQUIRE(mt_vert_ring_growing(mesh, k, &full) == MT_OK);
+        mine = full;
+        mine.neighbors = xcalloc(full.num_neighbors + 1, sizeof(uint32_t));
+        mine.faces = xcalloc(full.num_faces + 1, sizeof(uint32_t));
+        mine.fans = xcalloc(full.num_fans + 1, sizeof(mt_fan));
+        mine.neighbors_capacity = full.num_neighbors + 1;
+        mine.faces_capacity = full.num_faces + 1;
+        mine.fans_capacity = full.num_fans + 1;
+        REQUIRE(mt_map_vert_ring(map, vids[k], &mine, &d) == MT_OK);
+        REQUIRE(mine.num_fans == full.num_fans && mine.num_faces == full.num_faces &&
+                mine.num_neighbors == full.num_neighbors);
+        for (size_t i = 0; i < full.num_fans; i++)
+            REQUIRE(mine.fans[i].neighbor_begin == full.fans[i].neighbor_begin &&
+                    mine.fans[i].neighbor_count == full.fans[i].neighbor_count &&
+                    mine.fans[i].face_begin == full.fans[i].face_begin &&
+                    mine.fans[i].face_count == full.fans[i].face_count &&
+                    mine.fans[i].boundary == full.fans[i].boundary);
+        for (size_t i = 0; i < full.num_faces; i++) REQUIRE(mine.faces[i] == fids[full.faces[i]]);
+        for (size_t i = 0; i < full.num_neighbors; i++) {
+            REQUIRE(mine.neighbors[i] == vids[full.neighbors[i]]);
+            uint32_t a[EDGE_FACES_MAX], b[EDGE_FACES_MAX];
+            size_t na = 0, nb = 0;
+            const mt_status want =
+                mt_edge_faces(mesh, k, full.neighbors[i], a, EDGE_FACES_MAX, &na);
+            REQUIRE(mt_map_edge_faces(map, vids[k], mine.neighbors[i], b, EDGE_FACES_MAX, &nb,
+                                      &d) == want);
+            REQUIRE(want != MT_OK || na == nb);
+            for (size_t j = 0; want == MT_OK && j < na; j++) REQUIRE(b[j] == fids[a[j]]);
+        }
+        free(mine.neighbors);
+        free(mine.faces);
+        free(mine.fans);
+    }
+    mt_ring_free(&full);
+    mt_face_adjacency adj;
+    memset(&adj, 0, sizeof adj);
+    for (uint32_t f = 0; f < list->num_faces; f++) {
+        const mt_status want = mt_face_neighbors_growing(mesh, f, &adj);
+        uint32_t *faces = xcalloc(adj.num_faces + 1, sizeof(uint32_t));
+        uint32_t offsets[MAX_FACE_SIZE + 1];
+        size_t nf = 0, ne = 0;
+        REQUIRE(mt_map_face_neighbors(map, fids[f], faces, adj.num_faces + 1, offsets,
+                                      MAX_FACE_SIZE + 1, &nf, &ne, &d) == want);
+        REQUIRE(want != MT_OK || (nf == adj.num_faces && ne == adj.num_edges));
+        for (size_t i = 0; want == MT_OK && i <= ne; i++) REQUIRE(offsets[i] == adj.offsets[i]);
+        for (size_t i = 0; want == MT_OK && i < nf; i++) REQUIRE(faces[i] == fids[adj.faces[i]]);
+        free(faces);
+    }
+    mt_face_adjacency_free(&adj);
+    mt_mesh_destroy(mesh);
+}
+
 static void check_map(const mt_map *map, const model *m)
 {
     mt_map_counts c;
@@ -354,6 +424,7 @@ static void check_map(const mt_map *map, const model *m)
     mt_diag d;
     REQUIRE(mt_map_face_list(map, &list, vids, c.num_verts, fids, c.num_faces, &d) == MT_OK);
     check_against(map, &list);
+    check_queries(map, &list, vids, fids);
     /* Each list face is the map face its id names, corner by corner. */
     uint64_t at = 0;
     for (uint32_t f = 0; f < list.num_faces; f++) {

@@ -52,6 +52,7 @@ static uint32_t sort_unique(uint32_t *ids, uint32_t n)
 /* The local id of a map vertex or face (MT_NONE when it is not there). */
 static uint32_t local_id(const uint32_t *sorted, uint32_t n, uint32_t id)
 {
+    if (n == 0) return MT_NONE; /* bsearch takes no NULL array */
     const uint32_t *at = bsearch(&id, sorted, n, sizeof id, compare_u32);
     return at ? (uint32_t)(at - sorted) : MT_NONE;
 }
