@@ -2,8 +2,8 @@
 # -DBUILD_SHARED_LIBS=ON), their headers under include/meshtopo/ (and the
 # message types' under include/lcmtypes/), a CMake package
 # (find_package(meshtopo) gives meshtopo::core, meshtopo::io,
-# meshtopo::client, with meshtopo::msgs beneath it, and meshtopo::archive)
-# and pkg-config files. Included once from the top-level CMakeLists.txt after
+# meshtopo::client, with meshtopo::msgs beneath it, and meshtopo::archive,
+# with meshtopo::ident beneath both) and pkg-config files. Included once from the top-level CMakeLists.txt after
 # every library target exists; the installed tree is relocatable.
 #
 # Every rule names its install component, which cmake/MeshtopoPackage.cmake
@@ -17,11 +17,14 @@ include(CMakePackageConfigHelpers)
 set(MESHTOPO_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/meshtopo)
 
 # --- Libraries and headers ------------------------------------------------
-# Exported as meshtopo::core, meshtopo::io, meshtopo::msgs and
-# meshtopo::client, the same names as the aliases the build tree uses, so
-# consumer code reads the same either way. meshtopo::msgs (the LCM message
-# types, always static) comes with meshtopo::client, whose API uses them.
+# Exported as meshtopo::core, meshtopo::io, meshtopo::ident, meshtopo::msgs,
+# meshtopo::client and meshtopo::archive, the same names as the aliases the
+# build tree uses, so consumer code reads the same either way. meshtopo::msgs
+# (the LCM message types, always static) comes with meshtopo::client, whose
+# API uses them; meshtopo::ident (the mesh-id rule and the content hash,
+# always static) with meshtopo::archive and meshtopo::msgs, which share it.
 set_target_properties(meshtopo_core PROPERTIES EXPORT_NAME core)
+set_target_properties(meshtopo_ident PROPERTIES EXPORT_NAME ident)
 set_target_properties(meshtopo_io PROPERTIES EXPORT_NAME io)
 set_target_properties(meshtopo_msgs PROPERTIES EXPORT_NAME msgs)
 set_target_properties(meshtopo_client PROPERTIES EXPORT_NAME client)
@@ -31,7 +34,8 @@ foreach(lib meshtopo_core meshtopo_io meshtopo_client meshtopo_archive)
                         SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
 endforeach()
 
-install(TARGETS meshtopo_core meshtopo_io meshtopo_msgs meshtopo_client meshtopo_archive
+install(TARGETS meshtopo_core meshtopo_io meshtopo_ident meshtopo_msgs meshtopo_client
+                meshtopo_archive
   EXPORT meshtopoTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT libs NAMELINK_COMPONENT dev
@@ -39,6 +43,7 @@ install(TARGETS meshtopo_core meshtopo_io meshtopo_msgs meshtopo_client meshtopo
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/core/include/meshtopo
                   ${PROJECT_SOURCE_DIR}/lib/io/include/meshtopo
+                  ${PROJECT_SOURCE_DIR}/lib/ident/include/meshtopo
                   ${PROJECT_SOURCE_DIR}/lib/client/include/meshtopo
                   ${PROJECT_SOURCE_DIR}/lib/archive/include/meshtopo
                   ${PROJECT_SOURCE_DIR}/msgs/include/meshtopo
@@ -124,19 +129,19 @@ if(BUILD_SHARED_LIBS)
   set(MESHTOPO_PC_IO_REQUIRES "meshtopo-core = ${PROJECT_VERSION}")
   set(MESHTOPO_PC_IO_REQUIRES_PRIVATE "zlib")
   set(MESHTOPO_PC_CLIENT_LIBS " -llcm")
-  set(MESHTOPO_PC_CLIENT_LIBS_PRIVATE "-lmeshtopo-msgs -lxxhash -pthread")
+  set(MESHTOPO_PC_CLIENT_LIBS_PRIVATE "-lmeshtopo-msgs -lmeshtopo-ident -lxxhash -pthread")
   set(MESHTOPO_PC_ARCHIVE_REQUIRES_PRIVATE "hdf5")
   set(MESHTOPO_PC_ARCHIVE_LIBS "")
-  set(MESHTOPO_PC_ARCHIVE_LIBS_PRIVATE "-lmeshtopo-msgs -llcm -lxxhash")
+  set(MESHTOPO_PC_ARCHIVE_LIBS_PRIVATE "-lmeshtopo-msgs -lmeshtopo-ident -llcm -lxxhash")
 else()
   set(MESHTOPO_PC_CORE_LIBS " -lm -pthread")
   set(MESHTOPO_PC_CORE_LIBS_PRIVATE "")
   set(MESHTOPO_PC_IO_REQUIRES "meshtopo-core = ${PROJECT_VERSION}, zlib")
   set(MESHTOPO_PC_IO_REQUIRES_PRIVATE "")
-  set(MESHTOPO_PC_CLIENT_LIBS " -lmeshtopo-msgs -llcm -lxxhash -pthread")
+  set(MESHTOPO_PC_CLIENT_LIBS " -lmeshtopo-msgs -lmeshtopo-ident -llcm -lxxhash -pthread")
   set(MESHTOPO_PC_CLIENT_LIBS_PRIVATE "")
   set(MESHTOPO_PC_ARCHIVE_REQUIRES_PRIVATE "")
-  set(MESHTOPO_PC_ARCHIVE_LIBS " -lmeshtopo-msgs -llcm -lxxhash")
+  set(MESHTOPO_PC_ARCHIVE_LIBS " -lmeshtopo-msgs -lmeshtopo-ident -llcm -lxxhash")
   set(MESHTOPO_PC_ARCHIVE_LIBS_PRIVATE "")
 endif()
 # HDF5 through its own hdf5.pc (Debian's libhdf5-dev): public for a static

@@ -7,13 +7,14 @@
 #include <xxhash.h>
 
 #include "meshtopo/mesh_content.h"
+#include "meshtopo/mesh_ident.h"
 
 /* Bytes encoded and hashed at a time by mt_msgs_mesh_content_hash_of. */
 #define HASH_BLOCK_BYTES 32768
 
 uint64_t mt_msgs_content_hash_bytes(const void *bytes, size_t n)
 {
-    return XXH3_64bits(bytes, n);
+    return mt_content_hash_bytes(bytes, n);
 }
 
 uint64_t mt_msgs_mesh_content_hash(const meshtopo_mesh_t *msg, const void *encoded,

@@ -3,7 +3,9 @@
  * the hash is XXH3-64 of those bytes however it is computed (checked against
  * libxxhash directly); the in-place decoder, given the content in pieces of
  * any size in any order, yields the mesh's arrays and its hash, and refuses
- * counts that do not describe the bytes with an error naming the field. */
+ * counts that do not describe the bytes with an error naming the field.
+ * meshtopo::ident's hash of a face list (the archive's, no LCM) is the same
+ * hash, whole or piece by piece. */
 #include <stdlib.h>
 #include <string.h>
 #include <xxhash.h>
@@ -11,6 +13,7 @@
 #include "harness.h"
 #include "meshtopo/content_hash.h"
 #include "meshtopo/mesh_content.h"
+#include "meshtopo/mesh_ident.h"
 
 /* Deterministic xorshift64 so a failure reproduces. */
 static uint64_t next_random(uint64_t *state)
@@ -313,10 +316,78 @@ static void decoder_refuses_counts_that_do_not_fit(void)
     mt_msgs_content_decoder_free(decoder);
 }
 
+/* The content hash of make_mesh(4, 2, 1, 11): the XXH3-64 of its LCM
+ * encoding's content fields. */
+#define PINNED_HASH 0xe8b2a48eca49ce7aULL
+
+/* m's content as a face list view (not owned). */
+static mt_face_list face_list_of(const meshtopo_mesh_t *m)
+{
+    mt_face_list list = {(uint32_t)m->num_verts,
+                         (uint32_t)m->num_faces,
+                         (uint64_t)m->num_indices,
+                         m->num_position_values ? m->positions : NULL,
+                         (uint32_t *)m->face_vertex_counts,
+                         (uint32_t *)m->face_vertex_indices};
+    return list;
+}
+
+static void face_list_hash_is_the_content_hash(void)
+{
+    const int32_t sizes[][3] = {{0, 0, 1},       {4, 2, 1},         {4, 2, 0},
+                                {3000, 5000, 1}, {50000, 90000, 1}, {9000, 20000, 0}};
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
+        meshtopo_mesh_t m = make_mesh(sizes[i][0], sizes[i][1], sizes[i][2], 30 + i);
+        size_t size;
+        const uint8_t *content;
+        uint8_t *encoded = lcm_encode(&m, &size, &content);
+        const uint64_t expected = mt_msgs_mesh_content_hash(&m, encoded, size);
+        CHECK_EQ(mt_content_hash_bytes(content, (size_t)mt_msgs_mesh_content_size(&m)), expected);
+        mt_face_list list = face_list_of(&m);
+        uint64_t hash = 0;
+        mt_diag diag;
+        CHECK_EQ(mt_face_list_content_hash(&list, &hash, &diag), MT_OK);
+        CHECK_EQ(hash, expected);
+        /* Piece by piece, the arrays cut anywhere (as an archive file is read). */
+        mt_content_hasher *h = mt_content_hasher_new();
+        CHECK(h != NULL);
+        const size_t npos = (size_t)m.num_position_values, cut = npos / 3;
+        mt_content_hasher_count(h, list.num_verts);
+        mt_content_hasher_count(h, (uint32_t)npos);
+        mt_content_hasher_doubles(h, m.positions, cut);
+        mt_content_hasher_doubles(h, m.positions + cut, npos - cut);
+        mt_content_hasher_count(h, list.num_faces);
+        mt_content_hasher_int32s(h, list.face_sizes, list.num_faces);
+        mt_content_hasher_count(h, (uint32_t)list.num_indices);
+        for (uint64_t at = 0; at < list.num_indices; at += 7777) {
+            uint64_t n = list.num_indices - at < 7777 ? list.num_indices - at : 7777;
+            mt_content_hasher_int32s(h, list.face_indices + at, (size_t)n);
+        }
+        CHECK_EQ(mt_content_hasher_digest(h), expected);
+        mt_content_hasher_free(h);
+        free(encoded);
+        free_mesh(&m);
+    }
+    /* Pinned: the hash is stored in archive files and compared on the wire. */
+    meshtopo_mesh_t m = make_mesh(4, 2, 1, 11);
+    mt_face_list list = face_list_of(&m);
+    uint64_t hash = 0;
+    CHECK_EQ(mt_face_list_content_hash(&list, &hash, NULL), MT_OK);
+    CHECK_EQ(hash, PINNED_HASH);
+    free_mesh(&m);
+    /* Counts past mesh_t's int32 fields have no content hash. */
+    mt_face_list big = {UINT32_MAX / 3 + 1, 0, 0, NULL, NULL, NULL};
+    mt_diag diag;
+    CHECK_EQ(mt_face_list_content_hash(&big, &hash, &diag), MT_ERR_TOO_LARGE);
+    CHECK(strstr(diag.message, "does not fit mesh_t") != NULL);
+    CHECK_EQ(mt_face_list_content_hash(NULL, &hash, &diag), MT_ERR_INVALID_ARG);
+}
+
 static const mt_test_case cases[] = {
     {"encode_ranges_match_lcm", encode_ranges_match_lcm},
     {"content_hash_is_xxh3_of_the_encoding", content_hash_is_xxh3_of_the_encoding},
     {"decoder_takes_pieces_in_any_order", decoder_takes_pieces_in_any_order},
     {"decoder_refuses_counts_that_do_not_fit", decoder_refuses_counts_that_do_not_fit},
+    {"face_list_hash_is_the_content_hash", face_list_hash_is_the_content_hash},
 };
 const mt_test_table mt_tests_mesh_content = {cases, sizeof cases / sizeof cases[0]};

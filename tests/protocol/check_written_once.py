@@ -15,9 +15,15 @@ literals kept apart from code) and these are reported, with file:line:
            FIRST_PARTS, MESH_ID) is given a bare number equal to one of the
            protocol's limits (the constants named after those concepts or
            ending in _MAX, _MIN, _SIZE or _LIMIT), e.g. a second 16 for
-           reply_part_t.FIRST_PARTS;
+           reply_part_t.FIRST_PARTS; unless a _Static_assert in msgs/ ties
+           that name to the constant (MESHTOPO_MESH_T_MESH_ID_MAX ==
+           MT_MESH_ID_MAX: meshtopo::ident, below msgs/ and the archive,
+           cannot include LCM's headers, and msgs/ checks it agrees);
   id-rule  a function that tests both a '/' byte and ".." (the mesh-id rule),
-           or a function named *id_check*, outside msgs/src/mesh_id.c;
+           or a function named *id_check*, outside lib/ident/src/mesh_id_rule.c
+           (mt_mesh_id_check, below msgs/ and the archive, which both call
+           it); msgs/src/mesh_id.c's mt_msgs_mesh_id_check, which only calls
+           it, is the rule's name in msgs/;
   names    one function or one declaration (a table) holding 5 or more of the
            status-code names, outside msgs/src/status_codes.c.
 
@@ -41,8 +47,12 @@ import tempfile
 
 SCANNED_DIRS = ("daemon", "lib", "tools")
 RULE_DIRS = ("msgs/src", "msgs/include")  # the id and names rules only
-ID_RULE_HOME = "msgs/src/mesh_id.c"
-ID_RULE_FUNCTION = "mt_msgs_mesh_id_check"
+ID_RULE_HOME = "lib/ident/src/mesh_id_rule.c"
+ID_RULE_FUNCTION = "mt_mesh_id_check"
+# (file, function): names of the rule that only call ID_RULE_FUNCTION.
+ID_RULE_ALIASES = {("msgs/src/mesh_id.c", "mt_msgs_mesh_id_check")}
+# Where a _Static_assert may tie a restated limit to its .lcm constant.
+TIE_DIRS = ("msgs/src", "msgs/include")
 NAMES_HOME = "msgs/src/status_codes.c"
 STATUS_NAMES = ("BAD_REQUEST", "UNDECODABLE", "UNKNOWN_MESH", "OUT_OF_RANGE", "TOO_LARGE",
                 "DEFECT_REFUSED", "ARCHIVE_FAILED")
@@ -314,9 +324,21 @@ def check_values(path, code, directives, by_value, findings):
                                     f"{t.text} is the value of {names_of(hits)}", hits))
 
 
-def check_limits(path, code, directives, limits_by_value, findings):
+def static_ties(code):
+    """{(a, b), (b, a)} for each _Static_assert(a == b, ...) in code."""
+    ties = set()
+    for i, t in enumerate(code):
+        if t.text in ("_Static_assert", "static_assert") and i + 5 < len(code):
+            a, eq, b = code[i + 2], code[i + 3], code[i + 4]
+            if (code[i + 1].text == "(" and a.kind == "id" and eq.text == "==" and
+                    b.kind == "id" and code[i + 5].text in (",", ")")):
+                ties |= {(a.text, b.text), (b.text, a.text)}
+    return ties
+
+
+def check_limits(path, code, directives, limits_by_value, findings, ties=frozenset()):
     def report(name, value, line, what):
-        hits = limits_by_value.get(value, ())
+        hits = [c for c in limits_by_value.get(value, ()) if (c.c_name, name) not in ties]
         if value is not None and hits and mentions_concept(name):
             findings.append(Finding("limit", path, line,
                                     f"{what} {name} = {value} restates {names_of(hits)}", hits))
@@ -384,9 +406,20 @@ def tests_dotdot(tokens):
     return False
 
 
+def is_alias(path, unit):
+    """A name of the rule that hands the id to its one copy and nothing more."""
+    return ((path, unit.name) in ID_RULE_ALIASES and
+            any(t.kind == "id" and t.text == ID_RULE_FUNCTION for t in unit.tokens) and
+            not (tests_slash(unit.tokens) or tests_dotdot(unit.tokens)))
+
+
 def check_id_rule(path, units, findings):
+    if path == ID_RULE_HOME:
+        return
     for u in units:
         if not u.is_function:
+            continue
+        if is_alias(path, u):
             continue
         if re.search(r"id_check", u.name, re.I):
             findings.append(Finding("id-rule", path, u.line,
@@ -459,11 +492,14 @@ def check_tree(root):
                                     f"{c.label()} = {c.value} is declared again (first in "
                                     f"{cs[0].path}:{cs[0].line})", [cs[0]]))
 
+    ties = set()
+    for rel, full in source_files(root, TIE_DIRS):
+        ties |= static_ties(read_c(full)[0])
     for rel, full in source_files(root, SCANNED_DIRS):
         code, directives = read_c(full)
         units = split_units(code)
         check_values(rel, code, directives, by_value, findings)
-        check_limits(rel, code, directives, limits_by_value, findings)
+        check_limits(rel, code, directives, limits_by_value, findings, ties)
         check_id_rule(rel, units, findings)
         check_names(rel, units, findings)
     for rel, full in source_files(root, RULE_DIRS):
@@ -550,8 +586,9 @@ struct x_t
 """
 
 SELF_TEST_HOME_ID = """\
-/* The home of the id rule. */
-int mt_msgs_mesh_id_check(const char *id)
+/* The home of the id rule, and its limit. */
+#define MT_MESH_ID_MAX 255
+int mt_mesh_id_check(const char *id)
 {
     for (; *id; id++) {
         if (*id == '/') return 1;
@@ -559,6 +596,13 @@ int mt_msgs_mesh_id_check(const char *id)
     }
     return 0;
 }
+"""
+
+# msgs/'s name of the rule, and the tie of the home's limit to the .lcm's.
+SELF_TEST_ALIAS_ID = """\
+/* The id rule's name in msgs/. */
+_Static_assert(MESHTOPO_X_T_MESH_ID_MAX == MT_MESH_ID_MAX, "the same limit");
+int mt_msgs_mesh_id_check(const char *id) { return mt_mesh_id_check(id); }
 """
 
 SELF_TEST_HOME_NAMES = """\
@@ -649,9 +693,15 @@ const char *name_of(int c)
 }
 """, [("names", 2), ("names", 6)]),
     ("msgs/src/other.c", """\
-/* The id rule in msgs/, but not in its home. */
+/* The id rule in msgs/, but not in its home; a limit tied nowhere. */
 int path_like(const char *s) { return s[0] == '/' || strcmp(s, "..") == 0; }
-""", [("id-rule", 2)]),
+int mt_other_mesh_id_check(const char *id) { return mt_mesh_id_check(id); }
+""", [("id-rule", 2), ("id-rule", 3)]),
+    ("tools/id_limit.h", """\
+/* The id limit restated with a tie of its own, outside msgs/. */
+#define TOOL_MESH_ID_MAX 255
+_Static_assert(MESHTOPO_X_T_MESH_ID_MAX == TOOL_MESH_ID_MAX, "not msgs/'s tie");
+""", [("limit", 2)]),
 ]
 
 
@@ -665,6 +715,7 @@ def write(root, rel, text):
 def make_tree(root, planted):
     write(root, "msgs/x_t.lcm", SELF_TEST_LCM)
     write(root, ID_RULE_HOME, SELF_TEST_HOME_ID)
+    write(root, "msgs/src/mesh_id.c", SELF_TEST_ALIAS_ID)
     write(root, NAMES_HOME, SELF_TEST_HOME_NAMES)
     write(root, "daemon/clean.c", SELF_TEST_CLEAN)
     write(root, "lib/client/src/clean.c", SELF_TEST_CLEAN)
@@ -710,7 +761,7 @@ def self_test():
         check(not extra, f"nothing else is reported (extra: {extra})")
         check(any(l.startswith("PART_SIZE = 57344: msgs/x_t.lcm and also daemon/parts.h:4")
                   for l in lines), "the report says where PART_SIZE is written again")
-        check(any(l.startswith("mesh-id rule: msgs/src/mesh_id.c (mt_msgs_mesh_id_check) and "
+        check(any(l.startswith(f"mesh-id rule: {ID_RULE_HOME} ({ID_RULE_FUNCTION}) and "
                                "also lib/ids.c:3") for l in lines),
               "the report says where the mesh-id rule is written again")
 
