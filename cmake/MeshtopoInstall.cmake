@@ -123,6 +123,9 @@ endforeach()
 # meshtopo-client names LCM and xxHash as plain -llcm -lxxhash (Debian's
 # lcm.pc requires glib-2.0, which liblcm-dev does not install); -llcm is
 # public in both kinds, as the client's options take an lcm_t.
+# meshtopo-archive names no LCM at all: the archive shares the mesh-id rule
+# and the content hash with the messages through libmeshtopo-ident (static
+# only, like libmeshtopo-msgs, so listed where a static link needs it).
 if(BUILD_SHARED_LIBS)
   set(MESHTOPO_PC_CORE_LIBS "")
   set(MESHTOPO_PC_CORE_LIBS_PRIVATE "-lm -pthread")
@@ -132,7 +135,7 @@ if(BUILD_SHARED_LIBS)
   set(MESHTOPO_PC_CLIENT_LIBS_PRIVATE "-lmeshtopo-msgs -lmeshtopo-ident -lxxhash -pthread")
   set(MESHTOPO_PC_ARCHIVE_REQUIRES_PRIVATE "hdf5")
   set(MESHTOPO_PC_ARCHIVE_LIBS "")
-  set(MESHTOPO_PC_ARCHIVE_LIBS_PRIVATE "-lmeshtopo-msgs -lmeshtopo-ident -llcm -lxxhash")
+  set(MESHTOPO_PC_ARCHIVE_LIBS_PRIVATE "-lmeshtopo-ident -lxxhash")
 else()
   set(MESHTOPO_PC_CORE_LIBS " -lm -pthread")
   set(MESHTOPO_PC_CORE_LIBS_PRIVATE "")
@@ -141,7 +144,7 @@ else()
   set(MESHTOPO_PC_CLIENT_LIBS " -lmeshtopo-msgs -lmeshtopo-ident -llcm -lxxhash -pthread")
   set(MESHTOPO_PC_CLIENT_LIBS_PRIVATE "")
   set(MESHTOPO_PC_ARCHIVE_REQUIRES_PRIVATE "")
-  set(MESHTOPO_PC_ARCHIVE_LIBS " -lmeshtopo-msgs -lmeshtopo-ident -llcm -lxxhash")
+  set(MESHTOPO_PC_ARCHIVE_LIBS " -lmeshtopo-ident -lxxhash")
   set(MESHTOPO_PC_ARCHIVE_LIBS_PRIVATE "")
 endif()
 # HDF5 through its own hdf5.pc (Debian's libhdf5-dev): public for a static

@@ -63,6 +63,8 @@ run_expect "consumer_client (meshtopo::client)" "client ok: cube content hash" \
     "$work/consumer/consumer_client"
 run_expect "consumer_archive (meshtopo::archive)" "archive ok: cube v1 reloaded, Euler characteristic 2" \
     "$work/consumer/consumer_archive"
+run_expect "consumer_archive_io (meshtopo::core, io, archive)" "archive io ok" \
+    "$work/consumer/consumer_archive_io"
 # The same hash from the pkg-config build below.
 client_line=$("$work/consumer/consumer_client" | grep "client ok")
 

@@ -327,7 +327,7 @@ mt_status mt_archive_highest_version(const mt_archive *archive, const char *mesh
     if (!archive || !out_version)
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_highest_version: NULL");
     *out_version = 0;
-    mt_status st = mt_msgs_mesh_id_check(mesh_id, diag);
+    mt_status st = mt_mesh_id_check(mesh_id, diag);
     if (st != MT_OK) return st;
     char name[MT_ARCHIVE_FILE_NAME_MAX + 1];
     mt_archive_file_name(mesh_id, 1, name, sizeof name);
@@ -363,7 +363,7 @@ static uint32_t latest_version(const mt_archive *archive, const char *mesh_id)
 mt_status mt__archive_resolve(const mt_archive *archive, const char *mesh_id, uint32_t version,
                               char *name, mt_diag *diag)
 {
-    mt_status st = mt_msgs_mesh_id_check(mesh_id, diag);
+    mt_status st = mt_mesh_id_check(mesh_id, diag);
     if (st != MT_OK) return st;
     if (version == 0) version = latest_version(archive, mesh_id);
     if (version == 0)
@@ -411,7 +411,7 @@ mt_status mt_archive_remove(mt_archive *archive, const char *mesh_id, uint32_t v
     if (archive->read_only)
         return mt__archive_fail(diag, MT_ERR_UNSUPPORTED, "%s: archive opened read-only",
                                 archive->dir);
-    mt_status st = mt_msgs_mesh_id_check(mesh_id, diag);
+    mt_status st = mt_mesh_id_check(mesh_id, diag);
     if (st != MT_OK) return st;
     if (version == 0)
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh '%s': version 0 is not a version",

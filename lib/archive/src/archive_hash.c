@@ -1,19 +1,16 @@
 /* The two hashes a load checks. The content hash of a stored face list is
- * the daemon's (msgs/mesh_t.lcm: XXH3-64 over the bytes LCM encodes for
- * mesh_t's content fields), so the face list a file holds can be matched
- * with the hash its submission was acknowledged with. The digest of the
- * half-edge arrays (format 4) covers everything a restored mesh serves:
- * arrays, positions and report, tied to the content hash; a load compares
- * it instead of rebuilding the mesh to compare (XXH3 runs at memory speed:
- * about 3 ms for a 1M-triangle mesh's 50 MB, against a rebuild's hundreds
- * of milliseconds). */
-#define XXH_STATIC_LINKING_ONLY /* XXH3_state_t on the stack */
+ * the daemon's (meshtopo/mesh_ident.h: XXH3-64 over the bytes LCM encodes
+ * for mesh_t's content fields), so the face list a file holds can be matched
+ * with the hash its submission was acknowledged with; it is computed a block
+ * at a time straight from the file. The digest of the half-edge arrays
+ * (format 4) covers everything a restored mesh serves: arrays, positions and
+ * report, tied to the content hash; a load compares it instead of
+ * rebuilding the mesh to compare (XXH3 runs at memory speed, a rebuild does
+ * not). */
 #include <stdlib.h>
 #include <string.h>
-#include <xxhash.h>
 
 #include "archive_internal.h"
-#include "meshtopo/content_hash.h"
 
 /* Values per block of mt__content_hash_stored: 1 MiB of int32, a whole
  * chunk of a deflated dataset (MT__H5_CHUNK_BYTES). */
@@ -26,85 +23,22 @@ mt_status mt_archive_content_hash(void *ctx, const mt_face_list *faces, uint64_t
     mt_diag_clear(diag);
     if (!faces || !out_hash)
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mt_archive_content_hash: NULL argument");
-    /* mesh_t's counts are int32 (num_position_values = 3 * num_verts). */
-    if (faces->num_verts > INT32_MAX / 3 || faces->num_faces > INT32_MAX ||
-        faces->num_indices > INT32_MAX)
-        return mt__archive_fail(diag, MT_ERR_TOO_LARGE,
-                                "a face list of %u vertices, %u faces and %llu indices does not "
-                                "fit mesh_t: its content hash is not defined",
-                                faces->num_verts, faces->num_faces,
-                                (unsigned long long)faces->num_indices);
-    meshtopo_mesh_t m;
-    memset(&m, 0, sizeof m);
-    m.num_verts = (int32_t)faces->num_verts;
-    m.num_position_values = faces->positions ? (int32_t)(3 * faces->num_verts) : 0;
-    m.positions = faces->positions;
-    m.num_faces = (int32_t)faces->num_faces;
-    /* uint32_t and int32_t may alias; the encoding is the same bits. */
-    m.face_vertex_counts = (int32_t *)faces->face_sizes;
-    m.num_indices = (int32_t)faces->num_indices;
-    m.face_vertex_indices = (int32_t *)faces->face_indices;
-    *out_hash = mt_msgs_mesh_content_hash_of(&m);
-    return MT_OK;
+    return mt_face_list_content_hash(faces, out_hash, diag);
 }
 
-/* Big-endian bytes of n 32-bit values, in place (a byte swap the compiler
- * vectorizes, on a little-endian host). */
-static void be32_in_place(uint32_t *values, size_t n)
-{
-#if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-    for (size_t i = 0; i < n; i++) values[i] = __builtin_bswap32(values[i]);
-#elif defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-    (void)values;
-    (void)n;
-#else
-    uint8_t *b = (uint8_t *)values;
-    for (size_t i = 0; i < n; i++) {
-        uint32_t v = values[i];
-        b[4 * i] = (uint8_t)(v >> 24);
-        b[4 * i + 1] = (uint8_t)(v >> 16);
-        b[4 * i + 2] = (uint8_t)(v >> 8);
-        b[4 * i + 3] = (uint8_t)v;
-    }
-#endif
-}
-
-/* The big-endian bytes of n doubles' bits into out (n 64-bit words). */
-static void be64_copy(const double *values, size_t n, uint64_t *out)
-{
-    memcpy(out, values, 8 * n);
-#if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-    for (size_t i = 0; i < n; i++) out[i] = __builtin_bswap64(out[i]);
-#elif !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_BIG_ENDIAN__
-    uint8_t *b = (uint8_t *)out;
-    for (size_t i = 0; i < n; i++) {
-        uint64_t v = out[i];
-        for (int k = 0; k < 8; k++) b[8 * i + (size_t)k] = (uint8_t)(v >> (56 - 8 * k));
-    }
-#endif
-}
-
-static void hash_be32(XXH3_state_t *state, uint32_t v)
-{
-    be32_in_place(&v, 1);
-    XXH3_64bits_update(state, &v, 4);
-}
-
-/* mt__h5_read_blocks' callback: a block of int32 values, hashed as mesh_t
- * encodes them. */
+/* mt__h5_read_blocks' callback: a block of int32 values. */
 static void hash_block(void *ctx, void *rows, size_t n)
 {
-    be32_in_place(rows, n);
-    XXH3_64bits_update(ctx, rows, 4 * n);
+    mt_content_hasher_int32s(ctx, rows, n);
 }
 
 mt_status mt__content_hash_stored(hid_t g, const char *file, uint32_t num_verts,
                                   const double *positions, uint64_t *out, mt_diag *diag)
 {
-    /* mesh_t's content (meshtopo/mesh_content.h): num_verts,
-     * num_position_values, the positions, num_faces, the face counts,
-     * num_indices, the indices, each value big-endian. The two counts that
-     * follow an array are the datasets' lengths, known only once read. */
+    /* The content in mesh_ident.h's order: num_verts, num_position_values,
+     * the positions, num_faces, the face counts, num_indices, the indices.
+     * The two counts that follow an array are the datasets' lengths, known
+     * only once read. */
     uint64_t num_faces = 0, num_indices = 0;
     mt_status st = mt__h5_dataset_rows(g, "/meshtopo/face_vertex_counts", file, 1, 0, MT__H5_INT, 4,
                                        &num_faces, diag);
@@ -119,30 +53,29 @@ mt_status mt__content_hash_stored(hid_t g, const char *file, uint32_t num_verts,
                                 file, num_verts, (unsigned long long)num_faces,
                                 (unsigned long long)num_indices);
     uint32_t *buf = malloc((size_t)HASH_BLOCK_VALUES * 4);
-    if (!buf) return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory hashing %s", file);
-    XXH3_state_t state;
-    XXH3_INITSTATE(&state);
-    XXH3_64bits_reset(&state);
-    const uint64_t npos = positions ? 3 * (uint64_t)num_verts : 0;
-    hash_be32(&state, num_verts);
-    hash_be32(&state, (uint32_t)npos);
-    for (uint64_t at = 0; at < npos; at += HASH_BLOCK_VALUES / 2) {
-        size_t n = npos - at < HASH_BLOCK_VALUES / 2 ? (size_t)(npos - at) : HASH_BLOCK_VALUES / 2;
-        be64_copy(positions + at, n, (uint64_t *)(void *)buf);
-        XXH3_64bits_update(&state, buf, 8 * n);
+    mt_content_hasher *hasher = mt_content_hasher_new();
+    if (!buf || !hasher) {
+        free(buf);
+        mt_content_hasher_free(hasher);
+        return mt__archive_fail(diag, MT_ERR_NOMEM, "out of memory hashing %s", file);
     }
-    hash_be32(&state, (uint32_t)num_faces);
+    const uint32_t npos = positions ? 3 * num_verts : 0;
+    mt_content_hasher_count(hasher, num_verts);
+    mt_content_hasher_count(hasher, npos);
+    mt_content_hasher_doubles(hasher, positions, npos);
+    mt_content_hasher_count(hasher, (uint32_t)num_faces);
     uint64_t rows = 0;
     st =
         mt__h5_read_blocks(g, "/meshtopo/face_vertex_counts", file, MT__H5_INT, 4, H5T_NATIVE_INT32,
-                           buf, HASH_BLOCK_VALUES, hash_block, &state, &rows, diag);
-    if (st == MT_OK) hash_be32(&state, (uint32_t)num_indices);
+                           buf, HASH_BLOCK_VALUES, hash_block, hasher, &rows, diag);
+    if (st == MT_OK) mt_content_hasher_count(hasher, (uint32_t)num_indices);
     if (st == MT_OK)
         st = mt__h5_read_blocks(g, "/meshtopo/face_vertex_indices", file, MT__H5_INT, 4,
-                                H5T_NATIVE_INT32, buf, HASH_BLOCK_VALUES, hash_block, &state, &rows,
+                                H5T_NATIVE_INT32, buf, HASH_BLOCK_VALUES, hash_block, hasher, &rows,
                                 diag);
+    if (st == MT_OK) *out = mt_content_hasher_digest(hasher);
+    mt_content_hasher_free(hasher);
     free(buf);
-    if (st == MT_OK) *out = XXH3_64bits_digest(&state);
     return st;
 }
 
@@ -151,7 +84,7 @@ mt_status mt__content_hash_stored(hid_t g, const char *file, uint32_t num_verts,
 static mt_status hash_array(const void *data, uint64_t n, size_t elem, uint64_t *out, mt_diag *diag)
 {
     if (n == 0 || !data) {
-        *out = mt_msgs_content_hash_bytes("", 0);
+        *out = mt_content_hash_bytes("", 0);
         return MT_OK;
     }
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
@@ -162,11 +95,11 @@ static mt_status hash_array(const void *data, uint64_t n, size_t elem, uint64_t 
     const uint8_t *src = data;
     for (uint64_t i = 0; i < n; i++)
         for (size_t b = 0; b < elem; b++) copy[i * elem + b] = src[i * elem + elem - 1 - b];
-    *out = mt_msgs_content_hash_bytes(copy, (size_t)n * elem);
+    *out = mt_content_hash_bytes(copy, (size_t)n * elem);
     free(copy);
 #else
     (void)diag;
-    *out = mt_msgs_content_hash_bytes(data, (size_t)n * elem);
+    *out = mt_content_hash_bytes(data, (size_t)n * elem);
 #endif
     return MT_OK;
 }
@@ -213,6 +146,6 @@ mt_status mt__halfedge_digest(const mt_mesh_parts *p, const mt_report *report,
     uint8_t bytes[sizeof words];
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++)
         for (int b = 0; b < 8; b++) bytes[8 * i + (size_t)b] = (uint8_t)(words[i] >> (8 * b));
-    *out = mt_msgs_content_hash_bytes(bytes, sizeof bytes);
+    *out = mt_content_hash_bytes(bytes, sizeof bytes);
     return MT_OK;
 }

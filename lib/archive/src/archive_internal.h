@@ -15,9 +15,8 @@
 #include <hdf5.h>
 
 #include "meshtopo/archive.h"
+#include "meshtopo/mesh_ident.h"
 #include "meshtopo/mesh_parts.h"
-#include "meshtopo/msgs.h"
-#include "meshtopo/protocol.h"
 
 struct mt_archive {
     char *dir;

@@ -121,9 +121,9 @@ static bool byte_is_plain(unsigned char c)
 size_t mt_archive_file_name(const char *mesh_id, uint32_t version, char *buf, size_t size)
 {
     if (size > 0) buf[0] = '\0';
-    if (version == 0 || mt_msgs_mesh_id_check(mesh_id, NULL) != MT_OK) return 0;
+    if (version == 0 || mt_mesh_id_check(mesh_id, NULL) != MT_OK) return 0;
     static const char hex[] = "0123456789ABCDEF";
-    char escaped[3 * MESHTOPO_MESH_T_MESH_ID_MAX + 1];
+    char escaped[3 * MT_MESH_ID_MAX + 1];
     size_t n = 0, cut = 0;
     for (const unsigned char *p = (const unsigned char *)mesh_id; *p; p++) {
         if (byte_is_plain(*p)) {

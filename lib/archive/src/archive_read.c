@@ -110,11 +110,10 @@ mt_status mt__archive_read_provenance(hid_t g, const char *file_name, mt_archive
                               file_name, (long long)format_version, MT_ARCHIVE_FORMAT_VERSION_MIN,
                               MT_ARCHIVE_FORMAT_VERSION);
     if (st == MT_OK)
-        st = mt__h5_read_attr_string(g, "mesh_id", file_name, MESHTOPO_MESH_T_MESH_ID_MAX,
-                                     &r->mesh_id, diag);
+        st = mt__h5_read_attr_string(g, "mesh_id", file_name, MT_MESH_ID_MAX, &r->mesh_id, diag);
     if (st == MT_OK) {
         mt_diag why;
-        if (mt_msgs_mesh_id_check(r->mesh_id, &why) != MT_OK)
+        if (mt_mesh_id_check(r->mesh_id, &why) != MT_OK)
             st = mt__archive_fail(diag, MT_ERR_PARSE,
                                   "%s: attribute meshtopo/mesh_id is not a valid mesh id (%s)",
                                   file_name, why.message);

@@ -12,7 +12,6 @@
 #include <string.h>
 
 #include "archive_internal.h"
-#include "meshtopo/content_hash.h"
 #include "meshtopo/defect_record.h"
 
 #define FIELD(name, type)                      \
@@ -548,7 +547,7 @@ mt_status mt__report_hash(const mt_report *r, uint64_t *out, mt_diag *diag)
         at = put_u64(at, d->b);
         at = put_u64(at, d->c);
     }
-    *out = mt_msgs_content_hash_bytes(bytes, (size_t)(at - bytes));
+    *out = mt_content_hash_bytes(bytes, (size_t)(at - bytes));
     free(bytes);
     return MT_OK;
 }

@@ -507,7 +507,7 @@ mt_status mt_archive_write_with(mt_archive *archive, const mt_archive_meta *meta
     if (archive->read_only)
         return mt__archive_fail(diag, MT_ERR_UNSUPPORTED, "%s: archive opened read-only",
                                 archive->dir);
-    mt_status st = mt_msgs_mesh_id_check(meta->mesh_id, diag);
+    mt_status st = mt_mesh_id_check(meta->mesh_id, diag);
     if (st != MT_OK) return st;
     if (meta->version == 0)
         return mt__archive_fail(diag, MT_ERR_INVALID_ARG, "mesh '%s': version 0 is not a version",

@@ -2,7 +2,9 @@
  * XXH3-64 (xxHash 0.8, seed 0) over the bytes LCM encodes for mesh_t's
  * content fields, num_verts to face_vertex_indices (the tail of the encoded
  * message). The daemon hashes what it received, the client what it sends;
- * both call these (or mesh_content.h's decoder, which hashes as it goes). */
+ * both call these (or mesh_content.h's decoder, which hashes as it goes).
+ * The same hash of a face list, without LCM, is meshtopo::ident's
+ * (meshtopo/mesh_ident.h), which the archive uses. */
 #ifndef MESHTOPO_CONTENT_HASH_H
 #define MESHTOPO_CONTENT_HASH_H
 

@@ -1,7 +1,7 @@
 /* meshtopo::msgs protocol rules that are code, not fields: the mesh-id rule,
  * the owner of a mesh id in a cluster, and the one table between
  * status_code_t values, mt_status and names. The
- * daemon, the client and the archive call these; the numeric limits are
+ * daemon, the client and the tools call these; the numeric limits are
  * const members of the .lcm types (MESHTOPO_MESH_T_MESH_ID_MAX, ...). Pure
  * functions, any thread. */
 #ifndef MESHTOPO_PROTOCOL_H
@@ -23,7 +23,8 @@ extern "C" {
  * bad one is refused rather than repaired. Returns MT_OK or
  * MT_ERR_INVALID_ARG with diag (NULL-safe) naming the rule broken and
  * diag->byte_offset the offending byte (UINT64_MAX for the NULL, empty and
- * length rules). */
+ * length rules). The rule itself is meshtopo::ident's mt_mesh_id_check
+ * (meshtopo/mesh_ident.h), which the archive calls too. */
 mt_status mt_msgs_mesh_id_check(const char *id, mt_diag *diag);
 
 /* Which member of a cluster (meshtopod --cluster) owns a mesh id:

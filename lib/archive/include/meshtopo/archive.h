@@ -96,7 +96,7 @@ extern "C" {
  * always escaped, so the two kinds of names cannot collide). The file's
  * mesh_id attribute holds the id itself. Writes at most size bytes
  * (NUL-terminated when size > 0) and returns the length the full name needs;
- * 0 for an id mt_msgs_mesh_id_check (meshtopo/protocol.h) refuses or
+ * 0 for an id mt_mesh_id_check (meshtopo/mesh_ident.h) refuses or
  * version 0. */
 size_t mt_archive_file_name(const char *mesh_id, uint32_t version, char *buf, size_t size);
 
@@ -107,14 +107,14 @@ typedef struct mt_archive mt_archive;
 
 /* A content hash of a face list, to check a stored face list against the
  * hash its submission was acknowledged with: mt_archive_content_hash (the
- * daemon's, msgs/mesh_t.lcm) or, in tests, a stand-in. */
+ * daemon's, meshtopo/mesh_ident.h) or, in tests, a stand-in. */
 typedef mt_status (*mt_archive_hash_fn)(void *ctx, const mt_face_list *faces, uint64_t *out_hash,
                                         mt_diag *diag);
 
 /* The daemon's content hash (XXH3-64 over the bytes LCM encodes for
- * mesh_t's content fields, meshtopo/content_hash.h) of a face list, as an
- * mt_archive_hash_fn (ctx unused). MT_ERR_TOO_LARGE for a list whose counts
- * do not fit mesh_t's int32 fields. */
+ * mesh_t's content fields: mt_face_list_content_hash, meshtopo/mesh_ident.h)
+ * of a face list, as an mt_archive_hash_fn (ctx unused). MT_ERR_TOO_LARGE
+ * for a list whose counts do not fit mesh_t's int32 fields. */
 mt_status mt_archive_content_hash(void *ctx, const mt_face_list *faces, uint64_t *out_hash,
                                   mt_diag *diag);
 
@@ -161,11 +161,11 @@ size_t mt_archive_leftovers_removed(const mt_archive *archive);
 
 /* Who submitted a mesh version and what it was. Strings are copied. */
 typedef struct mt_archive_meta {
-    const char *mesh_id;   /* see mt_msgs_mesh_id_check */
+    const char *mesh_id;   /* see mt_mesh_id_check */
     uint32_t version;      /* >= 1 */
     int64_t utime;         /* microseconds since the epoch, from the submission */
     const char *source;    /* the sending node; NULL means "" */
-    uint64_t content_hash; /* as the daemon computed it (meshtopo/content_hash.h) */
+    uint64_t content_hash; /* as the daemon computed it (meshtopo/mesh_ident.h) */
 } mt_archive_meta;
 
 /* Time spent by one mt_archive_write. */
