@@ -3,19 +3,26 @@
 
 For every object file, `nm` gives the global symbols it defines (T, D, B, R, ...)
 and the ones it leaves undefined (U). Object a "references" object b when a
-needs a symbol b defines. Two rules, per unit (a library, or daemon/ as one):
+needs a symbol b defines. Four rules, per unit (a library, or daemon/ as one):
 
-  cycle    the files of one unit reference each other directly or through a
-           cycle: each unit's file graph must be acyclic, so every file can be
-           read, tested and replaced bottom-up;
-  upward   a library object references a symbol defined in daemon/ or tools/
-           (role `daemon` or `tools` in the object list);
-  order    in a unit whose files are ordered in families (FAMILY_ORDERS: the
-           core's folders, base < mesh < build < report < ...), a file
-           references a symbol of, or includes a header of, a family it may
-           not use, or lies outside every family. Includes are read from the
-           sources (--root); a file's family is its folder, or the file
-           itself where FAMILY_ORDERS names it.
+  cycle      the files of one unit reference each other directly or through a
+             cycle: each unit's file graph must be acyclic, so every file can
+             be read, tested and replaced bottom-up;
+  upward     a library object references a symbol defined in daemon/ or tools/
+             (role `daemon` or `tools` in the object list);
+  forbidden  a unit of FORBIDDEN (or --forbid) references a unit it must not
+             stand on, or LCM itself: a symbol defined there, an LCM symbol
+             (lcm_*, the generated meshtopo_*_t functions) wherever it is
+             defined, or, with --root, an #include of that unit's headers
+             (below its include/) or of LCM's (lcm/, lcmtypes/) in any .c or
+             .h file of the unit's source directories. The archive knows
+             nothing of LCM (DESIGN.md), and neither does what it stands on.
+  order      in a unit whose files are ordered in families (FAMILY_ORDERS: the
+             core's folders, base < mesh < build < report < ...), a file
+             references a symbol of, or includes a header of, a family it may
+             not use, or lies outside every family. Includes are read from the
+             sources (--root); a file's family is its folder, or the file
+             itself where FAMILY_ORDERS names it.
 
 The object list (tests/layering/CMakeLists.txt writes it with file(GENERATE)
 from $<TARGET_OBJECTS:...>) has one object per line, tab-separated:
@@ -26,7 +33,8 @@ role is `library`, `daemon` or `tools`; source-prefix is the target's source
 directory relative to the project, and the object's path below
 CMakeFiles/<target>.dir/ is its source's path below that directory.
 
-usage: check_layering.py --objects LIST [--nm NM] [--root DIR] [--unit UNIT]... [--json]
+usage: check_layering.py --objects LIST [--nm NM] [--unit UNIT]... [--root DIR]
+                         [--forbid UNIT=OTHER,...]... [--json]
 exit status: 0 no problem, 1 problems (printed), 2 the list or nm failed, or
 an object of a checked unit is not built (other units' are skipped, with a
 warning).
@@ -50,6 +58,21 @@ IGNORED_PREFIXES = ("__asan", "___asan", "__odr_asan", "__ubsan", "__sanitizer",
 # undefined. Any other uppercase type (T, D, B, R, C, W, V, ...) is a global
 # definition; other lowercase types are local symbols, which link nothing.
 UNDEFINED_TYPES = ("U", "w", "v")
+# What a unit must not reference: other units, and "lcm" (LCM's symbols and
+# headers, the generated message types included).
+FORBIDDEN = {
+    "core": ("io", "json", "ident", "archive", "msgs", "client", "python", "lcm"),
+    "ident": ("io", "json", "archive", "msgs", "client", "python", "lcm"),
+    "archive": ("msgs", "client", "python", "lcm"),
+}
+LCM = "lcm"
+# LCM's symbols: its library's and lcm-gen's output for package meshtopo
+# (meshtopo_mesh_t_encode, __meshtopo_mesh_t_get_hash, ...).
+LCM_SYMBOL = re.compile(r"^_*(lcm_|meshtopo_\w+_t(_|$))")
+# LCM's headers, and the headers msgs/ generates beside its own.
+LCM_HEADER = re.compile(r"^(lcm|lcmtypes)/")
+GENERATED_HEADERS = {"msgs": ("meshtopo/msgs_types.h",)}
+INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]', re.M)
 
 # Units whose files form families in a fixed order: the unit's source folder
 # (relative to the project) and its families, lowest first, each with the
@@ -86,12 +109,13 @@ class Fail(Exception):
 
 
 class Obj:
-    def __init__(self, role, unit, target, source, path):
+    def __init__(self, role, unit, target, source, path, prefix=""):
         self.role = role
         self.unit = unit
         self.target = target
         self.source = source
         self.path = path
+        self.prefix = prefix
         self.defined = set()
         self.undefined = set()
 
@@ -135,7 +159,7 @@ def read_list(list_path):
         role, unit, target, prefix, path = fields
         if not path:
             continue  # a target without objects
-        objs.append(Obj(role, unit, target, source_name(prefix, target, path), path))
+        objs.append(Obj(role, unit, target, source_name(prefix, target, path), path, prefix))
     if not objs:
         raise Fail("%s lists no objects" % list_path)
     return objs
@@ -366,13 +390,57 @@ def check_order(unit, mine, edges, symbols, root_dir):
     return problems
 
 
-def check_unit(unit, objs, definers, root_dir=None):
-    """The problems of one unit: {"files", "links", "cycles", "upward"}."""
+def unit_headers(unit, objs, root):
+    """The names a file #includes a unit's headers by: the files below the
+    include/ folders of the unit's source directories, and what it generates."""
+    names = set(GENERATED_HEADERS.get(unit, ()))
+    for prefix in sorted({o.prefix for o in objs if o.unit == unit}):
+        include = os.path.join(root, prefix, "include")
+        for directory, _, files in os.walk(include):
+            for name in files:
+                if name.endswith(".h"):
+                    rel = os.path.relpath(os.path.join(directory, name), include)
+                    names.add(rel.replace(os.sep, "/"))
+    return names
+
+
+def forbidden_includes(unit, objs, root, banned):
+    """{(file, banned unit): set of included names} over every .c and .h file
+    of the unit's source directories."""
+    headers = {b: unit_headers(b, objs, root) for b in banned if b != LCM}
+    found = {}
+    for prefix in sorted({o.prefix for o in objs if o.unit == unit}):
+        top = os.path.join(root, prefix)
+        for directory, subdirs, files in os.walk(top):
+            subdirs.sort()
+            for name in sorted(files):
+                if not name.endswith((".c", ".h")):
+                    continue
+                path = os.path.join(directory, name)
+                try:
+                    with open(path, encoding="utf-8", errors="replace") as f:
+                        text = f.read()
+                except OSError as e:
+                    raise Fail("cannot read %s: %s" % (path, e))
+                source = os.path.relpath(path, root).replace(os.sep, "/")
+                for included in INCLUDE.findall(text):
+                    for b in banned:
+                        if (LCM_HEADER.match(included) if b == LCM
+                                else included in headers[b]):
+                            found.setdefault((source, b), set()).add(included)
+    return found
+
+
+def check_unit(unit, objs, definers, forbidden=None, root=None):
+    """The problems of one unit: {"files", "links", "cycles", "upward", "forbidden"}."""
+    forbidden = FORBIDDEN if forbidden is None else forbidden
+    banned = forbidden.get(unit, ())
     mine = [o for o in objs if o.unit == unit]
     role = mine[0].role
     edges = {}
     symbols = {}  # (from, to) -> set of symbols
     upward = {}  # (from, to, to unit) -> set of symbols
+    refused = {}  # (from, banned unit) -> {"symbols": set, "includes": set}
     for o in mine:
         for name in o.undefined:
             for d in definers.get(name, ()):
@@ -381,6 +449,16 @@ def check_unit(unit, objs, definers, root_dir=None):
                     symbols.setdefault((o.source, d.source), set()).add(name)
                 elif role == "library" and d.role in UPWARD_ROLES:
                     upward.setdefault((o.source, d.source, d.unit), set()).add(name)
+            owners = {d.unit for d in definers.get(name, ()) if d.unit != unit}
+            hits = sorted(owners & set(banned))
+            if not hits and LCM in banned and LCM_SYMBOL.match(name):
+                hits = [LCM]
+            for b in hits:
+                refused.setdefault((o.source, b), {"symbols": set(), "includes": set()})[
+                    "symbols"].add(name)
+    if banned and root:
+        for key, names in forbidden_includes(unit, objs, root, banned).items():
+            refused.setdefault(key, {"symbols": set(), "includes": set()})["includes"] |= names
     nodes = sorted({o.source for o in mine})
     cycles = []
     for component in strongly_connected(nodes, edges):
@@ -398,19 +476,23 @@ def check_unit(unit, objs, definers, root_dir=None):
         "cycles": cycles,
         "upward": [{"from": a, "to": b, "unit": u, "symbols": sorted(s)}
                    for (a, b, u), s in sorted(upward.items())],
+        "forbidden": [{"from": a, "unit": b, "symbols": sorted(r["symbols"]),
+                       "includes": sorted(r["includes"])}
+                      for (a, b), r in sorted(refused.items())],
     }
     if unit in FAMILY_ORDERS:
         result["order"] = order_text(FAMILY_ORDERS[unit])
-        result["against_order"] = check_order(unit, mine, edges, symbols, root_dir)
+        result["against_order"] = check_order(unit, mine, edges, symbols, root)
     return result
 
 
 def failed(result):
-    return bool(result["cycles"] or result["upward"] or result.get("against_order"))
+    return bool(result["cycles"] or result["upward"] or result["forbidden"] or
+                result.get("against_order"))
 
 
 def print_unit(unit, result, out):
-    cycles, upward = result["cycles"], result["upward"]
+    cycles, upward, refused = result["cycles"], result["upward"], result["forbidden"]
     against = result.get("against_order", [])
     if not failed(result):
         extra = "; no references into daemon/ or tools/" if result["role"] == "library" else ""
@@ -424,8 +506,9 @@ def print_unit(unit, result, out):
         upward_count = ", %d reference(s) into daemon/ or tools/" % len(upward)
     if "order" in result:
         upward_count += ", %d use(s) against the family order" % len(against)
-    out.write("layering %s: FAIL: %d files, %d cycle(s)%s\n"
-              % (unit, result["files"], len(cycles), upward_count))
+    forbidden_count = ", %d forbidden reference(s)" % len(refused) if refused else ""
+    out.write("layering %s: FAIL: %d files, %d cycle(s)%s%s\n"
+              % (unit, result["files"], len(cycles), upward_count, forbidden_count))
     if against:
         out.write("  family order: %s\n" % result["order"])
     for use in against:
@@ -449,6 +532,10 @@ def print_unit(unit, result, out):
     for ref in upward:
         out.write("  %s references %s (%s): %s\n"
                   % (ref["from"], ref["to"], ref["unit"], " ".join(ref["symbols"])))
+    for ref in refused:
+        what = ["symbols " + " ".join(ref["symbols"])] if ref["symbols"] else []
+        what += ["#include " + " ".join(ref["includes"])] if ref["includes"] else []
+        out.write("  %s must not use %s: %s\n" % (ref["from"], ref["unit"], "; ".join(what)))
 
 
 def main(argv):
@@ -459,10 +546,22 @@ def main(argv):
                         help="check this unit only (repeatable; default: every library "
                              "and daemon unit)")
     parser.add_argument("--root", default=None,
-                        help="the project's source directory, where the includes of a unit "
-                             "with a family order are read (default: not read)")
+                        help="the project's source directory: where the includes of units "
+                             "with a family order or forbidden dependencies are read "
+                             "(default: not read)")
+    parser.add_argument("--forbid", action="append", default=[], metavar="UNIT=OTHER,...",
+                        help="UNIT must not reference OTHER (a unit, or lcm); replaces the "
+                             "built-in table (repeatable)")
     parser.add_argument("--json", action="store_true", help="print the result as JSON")
     args = parser.parse_args(argv)
+    forbidden = None
+    if args.forbid:
+        forbidden = {}
+        for rule in args.forbid:
+            unit, _, others = rule.partition("=")
+            if not unit or not others:
+                parser.error("--forbid %r: expected UNIT=OTHER,..." % rule)
+            forbidden[unit] = tuple(o for o in others.split(",") if o)
     try:
         objs = read_list(args.objects)
         checked = sorted({o.unit for o in objs if o.role in CHECKED_ROLES})
@@ -480,7 +579,7 @@ def main(argv):
         for name in o.defined:
             definers.setdefault(name, []).append(o)
     try:
-        results = {unit: check_unit(unit, objs, definers, args.root)
+        results = {unit: check_unit(unit, objs, definers, forbidden, args.root)
                    for unit in (args.unit or checked)}
     except Fail as e:
         sys.stderr.write("check_layering: %s\n" % e)

@@ -5,10 +5,12 @@ Compiles tiny C files with the project's C compiler into objects laid out as
 CMake lays them out (<dir>/CMakeFiles/<target>.dir/<source>.o), writes an
 object list for them and runs the checker:
   planted  library `lib`: a.c and b.c call each other, c.c calls daemon/ and
-           reads tools/; daemon/: d1.c -> d2.c -> d3.c -> d1.c across two
-           targets. The checker must report exactly these, and nothing about
-           the library `other` that calls `lib`, nor about main.c or tools/.
-  clean    the same files without the back-calls: every unit passes.
+           reads tools/, e.c calls LCM and the library `other` and includes
+           their headers (forbidden with --forbid lib=other,lcm); daemon/:
+           d1.c -> d2.c -> d3.c -> d1.c across two targets. The checker must
+           report exactly these, and nothing about the library `other` that
+           calls `lib`, nor about main.c or tools/.
+  clean    the same files without the back-calls and e.c: every unit passes.
   core     the core's family order (FAMILY_ORDERS in the checker), on files
            laid out as lib/core/src/<family>/: planted, base/ calls map/,
            report/ calls build/build.c (the orchestrator above it), base/'s
@@ -41,8 +43,21 @@ COMMON = [
      "const int t_table[2] = {1, 2};\nint a_fn(int);\nint d1_fn(int);\n"
      "int t_fn(void) { return a_fn(1) + d1_fn(2); }\n"),
 ]
+# Headers e.c includes: an LCM type's and one of the library `other` (below
+# its include/ folder, as the checker looks for a unit's headers).
+HEADERS = [
+    ("include/lcmtypes/meshtopo_mesh_t.h",
+     "typedef struct { int num_verts; } meshtopo_mesh_t;\n"
+     "int meshtopo_mesh_t_encode(void *buf, int offset, int maxlen, const meshtopo_mesh_t *m);\n"),
+    ("other/include/meshtopo/other.h", "int o_fn(void);\n"),
+]
 # A static helper of the same name in two files: local symbols link nothing.
 PLANTED = COMMON + [
+    ("library", "lib", "lib_a", "lib", "src/e.c",
+     "#include \"lcmtypes/meshtopo_mesh_t.h\"\n#include <meshtopo/other.h>\n"
+     "int lcm_publish(void *lcm, const char *channel, const void *data, unsigned size);\n"
+     "int e_fn(void)\n{\n    meshtopo_mesh_t m = {0};\n"
+     "    return lcm_publish(0, \"X\", &m, 0) + meshtopo_mesh_t_encode(0, 0, 0, &m) + o_fn();\n}\n"),
     ("library", "lib", "lib_a", "lib", "src/a.c",
      "int b_fn(int);\nstatic int helper(int x) { return x - 1; }\n"
      "int a_fn(int x) { return x > 0 ? b_fn(helper(x)) : 0; }\n"),
@@ -69,12 +84,15 @@ CLEAN = COMMON + [
 ]
 
 A, B, C = "selftest/lib/src/a.c", "selftest/lib/src/b.c", "selftest/lib/src/c.c"
+E = "selftest/lib/src/e.c"
+FORBID = ("--forbid", "lib=other,lcm")
 D1, D2, D3 = "selftest/daemon/d1.c", "selftest/daemon/d2.c", "selftest/daemon/d3.c"
 T = "selftest/tools/t.c"
 
 
 def no_problem(role, files, links):
-    return {"role": role, "files": files, "links": links, "cycles": [], "upward": []}
+    return {"role": role, "files": files, "links": links, "cycles": [], "upward": [],
+            "forbidden": []}
 
 
 PLANTED_EXPECTED = {
@@ -88,9 +106,10 @@ PLANTED_EXPECTED = {
                       {"from": D3, "to": D1, "symbols": ["d1_fn"]}],
         }],
         "upward": [],
+        "forbidden": [],
     },
     "lib": {
-        "role": "library", "files": 3, "links": 2,
+        "role": "library", "files": 4, "links": 2,
         "cycles": [{
             "files": [A, B],
             "example": [A, B, A],
@@ -99,6 +118,11 @@ PLANTED_EXPECTED = {
         }],
         "upward": [{"from": C, "to": D1, "unit": "daemon", "symbols": ["d_counter", "d_helper"]},
                    {"from": C, "to": T, "unit": "tools", "symbols": ["t_table"]}],
+        "forbidden": [{"from": E, "unit": "lcm",
+                       "symbols": ["lcm_publish", "meshtopo_mesh_t_encode"],
+                       "includes": ["lcmtypes/meshtopo_mesh_t.h"]},
+                      {"from": E, "unit": "other", "symbols": ["o_fn"],
+                       "includes": ["meshtopo/other.h"]}],
     },
     "other": no_problem("library", 1, 0),
 }
@@ -157,8 +181,17 @@ def check(condition, what):
 def build(cc, root, files):
     """Compile files under root; write and return the object list's path."""
     lines = []
+    # Sources below root/selftest, as their names in the object list say, so
+    # that --root root finds them.
+    for path, text in HEADERS:
+        header = os.path.join(root, "selftest", path)
+        os.makedirs(os.path.dirname(header), exist_ok=True)
+        with open(header, "w", encoding="utf-8") as f:
+            f.write(text)
+    includes = ["-I", os.path.join(root, "selftest", "include"),
+                "-I", os.path.join(root, "selftest", "other", "include")]
     for role, unit, target, directory, source, text in files:
-        src = os.path.join(root, "src", directory, source)
+        src = os.path.join(root, "selftest", directory, source)
         # tools/ objects go below a directory named with ": ", which nm's
         # `path: symbol` lines make ambiguous: the checker reads them one by one.
         build_dir = "build: tools" if role == "tools" else "build"
@@ -167,7 +200,8 @@ def build(cc, root, files):
         os.makedirs(os.path.dirname(obj), exist_ok=True)
         with open(src, "w", encoding="utf-8") as f:
             f.write(text)
-        subprocess.run([cc, "-std=c11", "-O0", "-fno-common", "-c", "-o", obj, src], check=True)
+        subprocess.run([cc, "-std=c11", "-O0", "-fno-common", *includes, "-c", "-o", obj, src],
+                       check=True)
         lines.append("\t".join([role, unit, target, "selftest/" + directory, obj]))
     # A target without objects gives an empty path: skipped.
     lines.append("\t".join(["library", "empty", "empty", "selftest/empty", ""]))
@@ -250,8 +284,8 @@ def run(args, list_path, *extra):
     return proc.returncode, proc.stdout, proc.stderr
 
 
-def run_json(args, list_path, name, expected_status, expected):
-    status, out, err = run(args, list_path, "--json")
+def run_json(args, list_path, name, expected_status, expected, *extra):
+    status, out, err = run(args, list_path, "--json", *extra)
     check(status == expected_status,
           "%s: exit status %d (expected %d) %s" % (name, status, expected_status, err.strip()))
     try:
@@ -275,8 +309,24 @@ def main():
 
         check_core(args, tmp)
 
-        run_json(args, planted, "planted", 1, PLANTED_EXPECTED)
-        run_json(args, clean, "clean", 0, CLEAN_EXPECTED)
+        planted_root = os.path.join(tmp, "planted")
+        run_json(args, planted, "planted", 1, PLANTED_EXPECTED, *FORBID, "--root", planted_root)
+        run_json(args, clean, "clean", 0, CLEAN_EXPECTED, *FORBID, "--root",
+                 os.path.join(tmp, "clean"))
+        # Without --root only symbols are checked; without --forbid, the
+        # built-in table, which names none of these units.
+        status, out, _ = run(args, planted, "--unit", "lib", *FORBID)
+        print(out, end="")
+        check(status == 1 and "%s must not use lcm: symbols lcm_publish meshtopo_mesh_t_encode\n"
+              % E in out and "%s must not use other: symbols o_fn\n" % E in out,
+              "planted --forbid lib=other,lcm names e.c's symbols, no #include without --root")
+        status, out, _ = run(args, planted, "--unit", "lib", *FORBID, "--root", planted_root)
+        check(status == 1 and "symbols lcm_publish meshtopo_mesh_t_encode; #include "
+              "lcmtypes/meshtopo_mesh_t.h" in out and "forbidden reference(s)" in out,
+              "planted --root names e.c's #include of an LCM type")
+        status, out, _ = run(args, planted, "--unit", "other", "--json", "--root", planted_root)
+        check(status == 0 and json.loads(out)["other"]["forbidden"] == [],
+              "the built-in table forbids nothing to the self-test's units")
 
         # The text report names the files and the symbols that link them.
         status, out, _ = run(args, planted, "--unit", "lib")
