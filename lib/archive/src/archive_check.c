@@ -8,14 +8,13 @@
  *
  * Why a digest and not a comparison with a rebuild: validation proves the
  * arrays are a consistent mesh, not that they are the face list's; only a
- * rebuild or a hash tells that. On a 1M-triangle grid (RelWithDebInfo, page
- * cache warm, medians) a restore costs about 52 ms of which mt_mesh_validate
- * is 31; the digest (arrays, positions, report: 50 MB of XXH3) adds about 3,
- * the daemon's content hash, computed a block at a time from the file
- * (check_hash_stored), about 6, where reading and decoding the whole face
- * list first cost 20 (fresh memory to fault in, and the allocator's
- * reaction); a rebuild with its checks costs about 4 restores. Validation
- * stays: the digest is no signature, and the arrays come from a file. */
+ * rebuild or a hash tells that, and hashing the arrays costs a small part of
+ * a restore where a rebuild with its checks costs several restores
+ * (docs/performance/archive.md, "What a reload's checks cost"). The content
+ * hash is computed a block at a time from the file (check_hash_stored)
+ * rather than from the whole face list read first, which would mean fresh
+ * memory to fault in. Validation stays: the digest is no signature, and the
+ * arrays come from a file. */
 #include <stdlib.h>
 #include <string.h>
 
