@@ -15,7 +15,8 @@ import re
 import sys
 import tempfile
 
-CHECKED = ("tools/cli", "tools/bench", "lib/python/src", "tests/daemon/lcm/meshtopod_*_client.c",
+CHECKED = ("tools/cli", "tools/cli/archive", "tools/bench", "lib/python/src",
+           "tests/daemon/lcm/meshtopod_*_client.c",
            "tests/daemon/lcm/parts_expect.*")
 RAW_LCM_FILES = ("tools/bench/rtt_pingpong.c", "tools/bench/transfer_raw.c",
                  "tools/bench/soak_hostile.c")

@@ -9,7 +9,7 @@ needs a symbol b defines. Four rules, per unit (a library, or daemon/ as one):
              cycle: each unit's file graph must be acyclic, so every file can
              be read, tested and replaced bottom-up;
   upward     a library object references a symbol defined in daemon/ or tools/
-             (role `daemon` or `tools` in the object list);
+             (role `daemon`, `program` or `tools` in the object list);
   forbidden  a unit of FORBIDDEN (or --forbid) references a unit it must not
              stand on, or LCM itself: a symbol defined there, an LCM symbol
              (lcm_*, the generated meshtopo_*_t functions) wherever it is
@@ -29,7 +29,8 @@ from $<TARGET_OBJECTS:...>) has one object per line, tab-separated:
 
     role  unit  target  source-prefix  object-path
 
-role is `library`, `daemon` or `tools`; source-prefix is the target's source
+role is `library`, `daemon`, `program` (a program's part checked on its own,
+such as the CLI's archive commands) or `tools`; source-prefix is the target's source
 directory relative to the project, and the object's path below
 CMakeFiles/<target>.dir/ is its source's path below that directory.
 
@@ -46,11 +47,11 @@ import re
 import subprocess
 import sys
 
-ROLES = ("library", "daemon", "tools")
+ROLES = ("library", "daemon", "program", "tools")
 # Roles whose units are checked for cycles; tools/ is only a forbidden target.
-CHECKED_ROLES = ("library", "daemon")
+CHECKED_ROLES = ("library", "daemon", "program")
 # Roles a library must not reference.
-UPWARD_ROLES = ("daemon", "tools")
+UPWARD_ROLES = ("daemon", "program", "tools")
 # Bookkeeping the sanitizers and the toolchain add to every object: not calls.
 IGNORED_PREFIXES = ("__asan", "___asan", "__odr_asan", "__ubsan", "__sanitizer", "__tsan",
                     "__msan", "__sancov", "__llvm", "__start_", "__stop_")

@@ -9,12 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "archive_common.h"
 #include "cmd_archive.h"
 #include "defect_colors.h"
 #include "meshtopo/geometry.h"
 #include "meshtopo/io.h"
-#include "meshtopo/msgs.h"
-#include "meshtopo/protocol.h"
+#include "meshtopo/mesh_ident.h"
 #include "temp_archive.h"
 #include "vtk_script.h"
 
@@ -171,7 +171,7 @@ int cli_archive_rm(const cli_args *args)
         return CLI_EXIT_USAGE;
     }
     mt_diag diag;
-    if (mt_msgs_mesh_id_check(id, &diag) != MT_OK) {
+    if (mt_mesh_id_check(id, &diag) != MT_OK) {
         cli_error("archive", "rm: %s", diag.message);
         return CLI_EXIT_USAGE;
     }

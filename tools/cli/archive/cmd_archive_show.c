@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "archive_common.h"
 #include "cmd_archive.h"
 #include "inspect.h"
 #include "meshtopo/json_writer.h"

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <time.h>
 
+#include "archive_common.h"
 #include "cmd_archive.h"
 #include "meshtopo/json_writer.h"
 #include "remote.h"

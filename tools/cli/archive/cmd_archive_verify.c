@@ -7,6 +7,7 @@
  * when every file passes. */
 #include <stdio.h>
 
+#include "archive_common.h"
 #include "cmd_archive.h"
 #include "meshtopo/json_writer.h"
 
