@@ -3,7 +3,7 @@
  * resends a request whose attempt timed out (same request id) and completes
  * it after the last attempt. Replies are decoded only with mt_msgs_decode;
  * anything else on the reply channel is counted and dropped. A large answer
- * arrives as reply_part_t pieces: reassembled here (reply_parts.c), its next
+ * arrives as reply_part_t pieces: reassembled here (reply_assembly.c), its next
  * windows and lost parts pulled with reply_pull_t, the query itself sent
  * again only when the daemon stays silent for a whole timeout. */
 #include <errno.h>

@@ -35,7 +35,7 @@ typedef struct mt__transfer {
     int64_t missing_lengths[MESHTOPO_MESH_TRANSFER_T_MISSING_MAX];
 } mt__transfer;
 
-/* A large answer being reassembled from reply_part_t pieces (reply_parts.c). */
+/* A large answer being reassembled from reply_part_t pieces (reply_assembly.c). */
 typedef struct mt__parts {
     uint64_t total, hash; /* of the answer, from its first part */
     uint32_t part_size;
@@ -153,12 +153,12 @@ mt_status mt__client_fail(mt_diag *diag, mt_status status, const char *fmt, ...)
 #endif
     ;
 
-/* Bytes of mesh_t's content fields once encoded (content_hash.c); 0 when a
+/* Bytes of mesh_t's content fields once encoded (submit_content.c); 0 when a
  * count does not fit its int32 field or the message would exceed LCM's limit. */
 uint64_t mt__content_size(const mt_face_list *list);
 
 /* Points m's content fields (num_verts .. face_vertex_indices) at list's
- * arrays (content_hash.c); the list must fit (mt__content_size > 0). */
+ * arrays (submit_content.c); the list must fit (mt__content_size > 0). */
 void mt__mesh_content_of(const mt_face_list *list, meshtopo_mesh_t *m);
 
 /* A new request id (unique within the client). */
@@ -182,7 +182,7 @@ mt_status mt__client_start(mt_client *client, mt__pending *p);
 mt_status mt__client_submit_chunked(mt_client *client, const meshtopo_mesh_t *m,
                                     uint64_t content_hash, mt__pending *p, mt_diag *diag);
 
-/* Reassembly of large answers (reply_parts.c). mt__parts_create checks the
+/* Reassembly of large answers (reply_assembly.c). mt__parts_create checks the
  * first part's header (MT_ERR_INVALID_ARG when it is impossible) and
  * allocates total_size bytes (MT_ERR_NOMEM); it does not add the part. */
 mt_status mt__parts_create(const meshtopo_reply_part_t *part, mt__parts **out_parts);

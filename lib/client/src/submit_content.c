@@ -1,4 +1,5 @@
-/* The content hash of a submitted mesh (msgs/mesh_t.lcm): XXH3-64 over the
+/* A submission's content (msgs/mesh_t.lcm): its encoded size, mesh_t's fields
+ * over a face list's arrays, and its content hash: XXH3-64 over the
  * bytes LCM encodes for mesh_t's content fields, num_verts to
  * face_vertex_indices. mt_client_content_hash gives it straight from a face
  * list, encoding a block at a time instead of the whole mesh. */
