@@ -12,7 +12,8 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "archiver.h"
+#include "archive_catalog.h"
+#include "archive_writer.h"
 #include "clock.h"
 #include "error_log.h"
 #include "handlers.h"
@@ -42,7 +43,9 @@ struct mtd_daemon {
     mtd_store *store;
     mtd_pool *pool;
     mtd_replies *replies;
-    mtd_archiver *archiver;
+    mtd_budget *budget;   /* --memory-budget (0: none) */
+    mtd_catalog *catalog; /* NULL without --archive */
+    mtd_writer *writer;   /* NULL without --archive */
     mtd_admission *admission;
     mtd_submitter *submitter;
     mtd_transfers *transfers;
@@ -73,6 +76,65 @@ static mt_status name_channels(mtd_daemon *d, mt_diag *diag)
 }
 
 /* Creates the modules, each after those it uses. */
+/* Loads every version the catalog keeps through the store, until the
+ * memory budget is reached (--preload). */
+static void preload(mtd_daemon *d)
+{
+    mtd_store_listing *listing = NULL;
+    if (mtd_store_list(d->store, &listing) != MT_OK) return;
+    size_t loaded = 0, kept = mtd_catalog_count(d->catalog);
+    const uint64_t budget = mtd_budget_bytes(d->budget);
+    for (size_t i = 0; i < listing->num_ids; i++) {
+        const mtd_listed_id *row = &listing->ids[i];
+        for (uint32_t v = 0; v < row->num_versions; v++) {
+            mtd_store_totals totals;
+            mtd_store_get_totals(d->store, &totals);
+            if (budget && totals.memory_bytes >= budget) goto done;
+            mtd_mesh_entry *entry = NULL;
+            mt_diag load_diag;
+            mtd_fetch_result r = mtd_store_fetch(d->store, row->id, row->versions[v].version, true,
+                                                 &entry, &load_diag);
+            if (r == MTD_FETCH_LOAD_FAILED) {
+                char text[MTD_ERROR_MAX];
+                snprintf(text, sizeof text, "archive_load: %.400s", load_diag.message);
+                mtd_error_log_note(d->errors, text);
+            }
+            if (r != MTD_FETCH_OK) continue;
+            mtd_entry_release(entry);
+            loaded++;
+        }
+    }
+done:
+    mtd_store_listing_free(listing);
+    mtd_store_trim(d->store);
+    mtd_log(MTD_LOG_INFO, "preload", "loaded=%zu of %zu", loaded, kept);
+}
+
+/* --archive DIR: the catalog (the store's backing) and the writer (its
+ * archiving policy), then --preload. */
+static mt_status open_archive(mtd_daemon *d, mt_diag *diag)
+{
+    const mtd_config *c = &d->config;
+    if (!c->archive_dir[0]) {
+        if (c->memory_budget)
+            mtd_log(MTD_LOG_WARN, "archive",
+                    "--memory-budget without --archive: nothing can be evicted");
+        return MT_OK;
+    }
+    mt_status s = mtd_writer_check_compression(c->archive_compression, diag);
+    if (s == MT_OK) s = mtd_catalog_open(c, d->errors, &d->catalog, diag);
+    if (s == MT_OK) s = mtd_writer_create(c, d->catalog, d->budget, d->errors, &d->writer, diag);
+    if (s != MT_OK) return s;
+    mtd_store_backing backing;
+    mtd_catalog_backing(d->catalog, &backing);
+    mtd_store_set_backing(d->store, &backing);
+    mtd_store_policy policy;
+    mtd_writer_policy(d->writer, &policy);
+    mtd_store_set_policy(d->store, &policy);
+    if (c->preload) preload(d);
+    return MT_OK;
+}
+
 static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
 {
     const mtd_config *c = &d->config;
@@ -88,11 +150,14 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
         mtd_log(MTD_LOG_INFO, "prepared", "faces=%u bytes=%zu ms=%.1f", c->prepare_faces,
                 mtd_workspace_pool_bytes(d->workspaces), (double)(mtd_now_utime() - start) / 1e3);
     }
+    if (mtd_budget_create(c->memory_budget, &d->budget) != MT_OK)
+        return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "memory budget");
     mtd_store_options store_options = {
         .max_versions_per_id = c->max_versions,
         .max_bytes = (size_t)c->max_store_bytes,
         .dispose_mesh = mtd_workspace_recycle_mesh,
         .dispose_mesh_ctx = d->workspaces,
+        .budget = d->budget,
     };
     if (mtd_store_create(&store_options, &d->store) != MT_OK)
         return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "mesh store");
@@ -100,7 +165,7 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
         return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "worker pool");
     if (mtd_replies_create(d->lcm, c->channel_prefix, d->errors, &d->replies) != MT_OK)
         return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "request cache");
-    mt_status s = mtd_archiver_open(c, d->store, d->errors, &d->archiver, diag);
+    mt_status s = open_archive(d, diag);
     if (s != MT_OK) return s;
     mtd_admission_limits limits = {
         .max_store_bytes = c->max_store_bytes,
@@ -114,7 +179,7 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
                               .topology_channel = d->channels[MT_MSGS_CHANNEL_TOPOLOGY],
                               .pool = d->pool,
                               .replies = d->replies,
-                              .archiver = d->archiver,
+                              .catalog = d->catalog,
                               .store = d->store,
                               .admission = d->admission,
                               .workspaces = d->workspaces,
@@ -138,7 +203,7 @@ static mt_status create_modules(mtd_daemon *d, mt_diag *diag)
                                  .transfers = d->transfers,
                                  .queries = d->queries,
                                  .cluster = d->cluster,
-                                 .archiver = d->archiver};
+                                 .catalog = d->catalog};
     if (mtd_handlers_subscribe(&handlers, &d->handlers) != MT_OK)
         return mt_diag_set(diag, MT_ERR_NOMEM, "cannot create the %s", "LCM subscriptions");
     if (mtd_peers_create(d->lcm, d->channels[MT_MSGS_CHANNEL_STATUS], d->instance, d->start_utime,
@@ -216,7 +281,9 @@ void mtd_daemon_heartbeat(mtd_daemon *d)
                                      .handlers = d->handlers,
                                      .submitter = d->submitter,
                                      .transfers = d->transfers,
-                                     .archiver = d->archiver,
+                                     .catalog = d->catalog,
+                                     .writer = d->writer,
+                                     .budget = d->budget,
                                      .cluster = d->cluster};
     mtd_heartbeat_publish(&sources);
 }
@@ -233,7 +300,7 @@ void mtd_daemon_watch_cluster(mtd_daemon *d)
     if (mtd_cluster_refresh(d->cluster, now)) {
         /* Ids gained are served from what their former owner archived; the
          * rescan runs before this thread handles another request. */
-        size_t found = mtd_archiver_rescan(d->archiver);
+        size_t found = mtd_catalog_rescan(d->catalog);
         size_t dropped = mtd_store_remove_unless(d->store, owned, d->cluster);
         mtd_cluster_view view;
         mtd_cluster_get_view(d->cluster, &view);
@@ -246,7 +313,7 @@ void mtd_daemon_watch_cluster(mtd_daemon *d)
         d->second_rescan_us = now + mtd_cluster_expiry_us(d->config.heartbeat_ms);
     } else if (d->second_rescan_us && now >= d->second_rescan_us) {
         d->second_rescan_us = 0;
-        mtd_archiver_rescan(d->archiver);
+        mtd_catalog_rescan(d->catalog);
     }
 }
 
@@ -254,6 +321,8 @@ void mtd_daemon_tick(mtd_daemon *d)
 {
     mtd_transfers_expire(d->transfers);
     mtd_replies_expire(d->replies);
+    /* Versions the async writer archived since may now be dropped. */
+    mtd_store_trim(d->store);
 #ifdef __GLIBC__
     /* Memory freed after a burst (answers of a query flood, decoded
      * messages) stays in malloc's arenas otherwise: give it back. */
@@ -271,7 +340,7 @@ void mtd_daemon_stop(mtd_daemon *d)
     d->peers = NULL;
     if (d->transfers) mtd_transfers_stop(d->transfers);
     if (d->pool) mtd_pool_shutdown(d->pool, MTD_SHUTDOWN_CANCEL);
-    mtd_archiver_stop(d->archiver);
+    mtd_writer_stop(d->writer);
 }
 
 void mtd_daemon_destroy(mtd_daemon *d)
@@ -284,9 +353,11 @@ void mtd_daemon_destroy(mtd_daemon *d)
     mtd_transfers_destroy(d->transfers);
     mtd_submitter_destroy(d->submitter);
     mtd_admission_destroy(d->admission);
-    mtd_archiver_destroy(d->archiver);
+    mtd_writer_destroy(d->writer);
     mtd_replies_destroy(d->replies);
-    mtd_store_destroy(d->store); /* its meshes go to the workspace pool: destroyed next */
+    mtd_store_destroy(d->store);     /* its meshes go to the workspace pool: destroyed next */
+    mtd_catalog_destroy(d->catalog); /* the store's backing: after the store */
+    mtd_budget_destroy(d->budget);
     mtd_workspace_pool_destroy(d->workspaces);
     mtd_content_pool_destroy(d->contents);
     mtd_error_log_destroy(d->errors);

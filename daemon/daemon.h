@@ -1,7 +1,8 @@
 /* meshtopod's lifecycle: creates its modules in dependency order and wires
- * them (config, error log, kept buffers, store, worker pool, replies,
- * archiver, submitter, transfers, queries, LCM handlers, heartbeat), runs the
- * periodic tick, stops and destroys them in reverse. Each module owns its
+ * them (config, error log, kept buffers, memory budget, store, worker pool,
+ * replies, archive catalog and writer, submitter, transfers, queries, LCM
+ * handlers, heartbeat), runs the periodic tick, stops and destroys them in
+ * reverse. Each module owns its
  * state; this file owns only the modules. Called from the thread that runs
  * LCM (main.c, or a test's). */
 #ifndef MESHTOPOD_DAEMON_H

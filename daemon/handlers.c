@@ -114,7 +114,7 @@ static void on_topology(const lcm_recv_buf_t *rbuf, const char *channel, void *u
         return;
     if (t.version > 0 && mt_msgs_mesh_id_check(t.mesh_id, NULL) == MT_OK &&
         mtd_cluster_owns(h->deps.cluster, t.mesh_id))
-        mtd_archiver_learn(h->deps.archiver, t.mesh_id, (uint32_t)t.version);
+        mtd_catalog_learn(h->deps.catalog, t.mesh_id, (uint32_t)t.version);
     meshtopo_topology_t_decode_cleanup(&t);
 }
 

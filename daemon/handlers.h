@@ -6,7 +6,7 @@
  * queries, pulls of large answers to the replies. In a cluster, a submission
  * or query of a mesh id another member owns is left to it (cluster.h), and
  * the TOPOLOGY broadcasts of the other members are read too: a version
- * announced for an id this member owns now goes to the archiver's catalog.
+ * announced for an id this member owns now goes to the archive's catalog.
  * Runs on the LCM thread. */
 #ifndef MESHTOPOD_HANDLERS_H
 #define MESHTOPOD_HANDLERS_H
@@ -14,7 +14,7 @@
 #include <lcm/lcm.h>
 #include <stdint.h>
 
-#include "archiver.h"
+#include "archive_catalog.h"
 #include "cluster.h"
 #include "query_route.h"
 #include "reply.h"
@@ -30,8 +30,8 @@ typedef struct mtd_handler_deps {
     mtd_submitter *submitter;
     mtd_transfers *transfers;
     mtd_queries *queries;
-    mtd_cluster *cluster;   /* NULL without --cluster */
-    mtd_archiver *archiver; /* told of versions other members announce */
+    mtd_cluster *cluster; /* NULL without --cluster */
+    mtd_catalog *catalog; /* told of versions other members announce; NULL without */
 } mtd_handler_deps;
 
 typedef struct mtd_handlers mtd_handlers;

@@ -68,7 +68,13 @@ void mtd_heartbeat_publish(const mtd_heartbeat_sources *src)
     st.transfers_completed = transfers.completed;
     st.transfers_expired = transfers.expired;
     st.transfers_refused = transfers.refused;
-    mtd_archiver_stats(src->archiver, &st);
+    st.memory_budget = (int64_t)mtd_budget_bytes(src->budget);
+    if (src->catalog) {
+        st.archive_errors = 0;
+        mtd_catalog_stats(src->catalog, &st);
+        mtd_writer_stats(src->writer, &st);
+        st.archive_evictions = mtd_budget_evictions(src->budget);
+    }
     st.cluster = "";
     if (src->cluster) {
         mtd_cluster_view view;

@@ -7,11 +7,13 @@
 #include <lcm/lcm.h>
 #include <stdint.h>
 
-#include "archiver.h"
+#include "archive_catalog.h"
+#include "archive_writer.h"
 #include "cluster.h"
 #include "config.h"
 #include "error_log.h"
 #include "handlers.h"
+#include "memory_budget.h"
 #include "mesh_store.h"
 #include "reply.h"
 #include "submit.h"
@@ -42,7 +44,9 @@ typedef struct mtd_heartbeat_sources {
     mtd_handlers *handlers;
     mtd_submitter *submitter;
     mtd_transfers *transfers;
-    mtd_archiver *archiver;
+    mtd_catalog *catalog; /* NULL without --archive */
+    mtd_writer *writer;   /* NULL without --archive */
+    mtd_budget *budget;
     mtd_cluster *cluster; /* NULL without --cluster */
 } mtd_heartbeat_sources;
 

@@ -16,10 +16,12 @@
  * dropped, so nobody holds the lock long enough for shared reading to pay;
  * glibc's rwlock costs more per acquisition and, preferring readers, lets a
  * steady stream of queries starve add and remove. Any thread: the LCM
- * thread fetches for queries, workers add built and loaded meshes, the
- * archive writer evicts; the backing is called outside the lock. */
+ * thread fetches for queries, workers put built meshes and load kept ones,
+ * the daemon's tick trims; the policy, the backing and the budget are called
+ * outside the lock. */
 #include "mesh_store.h"
 
+#include <inttypes.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdatomic.h>
@@ -27,6 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "log.h"
 #include "meshtopo/report.h"
 
 struct mtd_mesh_entry {
@@ -59,6 +62,7 @@ struct mtd_store {
     size_t cap_slots;
     mtd_store_totals totals;
     mtd_store_backing backing; /* all NULL without one */
+    mtd_store_policy policy;   /* all NULL without one */
 };
 
 /* ---- mesh ids ------------------------------------------------------------ */
@@ -371,6 +375,7 @@ mt_status mtd_store_add(mtd_store *store, const char *id, mt_mesh *mesh, const m
     store->totals.memory_bytes += entry->info.memory_bytes;
     pthread_mutex_unlock(&store->lock);
 
+    if (dropped) mtd_budget_forget(store->options.budget, dropped->info.id, dropped->info.version);
     mtd_entry_release(dropped);
     if (out_version) *out_version = version;
     if (out_entry) *out_entry = entry;
@@ -472,6 +477,7 @@ mt_status mtd_store_remove(mtd_store *store, const char *id, uint32_t version, m
                  (unsigned)version, id);
         return MT_ERR_NOT_FOUND;
     }
+    mtd_budget_forget(store->options.budget, id, version);
     mtd_entry_release(entry); /* the store's reference; the mesh lives on while held */
     if (diag) mt_diag_clear(diag);
     return MT_OK;
@@ -501,7 +507,10 @@ size_t mtd_store_remove_unless(mtd_store *store, bool (*keep)(void *ctx, const c
     }
     pthread_mutex_unlock(&store->lock);
     /* The store's references; queries holding an entry keep it. */
-    for (size_t i = 0; i < n; i++) mtd_entry_release(dropped[i]);
+    for (size_t i = 0; i < n; i++) {
+        mtd_budget_forget(store->options.budget, dropped[i]->info.id, dropped[i]->info.version);
+        mtd_entry_release(dropped[i]);
+    }
     free(dropped);
     return n;
 }
@@ -595,6 +604,94 @@ void mtd_store_listing_free(mtd_store_listing *listing)
     free(listing);
 }
 
+/* ---- the policy and the budget ----------------------------------------- */
+
+void mtd_store_set_policy(mtd_store *store, const mtd_store_policy *policy)
+{
+    store->policy = *policy;
+}
+
+size_t mtd_store_trim(mtd_store *store)
+{
+    mtd_budget *budget = store->options.budget;
+    size_t dropped = 0;
+    if (!mtd_budget_bytes(budget)) return 0;
+    for (;;) {
+        mtd_store_totals totals;
+        mtd_store_get_totals(store, &totals);
+        if (!mtd_budget_over(budget, totals.memory_bytes)) return dropped;
+        char id[MESHTOPO_MESH_T_MESH_ID_MAX + 1];
+        uint32_t version;
+        if (!mtd_budget_pick(budget, id, sizeof id, &version))
+            return dropped; /* nothing kept is in memory: the rest stays */
+        if (mtd_store_remove(store, id, version, NULL) == MT_OK) {
+            mtd_budget_count_eviction(budget);
+            dropped++;
+            mtd_log(MTD_LOG_DEBUG, "evicted", "mesh_id=%s version=%" PRIu32, id, version);
+        }
+    }
+}
+
+mt_status mtd_store_put(mtd_store *store, const char *id, mt_mesh *mesh, const mtd_mesh_meta *meta,
+                        const mt_face_list *list, uint32_t *out_version, mtd_mesh_entry **out_entry,
+                        bool *out_by_policy, mt_diag *diag)
+{
+    if (out_by_policy) *out_by_policy = false;
+    if (out_version) *out_version = 0;
+    if (out_entry) *out_entry = NULL;
+    static const mtd_mesh_meta no_meta;
+    if (!meta) meta = &no_meta;
+    mt_status s = mt_msgs_mesh_id_check(id, diag);
+    if (s != MT_OK) return s;
+    mtd_mesh_meta m = *meta;
+    m.version = 0;
+    m.reserved = false;
+    /* Numbered after what the backing keeps (an archive listed at start,
+     * versions other members of a cluster wrote). */
+    uint32_t kept = store->backing.highest ? store->backing.highest(store->backing.ctx, id) : 0;
+    if (kept) {
+        s = mtd_store_reserve_version(store, id, kept, NULL, diag);
+        if (s != MT_OK) return s;
+    }
+    bool admitted = false;
+    if (store->policy.admit) {
+        /* Durable first, under a reserved number: nobody sees the version
+         * before the policy kept it. A refusal leaves a gap. */
+        s = mtd_store_reserve_version(store, id, 0, &m.version, diag);
+        if (s != MT_OK) return s;
+        mtd_mesh_info info = {.id = id,
+                              .version = m.version,
+                              .source = m.source ? m.source : "",
+                              .utime = m.utime,
+                              .content_hash = m.content_hash};
+        s = store->policy.admit(store->policy.ctx, &info, list, mesh, &m.version, diag);
+        if (s != MT_OK) {
+            if (out_by_policy) *out_by_policy = true;
+            return s;
+        }
+        m.reserved = true;
+        admitted = true;
+    }
+    mtd_mesh_entry *entry = NULL;
+    uint32_t version = 0;
+    s = mtd_store_add(store, id, mesh, &m, &version, &entry, diag);
+    if (s != MT_OK) {
+        /* Not acknowledged, so not kept: a restart must not serve it. */
+        if (admitted && store->policy.withdraw)
+            store->policy.withdraw(store->policy.ctx, id, m.version);
+        return s;
+    }
+    if (admitted) mtd_budget_track(store->options.budget, id, version);
+    if (store->policy.on_added) store->policy.on_added(store->policy.ctx, entry, list);
+    mtd_store_trim(store);
+    if (out_version) *out_version = version;
+    if (out_entry)
+        *out_entry = entry;
+    else
+        mtd_entry_release(entry);
+    return MT_OK;
+}
+
 /* ---- the backing --------------------------------------------------------- */
 
 void mtd_store_set_backing(mtd_store *store, const mtd_store_backing *backing)
@@ -602,16 +699,50 @@ void mtd_store_set_backing(mtd_store *store, const mtd_store_backing *backing)
     store->backing = *backing;
 }
 
-/* mtd_store_acquire, telling the backing what was fetched. */
+/* mtd_store_acquire, noting the use for the budget. */
 static mtd_fetch_result acquire_held(mtd_store *store, const char *id, uint32_t version,
                                      mtd_mesh_entry **out_entry, mt_diag *diag)
 {
     mt_status s = mtd_store_acquire(store, id, version, out_entry, diag);
     if (s == MT_ERR_INVALID_ARG) return MTD_FETCH_BAD_ID;
     if (s != MT_OK) return MTD_FETCH_NOT_HELD;
-    if (store->backing.fetched)
-        store->backing.fetched(store->backing.ctx, id, mtd_entry_info(*out_entry)->version);
+    mtd_budget_touch(store->options.budget, id, mtd_entry_info(*out_entry)->version);
     return MTD_FETCH_OK;
+}
+
+/* Adds (id, version) as the backing reads it. MT_OK also when it is held
+ * already (a concurrent load got there first). */
+static mt_status load_kept(mtd_store *store, const char *id, uint32_t version, mt_diag *diag)
+{
+    const mtd_store_backing *b = &store->backing;
+    mtd_mesh_entry *held = NULL;
+    if (mtd_store_acquire(store, id, version, &held, NULL) == MT_OK) {
+        mtd_entry_release(held);
+        return MT_OK;
+    }
+    /* Its number was handed out: never again, even when the backing then
+     * stops keeping it (a file that fails its checks is set aside). */
+    mt_status s = mtd_store_reserve_version(store, id, version, NULL, diag);
+    if (s != MT_OK) return s;
+    mt_mesh *mesh = NULL;
+    mtd_mesh_meta meta;
+    memset(&meta, 0, sizeof meta);
+    s = b->load(b->ctx, id, version, &mesh, &meta, diag);
+    if (s != MT_OK) return s;
+    /* Reserved: its number was handed out before. */
+    meta.version = version;
+    meta.reserved = true;
+    s = mtd_store_add(store, id, mesh, &meta, NULL, NULL, diag);
+    free((char *)meta.source);
+    if (s != MT_OK) {
+        mt_mesh_destroy(mesh);
+        if (mtd_store_acquire(store, id, version, &held, NULL) == MT_OK) {
+            mtd_entry_release(held);
+            return MT_OK;
+        }
+    }
+    if (b->loaded) b->loaded(b->ctx, id, version, s, diag);
+    return s;
 }
 
 mtd_fetch_result mtd_store_fetch(mtd_store *store, const char *id, uint32_t version, bool may_load,
@@ -626,7 +757,7 @@ mtd_fetch_result mtd_store_fetch(mtd_store *store, const char *id, uint32_t vers
         mtd_mesh_entry *latest = NULL;
         if (mtd_store_acquire(store, id, 0, &latest, NULL) == MT_OK &&
             mtd_entry_info(latest)->version >= kept) {
-            b->fetched(b->ctx, id, mtd_entry_info(latest)->version);
+            mtd_budget_touch(store->options.budget, id, mtd_entry_info(latest)->version);
             *out_entry = latest;
             if (diag) mt_diag_clear(diag);
             return MTD_FETCH_OK;
@@ -640,7 +771,15 @@ mtd_fetch_result mtd_store_fetch(mtd_store *store, const char *id, uint32_t vers
         mtd_fetch_result r = acquire_held(store, id, version, out_entry, diag);
         if (r != MTD_FETCH_NOT_HELD || version == 0 || !b->keeps(b->ctx, id, version)) return r;
         if (!may_load) return MTD_FETCH_NEEDS_LOAD;
-        if (b->load(b->ctx, id, version, diag) != MT_OK) return MTD_FETCH_LOAD_FAILED;
+        if (load_kept(store, id, version, diag) != MT_OK) return MTD_FETCH_LOAD_FAILED;
+        r = acquire_held(store, id, version, out_entry, diag);
+        if (r == MTD_FETCH_OK) {
+            /* Held by this query first, so a budget smaller than the mesh
+             * still answers it. */
+            mtd_budget_track(store->options.budget, id, version);
+            mtd_store_trim(store);
+            return r;
+        }
     }
     return acquire_held(store, id, version, out_entry, diag);
 }

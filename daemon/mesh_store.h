@@ -3,7 +3,14 @@
  * content hash and memory size). A query acquires an entry and may keep using
  * it while newer versions are added or the entry is removed; the mesh is freed
  * on the last release. Thread safe; meshes are built before they are added,
- * never under the store's lock. */
+ * never under the store's lock.
+ *
+ * The store is the one way in and out of held versions. Two hooks are
+ * installed into it and only called by it, never calling its add back: an
+ * archiving policy (mtd_store_policy), told of every new version (before it
+ * is visible, to make it durable; after, to queue it), and a backing
+ * (mtd_store_backing), which hands over a version it keeps for the store to
+ * add under its own rules (the memory budget, memory_budget.h). */
 #ifndef MESHTOPOD_MESH_STORE_H
 #define MESHTOPOD_MESH_STORE_H
 
@@ -11,6 +18,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "memory_budget.h"
+#include "meshtopo/face_list.h"
 #include "meshtopo/mesh.h"
 #include "meshtopo/protocol.h"
 #include "meshtopo/status.h"
@@ -59,6 +68,10 @@ typedef struct mtd_store_options {
     void *on_entry_free_ctx;
     mtd_mesh_dispose_fn dispose_mesh; /* optional; NULL: mt_mesh_destroy */
     void *dispose_mesh_ctx;
+    /* Optional, not owned: versions the backing keeps are dropped from
+     * memory, least recently used first, while the store holds more than it
+     * (mtd_store_trim); a query loads them again through the backing. */
+    mtd_budget *budget;
 } mtd_store_options;
 
 typedef struct mtd_store mtd_store;
@@ -170,20 +183,25 @@ mt_status mtd_store_list(mtd_store *store, mtd_store_listing **out_listing);
 /* NULL-safe. */
 void mtd_store_listing_free(mtd_store_listing *listing);
 
-/* Where versions the store does not hold are kept (meshtopod: the archive),
- * so a query can be served from it. The store calls these outside its lock,
- * from whichever thread fetches; they may call the store back. */
+/* Where versions the store does not hold are kept (meshtopod: the archive's
+ * catalog), so a query can be served from it. The store calls these outside
+ * its lock, from whichever thread fetches; they never call the store: a
+ * version is loaded by handing its mesh to the store, which adds it. */
 typedef struct mtd_store_backing {
     void *ctx;
-    /* The highest version of id it keeps, 0 if none. */
+    /* The highest version of id it keeps, 0 if none: new versions of id are
+     * numbered after it. */
     uint32_t (*highest)(void *ctx, const char *id);
     /* Whether it keeps (id, version). */
     bool (*keeps)(void *ctx, const char *id, uint32_t version);
-    /* Adds (id, version) to the store (mtd_store_add with meta.reserved).
-     * MT_OK also when it is held already; otherwise diag says why. */
-    mt_status (*load)(void *ctx, const char *id, uint32_t version, mt_diag *diag);
-    /* (id, version) was just fetched: recently used, held. */
-    void (*fetched)(void *ctx, const char *id, uint32_t version);
+    /* Reads (id, version): *out_mesh (the caller's), and *out_meta's source
+     * (malloc'd: the caller frees it), utime and content hash. Otherwise
+     * diag says why, as the query that asked is answered. */
+    mt_status (*load)(void *ctx, const char *id, uint32_t version, mt_mesh **out_mesh,
+                      mtd_mesh_meta *out_meta, mt_diag *diag);
+    /* What became of a version load read: MT_OK (held now), or the store's
+     * refusal (diag, which it may reword for the query). */
+    void (*loaded)(void *ctx, const char *id, uint32_t version, mt_status status, mt_diag *diag);
     /* *out: `held` (the store's snapshot) merged with what it keeps, as one
      * listing in the same order; free with mtd_store_listing_free. */
     mt_status (*list)(void *ctx, const mtd_store_listing *held, mtd_store_listing **out);
@@ -192,6 +210,45 @@ typedef struct mtd_store_backing {
 /* Installs a backing (copied; every member set). Call before other threads
  * use the store. */
 void mtd_store_set_backing(mtd_store *store, const mtd_store_backing *backing);
+
+/* How new versions are archived (meshtopod: the archive writer). The store
+ * notifies it; it never calls the store. Every member may be NULL. */
+typedef struct mtd_store_policy {
+    void *ctx;
+    /* Before a new version is visible (sync archiving): makes it durable.
+     * info->version is the number the store reserved; *io_version may be
+     * raised to the one it was kept under (a shared directory numbers it).
+     * MT_OK: kept by the backing from now on, so the memory budget may drop
+     * it. Otherwise the version is not added and diag says why. */
+    mt_status (*admit)(void *ctx, const mtd_mesh_info *info, const mt_face_list *list,
+                       const mt_mesh *mesh, uint32_t *io_version, mt_diag *diag);
+    /* An admitted version the store then refused: undo what admit kept. */
+    void (*withdraw)(void *ctx, const char *id, uint32_t version);
+    /* Once per new version, after it is visible (async archiving queues it
+     * here; it may retain the entry). May wait (a full queue). */
+    void (*on_added)(void *ctx, mtd_mesh_entry *entry, const mt_face_list *list);
+} mtd_store_policy;
+
+/* Installs an archiving policy (copied). Call before other threads use the
+ * store. */
+void mtd_store_set_policy(mtd_store *store, const mtd_store_policy *policy);
+
+/* Adds a freshly built mesh as the next version of id (numbered after every
+ * version held or kept by the backing), through the archiving policy: its
+ * admit before the version is visible, its on_added after, each handed
+ * `list` (the face list mesh was built from; not kept). meta->version and
+ * meta->reserved are ignored. Then keeps the store within its memory
+ * budget. On MT_OK as mtd_store_add. Otherwise nothing is added (the caller
+ * keeps mesh) and *out_by_policy (may be NULL) tells whether the policy's
+ * admit refused it (diag says why) rather than the store. */
+mt_status mtd_store_put(mtd_store *store, const char *id, mt_mesh *mesh, const mtd_mesh_meta *meta,
+                        const mt_face_list *list, uint32_t *out_version, mtd_mesh_entry **out_entry,
+                        bool *out_by_policy, mt_diag *diag);
+
+/* Drops versions the budget lets go (least recently used first) until the
+ * store holds no more than the budget or none is left to drop. Returns how
+ * many were dropped. Nothing without a budget. */
+size_t mtd_store_trim(mtd_store *store);
 
 /* What mtd_store_fetch found. */
 typedef enum mtd_fetch_result {
@@ -202,11 +259,12 @@ typedef enum mtd_fetch_result {
     MTD_FETCH_LOAD_FAILED, /* kept, but the backing could not load it (diag) */
 } mtd_fetch_result;
 
-/* Acquires version `version` of id for a query. Version 0 means the highest
- * version held or kept by the backing. A version the backing keeps but the
- * store does not hold is loaded through the backing when may_load (on this
- * thread: it can take as long as reading a file), else MTD_FETCH_NEEDS_LOAD.
- * Without a backing, mtd_store_acquire. */
+/* Acquires version `version` of id for a query (it counts as used for the
+ * memory budget). Version 0 means the highest version held or kept by the
+ * backing. A version the backing keeps but the store does not hold is read
+ * through the backing's load and added when may_load (on this thread: it can
+ * take as long as reading a file), then the store is trimmed to its budget;
+ * else MTD_FETCH_NEEDS_LOAD. Without a backing, mtd_store_acquire. */
 mtd_fetch_result mtd_store_fetch(mtd_store *store, const char *id, uint32_t version, bool may_load,
                                  mtd_mesh_entry **out_entry, mt_diag *diag);
 

@@ -1,7 +1,8 @@
 /* meshtopod's submissions (submit.h): a decoded mesh_t is checked field by
  * field (mesh id, counts against each other and against the configured
  * limits) on the LCM thread, then built on a worker with the kept build
- * workspace, stored through the archiver, and only then acknowledged (ack_t
+ * workspace, put into the store (which has it archived as its policy says),
+ * and only then acknowledged (ack_t
  * with the topology report) and announced on PREFIX+"TOPOLOGY", from the
  * worker. Defects (bad indices, NaN positions, non-manifold spots) are not
  * errors: the core build reports them, and a strict submission is refused
@@ -236,9 +237,22 @@ static void build_job(void *arg, bool cancelled)
     /* Stored, and in sync archive mode archived, before it is acknowledged. */
     uint32_t version = 0;
     mtd_mesh_entry *entry = NULL;
-    int32_t code = mtd_archiver_store(sub->deps.archiver, m, &list, mesh, job->content_hash,
-                                      &version, &entry, error, sizeof error);
-    if (code != MESHTOPO_STATUS_CODE_T_OK) {
+    mtd_mesh_meta meta = {
+        .source = m->source, .utime = m->utime, .content_hash = job->content_hash};
+    bool by_policy = false;
+    s = mtd_store_put(sub->deps.store, m->mesh_id, mesh, &meta, &list, &version, &entry, &by_policy,
+                      &diag);
+    if (s != MT_OK) {
+        int32_t code;
+        if (by_policy) {
+            snprintf(error, sizeof error, "not archived, so not stored: %.400s", diag.message);
+            code = s == MT_ERR_TOO_LARGE ? MESHTOPO_STATUS_CODE_T_TOO_LARGE
+                                         : MESHTOPO_STATUS_CODE_T_ARCHIVE_FAILED;
+        } else {
+            snprintf(error, sizeof error, "not stored: %.400s", diag.message);
+            code = s == MT_ERR_TOO_LARGE ? MESHTOPO_STATUS_CODE_T_TOO_LARGE
+                                         : MESHTOPO_STATUS_CODE_T_INTERNAL;
+        }
         mtd_workspace_recycle_mesh(sub->deps.workspaces, mesh);
         mtd_reply_ack_error(replies, m->reply_channel, m->request_id, m->mesh_id, true, code,
                             error);
@@ -294,7 +308,7 @@ static void submit(mtd_submitter *sub, meshtopo_mesh_t *msg, void *content, size
     mtd_store_totals held;
     mtd_store_get_totals(sub->deps.store, &held);
     status = mtd_admission_take(sub->deps.admission, msg->reply_channel, &cost, held.memory_bytes,
-                                mtd_archiver_bytes(sub->deps.archiver), error, sizeof error);
+                                mtd_catalog_bytes(sub->deps.catalog), error, sizeof error);
     if (status != MESHTOPO_STATUS_CODE_T_OK) {
         /* TOO_LARGE stays true for this request; BUSY may pass on a retry. */
         bool lasting = status == MESHTOPO_STATUS_CODE_T_TOO_LARGE;

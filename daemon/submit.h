@@ -1,8 +1,8 @@
 /* meshtopod's submissions: a decoded mesh_t (whole, or reassembled from
  * chunks by transfer.c) is checked field by field and admitted by its cost
  * (admission.h), built on the worker pool
- * so the LCM thread keeps answering queries, stored (and archived) through
- * the archiver, and only then acknowledged (ack_t with the topology report)
+ * so the LCM thread keeps answering queries, put into the store (which has
+ * it archived as its policy says), and only then acknowledged (ack_t with the topology report)
  * and announced on PREFIX+"TOPOLOGY". Handles arrive on the LCM thread;
  * builds, stores and acks run on build workers. */
 #ifndef MESHTOPOD_SUBMIT_H
@@ -13,7 +13,7 @@
 #include <stdint.h>
 
 #include "admission.h"
-#include "archiver.h"
+#include "archive_catalog.h"
 #include "config.h"
 #include "content_pool.h"
 #include "meshtopo/msgs.h"
@@ -29,8 +29,8 @@ typedef struct mtd_submit_deps {
     const char *topology_channel;
     mtd_pool *pool;
     mtd_replies *replies;
-    mtd_archiver *archiver;
-    mtd_store *store;         /* what it holds, for admission */
+    mtd_catalog *catalog;     /* the archive's bytes, for admission; NULL without */
+    mtd_store *store;         /* where built meshes go; what it holds, for admission */
     mtd_admission *admission; /* checked before a build is queued */
     mtd_workspace_pool *workspaces;
     mtd_content_pool *contents;
