@@ -265,12 +265,23 @@ static void build_job(void *arg, bool cancelled)
             " defects=%zu build_us=%" PRId64,
             m->mesh_id, version, m->source, mt_mesh_num_verts(held), mt_mesh_num_faces(held),
             mt_mesh_report(held)->num_defects, duration);
-    if (mtd_topology_fill(held, mtd_entry_info(entry), duration, MTD_TOPOLOGY_LIST_MAX,
-                          &topology) == 0) {
-        /* Announced before it is acknowledged: another member of a cluster
-         * that owns the id now hears of the version before the sender can
-         * ask it for the version (handlers.c). */
-        broadcast_topology(sub, held, mtd_entry_info(entry), duration, &topology);
+    /* The report is a copy: nothing below needs the entry. */
+    const bool have_report = mtd_topology_fill(held, mtd_entry_info(entry), duration,
+                                               MTD_TOPOLOGY_LIST_MAX, &topology) == 0;
+    /* Announced before it is acknowledged: another member of a cluster that
+     * owns the id now hears of the version before the sender can ask it for
+     * the version (handlers.c). */
+    if (have_report) broadcast_topology(sub, held, mtd_entry_info(entry), duration, &topology);
+    /* This worker's reference goes before the ack: once the sender hears of
+     * the version, only the store (queries, the async writer's queue) holds
+     * it, so when the store drops it for a later version, that put frees it
+     * and its arrays are back in the kept workspace before the later
+     * version is acknowledged. Released after the ack, a worker preempted
+     * between the two freed it on its own time, after the next ack. */
+    mtd_entry_release(entry);
+    entry = NULL;
+    held = NULL;
+    if (have_report) {
         send_ack_with_report(sub, m, MESHTOPO_STATUS_CODE_T_OK, "", (int32_t)version,
                              job->content_hash, &topology);
         mtd_topology_free(&topology);
@@ -287,7 +298,6 @@ static void build_job(void *arg, bool cancelled)
         mtd_reply_send(replies, m->reply_channel, m->request_id, true, &mt_msgs_type_ack, &ack,
                        MESHTOPO_STATUS_CODE_T_OK, "");
     }
-    mtd_entry_release(entry);
     free_job(job);
 }
 
