@@ -53,9 +53,7 @@ static void count_error(mtd_catalog *a, const char *what, const char *message)
 static void note_error(mtd_catalog *a, const char *what, const char *message)
 {
     count_error(a, what, message);
-    char text[MTD_ERROR_MAX];
-    snprintf(text, sizeof text, "%.40s: %.400s", what, message);
-    mtd_error_log_note(a->error_log, text);
+    mtd_error_log_note_event(a->error_log, what, message);
 }
 
 /* ---- the catalog (caller holds a->lock unless said) ----------------------- */

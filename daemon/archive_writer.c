@@ -56,9 +56,7 @@ static void count_error(mtd_writer *a, const char *what, const char *message)
 static void note_error(mtd_writer *a, const char *what, const char *message)
 {
     count_error(a, what, message);
-    char text[MTD_ERROR_MAX];
-    snprintf(text, sizeof text, "%.40s: %.400s", what, message);
-    mtd_error_log_note(a->error_log, text);
+    mtd_error_log_note_event(a->error_log, what, message);
 }
 
 /* Version numbers tried when the archive's names for them are taken. */

@@ -38,6 +38,13 @@ void mtd_error_log_note(mtd_error_log *log, const char *text)
     pthread_mutex_unlock(&log->lock);
 }
 
+void mtd_error_log_note_event(mtd_error_log *log, const char *what, const char *message)
+{
+    char text[MTD_ERROR_MAX];
+    snprintf(text, sizeof text, "%.40s: %.400s", what, message);
+    mtd_error_log_note(log, text);
+}
+
 void mtd_error_log_get(mtd_error_log *log, mtd_error_summary *out_summary)
 {
     pthread_mutex_lock(&log->lock);

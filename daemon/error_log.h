@@ -23,6 +23,8 @@ void mtd_error_log_destroy(mtd_error_log *log);
 
 /* Counts one error and keeps its text (NULL reads as "") as the last one. */
 void mtd_error_log_note(mtd_error_log *log, const char *text);
+/* mtd_error_log_note of "WHAT: MESSAGE" (each cut to fit). */
+void mtd_error_log_note_event(mtd_error_log *log, const char *what, const char *message);
 
 /* What the heartbeat reports. */
 typedef struct mtd_error_summary {
